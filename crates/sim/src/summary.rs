@@ -1,0 +1,64 @@
+//! Run outputs: the summary and the detector records (plain data; the CLI writes files).
+
+use serde::Serialize;
+
+/// One run's summary (`summary.json`). Rates per lane use the road's lane count.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Summary {
+    pub scenario: String,
+    pub penetration: f64,
+    pub demand_vphpl: f64,
+    pub strategy: String,
+    pub seed: u64,
+    pub dt_s: f64,
+    pub duration_s: f64,
+    pub warmup_s: f64,
+    pub vehicles_entered: u64,
+    pub vehicles_exited: u64,
+    pub vehicles_in_network: u64,
+    /// Vehicles still in the virtual entry queue at the end.
+    pub vehicles_waiting: u64,
+    /// Lane changes of vehicles that entered in the window / those vehicles.
+    pub lane_changes_per_vehicle: f64,
+    /// L̄: mean over CAVs (entered in the window) of the largest platoon each was in.
+    pub avg_platoon_length: f64,
+    /// P_P: share of those CAVs ever in a platoon of 2 or more.
+    pub platooning_probability: f64,
+    /// CAVs counted in the platoon statistics.
+    pub cavs_counted: u64,
+    /// Vehicles counted in the lane-change statistic.
+    pub vehicles_counted: u64,
+    /// Flow at the measurement detector over the measurement window (veh/h/lane).
+    pub discharge_flow_vphpl: f64,
+    /// Highest aggregation-interval flow at the measurement detector in the window (veh/h/lane).
+    pub max_sustained_flow_vphpl: f64,
+    /// Steps in which two vehicles overlapped (counted per vehicle pair and step).
+    pub collisions: u64,
+    pub vehicle_updates: u64,
+    pub steps: u64,
+    pub wall_seconds: f64,
+}
+
+/// One detector, lane and aggregation interval (`detectors.csv`). `lane` is the lane number
+/// from the right starting at 1, or "all" for the cross-section.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DetectorRecord {
+    pub detector: String,
+    pub position_m: f64,
+    pub lane: String,
+    pub interval_start_s: f64,
+    pub interval_s: f64,
+    pub count: u64,
+    pub flow_vph: f64,
+    /// Time-mean speed of the vehicles that crossed (km/h); empty (NaN-free: `None`) if none.
+    pub speed_kmh: Option<f64>,
+    /// Share of the interval the detector was occupied, in [0, 1].
+    pub occupancy: f64,
+}
+
+/// Everything a run produces.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Output {
+    pub summary: Summary,
+    pub detectors: Vec<DetectorRecord>,
+}
