@@ -1,20 +1,48 @@
 //! # platoonsim-sim: the engine
 //!
 //! Principal types: [`Config`] (validated input), [`Simulation`] (the state and
-//! [`Simulation::step`]), [`Output`]/[`Summary`]/[`DetectorRecord`] (what a run produces), and
-//! [`run`] (config → output, single-threaded and deterministic).
+//! [`Simulation::step`], whose doc lists the phases), [`Output`]/[`Summary`]/[`DetectorRecord`]
+//! (what a run produces), and [`run`] (config → output, single-threaded and deterministic).
+//!
+//! Modules by phase: `sense` (neighbours, platoons), `decide` (lane-change decisions and
+//! accelerations), `execute` (lane changes), `insert` (arrivals, insertion), `detector`,
+//! `metrics`, `strategy` (platoon organization), `rng` (named random streams).
 
 pub mod config;
+mod decide;
+pub mod detector;
+mod execute;
+mod insert;
+pub mod metrics;
+pub mod rng;
+mod sense;
+mod sim;
+mod strategy;
 pub mod summary;
+pub mod vehicle;
 
 pub use config::{Config, Demand, DetectorSpec, FlowAwareConfig, PdConfig, Road, Strategy};
+pub use sim::{strategy_name, Simulation};
 pub use summary::{DetectorRecord, Output, Summary};
 
 /// Progress callback: called with (simulated seconds so far, total seconds) every simulated minute.
 pub type Progress<'a> = &'a mut dyn FnMut(f64, f64);
 
 /// Run a whole simulation: validate, step to the end, and collect the outputs.
-pub fn run(config: &Config, progress: Option<Progress<'_>>) -> Result<Output, String> {
-    let _ = (config, progress);
-    todo!("engine")
+/// Single-threaded and deterministic: the same config gives bit-identical outputs (except
+/// `wall_seconds`).
+pub fn run(config: &Config, mut progress: Option<Progress<'_>>) -> Result<Output, String> {
+    let start = std::time::Instant::now();
+    let mut sim = Simulation::new(config.clone())?;
+    let every = (60.0 / config.dt_s).round().max(1.0) as u64;
+    let total = config.duration_s;
+    while !sim.finished() {
+        sim.step()?;
+        if let Some(p) = progress.as_mut() {
+            if sim.step % every == 0 {
+                p(sim.time_s(), total);
+            }
+        }
+    }
+    Ok(sim.finish(start.elapsed().as_secs_f64()))
 }

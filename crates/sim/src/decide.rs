@@ -1,0 +1,347 @@
+//! Phase 2 (decide): every vehicle decides from the step-start state (synchronous update,
+//! spec 1): lane-change desire and gap acceptance (spec 4.2-4.3), BLC behaviour, cooperative
+//! yielding (spec 4.5), and its acceleration: the human model (spec 2) for humans and CAVs
+//! driving manually, CAV control (spec 3) for automated CAVs.
+
+use crate::sense::{Neighbours, NONE};
+use crate::sim::{Decision, Simulation};
+use crate::vehicle::{Mode, Relaxation, Vehicle, NEVER};
+use platoonsim_model::cav::{self, Family};
+use platoonsim_model::human;
+use platoonsim_model::lanechange::{self as lcm, Side};
+use platoonsim_model::{Leader, Relax};
+
+/// A lane-change desire that passed the threshold.
+#[derive(Clone, Copy, Debug)]
+struct Desire {
+    side: Side,
+    gamma: f64,
+    mandatory: bool,
+}
+
+impl Simulation {
+    /// Phase 2.
+    pub(crate) fn decide(&mut self) {
+        let n = self.vehicles.len();
+        if self.decisions.len() < n {
+            self.decisions.resize(
+                n,
+                Decision {
+                    accel: 0.0,
+                    mode: Mode::Cf,
+                    family: Family::Speed,
+                    change: None,
+                },
+            );
+        }
+        for l in 0..self.lanes.len() {
+            for k in 0..self.lanes[l].len() {
+                let s = self.lanes[l][k];
+                let d = self.decide_one(s);
+                self.decisions[s as usize] = d;
+            }
+        }
+    }
+
+    /// The leader view (net gap, speed) of slot `ld` for vehicle `v`.
+    #[inline]
+    fn view(&self, v: &Vehicle, ld: u32) -> Option<Leader> {
+        (ld != NONE).then(|| {
+            let l = &self.vehicles[ld as usize];
+            Leader {
+                gap_m: l.rear() - v.x,
+                v_mps: l.v,
+            }
+        })
+    }
+
+    /// Current relaxation factors of a vehicle (spec 4.6).
+    #[inline]
+    fn relax_now(&self, v: &Vehicle) -> Relax {
+        match v.relax {
+            Relaxation::None => Relax::NONE,
+            Relaxation::Since(since) => lcm::relax_at(&v.lc, (self.step - since) as f64 * self.dt),
+        }
+    }
+
+    fn decide_one(&self, s: u32) -> Decision {
+        let v = &self.vehicles[s as usize];
+        let nb = self.nb[s as usize];
+        let v_des = v.human.desired_speed;
+        let leader = self.view(v, nb.leader);
+
+        // 1. Lane-change desire (takes priority over yielding).
+        if let Some(d) = self.desire(s, v, &nb) {
+            return self.before_lane_change(s, v, &nb, leader, d);
+        }
+
+        // 2. Automated CAV: ACC / CACC / speed regulation (spec 3).
+        if v.automated() {
+            return self.cav_control(s, v, leader);
+        }
+
+        // 3. Human model (humans and CAVs driving manually), possibly yielding.
+        let relax = self.relax_now(v);
+        let mut target = human::target_accel(&v.human, v.v, v_des, leader, relax);
+        let mut mode = Mode::Cf;
+        if let Some((req, mandatory)) = self.yield_request(v, &nb) {
+            let r = &self.vehicles[req as usize];
+            let mut zeta = v.lc.cooperativeness;
+            if !mandatory {
+                zeta *= v.lc.discretionary_coop_factor;
+            }
+            if pair_uniform(self.cfg.seed, v.id, r.id) < zeta {
+                let virt = Leader {
+                    gap_m: r.rear() - v.x,
+                    v_mps: r.v,
+                };
+                let a_virt = human::target_accel(&v.human, v.v, v_des, Some(virt), lcm::gap_relax(&v.lc));
+                target = target.min(a_virt.max(v.human.comfort_decel));
+                mode = Mode::Ycf { to: r.id };
+            }
+        }
+        Decision {
+            accel: human::smooth_accel(v.a, target, v.human.smoothing),
+            mode,
+            family: v.family,
+            change: None,
+        }
+    }
+
+    /// Automated CAV control (spec 3.9).
+    fn cav_control(&self, s: u32, v: &Vehicle, leader: Option<Leader>) -> Decision {
+        let p = &self.cfg.cav;
+        let v_des = v.human.desired_speed;
+        let ld = self.nb[s as usize].leader;
+        let leader = leader.filter(|l| l.gap_m <= p.sensor_range_m);
+        let cmd = match leader {
+            None => cav::Command {
+                accel: cav::speed_regulation(p, v.v, v_des),
+                mode: cav::CavMode::SpeedRegulation,
+                family: Family::Speed,
+            },
+            Some(l) if self.is_cav(ld) => {
+                let t = if self.platoon_pos[s as usize] == 1 {
+                    p.inter_platoon_gap_s
+                } else {
+                    v.cacc_gap_s
+                };
+                cav::cacc(p, v.v, v.a, v_des, l, t, v.family)
+            }
+            Some(l) => cav::acc(p, v.v, v_des, Some(l), p.acc_time_gap_s, v.family),
+        };
+        Decision {
+            accel: cav::finalize(p, v.v, cmd.accel, v_des, leader, self.dt),
+            mode: Mode::Cf,
+            family: cmd.family,
+            change: None,
+        }
+    }
+
+    /// Spec 4.2: the lane-change desire, if it exceeds the driver's threshold.
+    fn desire(&self, s: u32, v: &Vehicle, nb: &Neighbours) -> Option<Desire> {
+        let lcd = &self.cfg.lane_change;
+        if v.x < lcd.forbid_zone_m {
+            return None;
+        }
+        let n_lanes = self.lanes.len() as u32;
+        let pd_lane = n_lanes - 1;
+        let is_cav = v.is_cav();
+        let follower = self.linked[s as usize] && self.platoon_pos[s as usize] > 1;
+        let organize = is_cav && self.organization_active(v);
+        let (side, gamma) = if organize {
+            if v.lane == pd_lane {
+                return None; // γ_d = 0 in the PD lane (spec 4.7)
+            }
+            (Side::Left, 1.0)
+        } else {
+            let w = if !is_cav {
+                1.0
+            } else if follower {
+                lcd.cav_weight_follower
+            } else {
+                lcd.cav_weight_leader
+            };
+            if w <= 0.0 {
+                return None;
+            }
+            let v_cur = self.avg_speed_ahead(v.lane as usize, nb.idx as usize, v.x, v_des_of(v));
+            let mut best: Option<(Side, f64)> = None;
+            for (side, ld) in [(Side::Left, nb.left_leader), (Side::Right, nb.right_leader)] {
+                let exists = match side {
+                    Side::Left => v.lane + 1 < n_lanes,
+                    Side::Right => v.lane > 0,
+                };
+                if !exists {
+                    continue;
+                }
+                let v_ant = self.anticipated_speed(v, ld);
+                let g = w * lcm::discretionary_desire(&v.lc, v_ant, v_cur, side);
+                if best.is_none_or(|(_, b)| g > b) {
+                    best = Some((side, g));
+                }
+            }
+            best?
+        };
+        // Anti-oscillation (spec 4.2).
+        if v.last_lc_step != NEVER {
+            let since = (self.step - v.last_lc_step) as f64 * self.dt;
+            if since < v.lc.min_interval_s {
+                return None;
+            }
+            if gamma < 1.0 && v.last_lc_side == Some(opposite(side)) && since < v.lc.return_factor * v.lc.min_interval_s {
+                return None;
+            }
+        }
+        (gamma > v.lc.threshold).then_some(Desire {
+            side,
+            gamma,
+            mandatory: false,
+        })
+    }
+
+    /// Average speed of the next `n_scan` vehicles within `d_scan` ahead of `x` in `lane`,
+    /// starting at list index `from` (front-first list: indices below `from` are ahead);
+    /// `v_empty` if none (spec 2.7 "speeds ahead").
+    fn avg_speed_ahead(&self, lane: usize, from: usize, x: f64, v_empty: f64) -> f64 {
+        let lcd = &self.cfg.lane_change;
+        let list = &self.lanes[lane];
+        let mut sum = 0.0;
+        let mut n = 0u32;
+        let mut k = from;
+        while k > 0 && n < lcd.scan_vehicles {
+            k -= 1;
+            let o = &self.vehicles[list[k] as usize];
+            if o.x - x > lcd.scan_distance_m {
+                break;
+            }
+            sum += o.v;
+            n += 1;
+        }
+        if n == 0 {
+            v_empty
+        } else {
+            sum / n as f64
+        }
+    }
+
+    /// v_ant = min(v̄_target, v_target-leader) (spec 4.2), scanning from the target leader.
+    fn anticipated_speed(&self, v: &Vehicle, target_leader: u32) -> f64 {
+        let v_des = v_des_of(v);
+        if target_leader == NONE {
+            return v_des;
+        }
+        let tl = &self.vehicles[target_leader as usize];
+        if tl.x - v.x > self.cfg.lane_change.scan_distance_m {
+            return v_des;
+        }
+        let from = self.nb[target_leader as usize].idx as usize + 1;
+        let avg = self.avg_speed_ahead(tl.lane as usize, from, v.x, v_des);
+        avg.min(tl.v)
+    }
+
+    /// BLC (spec 4.3): gap acceptance and the before-change behaviour.
+    fn before_lane_change(&self, s: u32, v: &Vehicle, nb: &Neighbours, leader: Option<Leader>, d: Desire) -> Decision {
+        let (tl, tf) = match d.side {
+            Side::Left => (nb.left_leader, nb.left_follower),
+            Side::Right => (nb.right_leader, nb.right_follower),
+        };
+        let v_des = v.human.desired_speed;
+        let h = &v.human;
+        let a_cur = human::target_accel(h, v.v, v_des, leader, self.relax_now(v));
+        let lead_view = self.view(v, tl);
+        let a_ant = human::target_accel(h, v.v, v_des, lead_view, lcm::gap_relax(&v.lc));
+        let lead_ok = match lead_view {
+            None => true,
+            Some(l) => lcm::accept_lead_gap(h, &v.lc, l.gap_m, v.v, l.v_mps) && (d.mandatory || a_ant >= 0.0),
+        };
+        let lag_ok = if tf == NONE {
+            true
+        } else {
+            let f = &self.vehicles[tf as usize];
+            lcm::accept_lag_gap(h, &v.lc, v.rear() - f.x, v.v, f.v, a_ant)
+        };
+        // Only a platoon leader changes lanes: a follower splits first (spec 3.6.4).
+        let must_split = self.linked[s as usize] && self.platoon_pos[s as usize] > 1;
+        let change = lead_ok && lag_ok && !must_split;
+        let target = if change {
+            a_cur
+        } else if d.mandatory {
+            if lag_ok {
+                a_cur.min(a_ant.max(h.comfort_decel)) // BLC-Sync
+            } else if d.gamma > v.lc.slow_down_desire {
+                a_cur.min(h.comfort_decel) // BLC-Slow
+            } else {
+                a_cur
+            }
+        } else if lag_ok && !lead_ok {
+            a_cur.min(a_ant.max(0.0)) // discretionary sync, no deceleration
+        } else {
+            a_cur
+        };
+        Decision {
+            accel: human::smooth_accel(v.a, target, h.smoothing),
+            mode: Mode::Blc {
+                side: d.side,
+                mandatory: d.mandatory,
+            },
+            family: Family::Speed,
+            change: change.then_some(d.side),
+        }
+    }
+
+    /// Spec 4.5: the nearer adjacent-lane leader in BLC toward this lane, if any (slot,
+    /// mandatory). Automated CAVs do not yield (spec 6.5).
+    fn yield_request(&self, v: &Vehicle, nb: &Neighbours) -> Option<(u32, bool)> {
+        let mut best: Option<(u32, bool, f64)> = None;
+        for (ld, toward) in [(nb.left_leader, Side::Right), (nb.right_leader, Side::Left)] {
+            if ld == NONE {
+                continue;
+            }
+            let r = &self.vehicles[ld as usize];
+            let Mode::Blc { side, mandatory } = r.mode else {
+                continue;
+            };
+            if side != toward {
+                continue;
+            }
+            let dist = r.rear() - v.x;
+            if dist < 0.0 {
+                continue; // too late
+            }
+            // Ignore a request from the lane the driver has just left.
+            if let (Relaxation::Since(_), Some(last)) = (v.relax, v.last_lc_side) {
+                if opposite(last) == opposite(toward) {
+                    continue;
+                }
+            }
+            if best.is_none_or(|(_, _, b)| dist < b) {
+                best = Some((ld, mandatory, dist));
+            }
+        }
+        best.map(|(s, m, _)| (s, m))
+    }
+}
+
+#[inline]
+fn v_des_of(v: &Vehicle) -> f64 {
+    v.human.desired_speed
+}
+
+/// The other side.
+pub(crate) fn opposite(s: Side) -> Side {
+    match s {
+        Side::Left => Side::Right,
+        Side::Right => Side::Left,
+    }
+}
+
+/// A uniform draw in [0, 1) for the pair (driver, requester): "a fresh U(0,1) at each new
+/// request" (spec 4.5), reproducible without storing anything.
+pub(crate) fn pair_uniform(seed: u64, a: u64, b: u64) -> f64 {
+    let mut z = seed ^ a.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ b.rotate_left(32).wrapping_mul(0xC2B2_AE3D_27D4_EB4F);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^= z >> 31;
+    (z >> 11) as f64 / (1u64 << 53) as f64
+}

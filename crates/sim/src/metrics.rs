@@ -1,0 +1,65 @@
+//! The paper's statistics (seed Sec. 4.1, spec 5.1.6), accumulated as vehicles leave (or at the
+//! end for those still on the road). Only vehicles that entered in the measurement window count.
+
+use crate::vehicle::Vehicle;
+
+#[derive(Clone, Debug, Default)]
+pub struct Metrics {
+    pub entered: u64,
+    pub exited: u64,
+    /// Vehicles counted (entered in the window).
+    pub vehicles_counted: u64,
+    pub lane_changes: u64,
+    pub cavs_counted: u64,
+    pub platoon_length_sum: u64,
+    pub cavs_platooned: u64,
+}
+
+impl Metrics {
+    fn count(&mut self, v: &Vehicle) {
+        if !v.measured {
+            return;
+        }
+        self.vehicles_counted += 1;
+        self.lane_changes += v.lane_changes as u64;
+        if v.is_cav() {
+            self.cavs_counted += 1;
+            self.platoon_length_sum += v.max_platoon as u64;
+            if v.max_platoon > 1 {
+                self.cavs_platooned += 1;
+            }
+        }
+    }
+
+    pub fn on_exit(&mut self, v: &Vehicle) {
+        self.exited += 1;
+        self.count(v);
+    }
+
+    pub fn on_exit_in_network(&mut self, v: &Vehicle) {
+        self.count(v);
+    }
+
+    /// All lane changes / all vehicles (seed Sec. 4.1).
+    pub fn lane_changes_per_vehicle(&self) -> f64 {
+        ratio(self.lane_changes as f64, self.vehicles_counted)
+    }
+
+    /// L̄ (seed eq. 1); 0 if no CAV was counted.
+    pub fn avg_platoon_length(&self) -> f64 {
+        ratio(self.platoon_length_sum as f64, self.cavs_counted)
+    }
+
+    /// P_P (seed eq. 2); 0 if no CAV was counted.
+    pub fn platooning_probability(&self) -> f64 {
+        ratio(self.cavs_platooned as f64, self.cavs_counted)
+    }
+}
+
+fn ratio(a: f64, n: u64) -> f64 {
+    if n == 0 {
+        0.0
+    } else {
+        a / n as f64
+    }
+}

@@ -1,0 +1,357 @@
+//! The simulation state and the step.
+
+use crate::config::{Config, Strategy};
+use crate::detector::Detector;
+use crate::insert::Entrance;
+use crate::metrics::Metrics;
+use crate::sense::{Neighbours, NONE};
+use crate::summary::{Output, Summary};
+use crate::vehicle::{Kind, Relaxation, Vehicle};
+use platoonsim_model::lanechange::Side;
+
+/// Per-vehicle result of the decide phase (indexed by slot).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Decision {
+    pub accel: f64,
+    pub mode: crate::vehicle::Mode,
+    pub family: platoonsim_model::cav::Family,
+    /// Lane change to execute after integration.
+    pub change: Option<Side>,
+}
+
+/// The whole simulation state.
+pub struct Simulation {
+    pub(crate) cfg: Config,
+    pub(crate) dt: f64,
+    /// Steps done so far; simulated time = step · dt.
+    pub(crate) step: u64,
+    pub(crate) total_steps: u64,
+    pub(crate) warmup_step: u64,
+    pub(crate) agg_steps: u64,
+    /// Dense vehicle storage; slots listed in `free` are dead.
+    pub(crate) vehicles: Vec<Vehicle>,
+    pub(crate) free: Vec<u32>,
+    /// Per lane (0 = rightmost), vehicle slots sorted front first (descending x).
+    pub(crate) lanes: Vec<Vec<u32>>,
+    // Scratch, indexed by slot, rebuilt every step (no allocation once warmed up).
+    pub(crate) nb: Vec<Neighbours>,
+    pub(crate) platoon_pos: Vec<u32>,
+    pub(crate) linked: Vec<bool>,
+    pub(crate) decisions: Vec<Decision>,
+    pub(crate) changed_this_step: Vec<u64>,
+    pub(crate) change_list: Vec<(u32, Side)>,
+    pub(crate) entrance: Entrance,
+    pub(crate) detectors: Vec<Detector>,
+    pub(crate) metrics: Metrics,
+    pub(crate) next_id: u64,
+    /// Per-step pair-overlap count (collisions), all steps.
+    pub(crate) collisions: u64,
+    pub(crate) vehicle_updates: u64,
+    /// Flow-Aware condition per road cell of `FA_CELL_M` (from the latest broadcasts).
+    pub(crate) fa_cells: Vec<bool>,
+}
+
+impl Simulation {
+    /// Build a simulation from a validated config.
+    pub fn new(cfg: Config) -> Result<Simulation, String> {
+        cfg.check()?;
+        let dt = cfg.dt_s;
+        let n_lanes = cfg.road.lanes as usize;
+        let steps = |s: f64| (s / dt).round() as u64;
+        let detectors = cfg
+            .detectors
+            .iter()
+            .map(|d| Detector::new(&d.name, d.position_m, n_lanes))
+            .collect::<Vec<_>>();
+        Ok(Simulation {
+            dt,
+            step: 0,
+            total_steps: steps(cfg.duration_s),
+            warmup_step: steps(cfg.warmup_s),
+            agg_steps: steps(cfg.aggregation_s).max(1),
+            vehicles: Vec::new(),
+            free: Vec::new(),
+            lanes: vec![Vec::new(); n_lanes],
+            nb: Vec::new(),
+            platoon_pos: Vec::new(),
+            linked: Vec::new(),
+            decisions: Vec::new(),
+            changed_this_step: Vec::new(),
+            change_list: Vec::new(),
+            entrance: Entrance::new(&cfg, 0),
+            detectors,
+            metrics: Metrics::default(),
+            next_id: 0,
+            collisions: 0,
+            vehicle_updates: 0,
+            fa_cells: Vec::new(),
+            cfg,
+        })
+    }
+
+    /// Simulated time (s).
+    pub fn time_s(&self) -> f64 {
+        self.step as f64 * self.dt
+    }
+
+    /// True once the configured duration has been simulated.
+    pub fn finished(&self) -> bool {
+        self.step >= self.total_steps
+    }
+
+    /// The config this simulation runs.
+    pub fn config(&self) -> &Config {
+        &self.cfg
+    }
+
+    /// Vehicles on the road, lane by lane (0 = rightmost), front first.
+    pub fn lane_vehicles(&self, lane: usize) -> impl Iterator<Item = &Vehicle> + '_ {
+        self.lanes[lane].iter().map(move |&s| &self.vehicles[s as usize])
+    }
+
+    /// Number of vehicles on the road.
+    pub fn vehicles_in_network(&self) -> usize {
+        self.lanes.iter().map(Vec::len).sum()
+    }
+
+    /// Vehicles waiting in the virtual entry queue.
+    pub fn vehicles_waiting(&self) -> usize {
+        self.entrance.waiting()
+    }
+
+    /// Collisions counted so far (vehicle pairs overlapping, per step).
+    pub fn collisions(&self) -> u64 {
+        self.collisions
+    }
+
+    /// Advance one step. Phases, in this order, each reading the state the previous one left:
+    ///
+    /// 1. **sense**: same-lane leaders and adjacent-lane leaders/followers (a merge sweep over
+    ///    the position-sorted lanes); CACC links and platoon positions; platoon statistics.
+    /// 2. **decide**: every vehicle, from the step-start state only (synchronous update):
+    ///    lane-change desire and gap acceptance (spec 4), yielding, then the acceleration of
+    ///    its mode (human model spec 2, or CAV control spec 3).
+    /// 3. **integrate**: ballistic update, speeds never negative (spec 1).
+    /// 4. **lane changes**: accepted changes are re-checked on the new positions and applied
+    ///    instantaneously, front to back, lane by lane (spec 4.4).
+    /// 5. **boundaries**: exits at the downstream end, then arrivals and insertion from the
+    ///    virtual entry queue.
+    /// 6. **detectors**: crossings and occupancy; interval close and broadcast.
+    /// 7. **invariants**: no overlap (counted; a panic in debug builds), all states finite.
+    pub fn step(&mut self) -> Result<(), String> {
+        self.sense();
+        self.decide();
+        self.integrate();
+        self.apply_lane_changes();
+        self.exits();
+        self.insert();
+        self.observe_detectors();
+        self.step += 1;
+        if self.step % self.agg_steps == 0 {
+            for d in &mut self.detectors {
+                d.close_interval();
+            }
+            self.update_flow_aware();
+        }
+        self.check_invariants()
+    }
+
+    /// Phase 3: v' = max(0, v + aΔt); x' = x + ½(v + v')Δt, or the stopping point when the
+    /// speed would turn negative.
+    fn integrate(&mut self) {
+        let dt = self.dt;
+        for lane in &self.lanes {
+            for &s in lane {
+                let d = &self.decisions[s as usize];
+                let veh = &mut self.vehicles[s as usize];
+                veh.x_prev = veh.x;
+                let v_new = veh.v + d.accel * dt;
+                if v_new >= 0.0 {
+                    veh.x += 0.5 * (veh.v + v_new) * dt;
+                    veh.v = v_new;
+                    veh.a = d.accel;
+                } else {
+                    // Stops within the step: travels v²/(2|a|).
+                    veh.x += 0.5 * veh.v * veh.v / (-d.accel);
+                    veh.a = -veh.v / dt;
+                    veh.v = 0.0;
+                }
+                veh.mode = d.mode;
+                veh.family = d.family;
+                if let Relaxation::Since(since) = veh.relax {
+                    let elapsed = (self.step + 1 - since) as f64 * dt;
+                    if elapsed >= veh.lc.relax_time_s {
+                        veh.relax = Relaxation::None;
+                    }
+                }
+            }
+            self.vehicle_updates += lane.len() as u64;
+        }
+    }
+
+    /// Phase 5a: vehicles whose front passed the road end leave.
+    fn exits(&mut self) {
+        let end = self.cfg.road.length_m;
+        for l in 0..self.lanes.len() {
+            while let Some(&s) = self.lanes[l].first() {
+                if self.vehicles[s as usize].x < end {
+                    break;
+                }
+                self.lanes[l].remove(0);
+                self.metrics.on_exit(&self.vehicles[s as usize]);
+                self.free.push(s);
+            }
+        }
+    }
+
+    /// Phase 6: detectors, per lane by a search on the sorted lane list.
+    fn observe_detectors(&mut self) {
+        let dt = self.dt;
+        for det in &mut self.detectors {
+            let p = det.position_m;
+            for (l, lane) in self.lanes.iter().enumerate() {
+                // Candidates: front now in [p, p + L + travel]; lane is sorted descending.
+                let hi = p + 60.0;
+                let start = lane.partition_point(|&s| self.vehicles[s as usize].x > hi);
+                for &s in &lane[start..] {
+                    let v = &self.vehicles[s as usize];
+                    if v.x < p {
+                        break;
+                    }
+                    let v0 = (v.v - v.a * dt).max(0.0);
+                    det.observe(l, v.x_prev, v.x, v0, v.v, v.human.length_m, dt);
+                }
+            }
+        }
+    }
+
+    /// Phase 7: overlap and finiteness. Keeps each lane sorted even after a collision.
+    fn check_invariants(&mut self) -> Result<(), String> {
+        for l in 0..self.lanes.len() {
+            let lane = &mut self.lanes[l];
+            let mut sorted = true;
+            for k in 1..lane.len() {
+                let lead = &self.vehicles[lane[k - 1] as usize];
+                let fol = &self.vehicles[lane[k] as usize];
+                if !(fol.x.is_finite() && fol.v.is_finite() && fol.a.is_finite()) {
+                    return Err(format!(
+                        "vehicle {} in lane {} has a non-finite state at t = {:.1} s (x = {}, v = {}, a = {})",
+                        fol.id,
+                        l + 1,
+                        self.step as f64 * self.dt,
+                        fol.x,
+                        fol.v,
+                        fol.a
+                    ));
+                }
+                if fol.x > lead.rear() {
+                    self.collisions += 1;
+                    if fol.x > lead.x {
+                        sorted = false;
+                    }
+                    if cfg!(debug_assertions) {
+                        panic!(
+                            "overlap at t = {:.1} s in lane {}: vehicle {} (x = {:.2}, v = {:.2}) and its leader {} (rear = {:.2}, v = {:.2})",
+                            self.step as f64 * self.dt,
+                            l + 1,
+                            fol.id,
+                            fol.x,
+                            fol.v,
+                            lead.id,
+                            lead.rear(),
+                            lead.v
+                        );
+                    }
+                }
+            }
+            if !sorted {
+                let vehicles = &self.vehicles;
+                lane.sort_by(|&a, &b| vehicles[b as usize].x.total_cmp(&vehicles[a as usize].x));
+            }
+        }
+        Ok(())
+    }
+
+    /// Run to the end and produce the outputs.
+    pub fn finish(mut self, wall_seconds: f64) -> Output {
+        // Vehicles still on the road count with what they did so far.
+        for lane in &self.lanes {
+            for &s in lane {
+                self.metrics.on_exit_in_network(&self.vehicles[s as usize]);
+            }
+        }
+        let cfg = &self.cfg;
+        let lanes = cfg.road.lanes as f64;
+        let det = &self.detectors[cfg.measurement_detector];
+        let interval = cfg.aggregation_s;
+        let first = (cfg.warmup_s / interval).ceil() as usize;
+        let mut window_count = 0u64;
+        let mut window_intervals = 0usize;
+        let mut max_flow: f64 = 0.0;
+        for k in first..det.intervals() {
+            let c = det.total_count(k);
+            window_count += c;
+            window_intervals += 1;
+            max_flow = max_flow.max(c as f64 * 3600.0 / interval / lanes);
+        }
+        let window_h = window_intervals as f64 * interval / 3600.0;
+        let discharge = if window_h > 0.0 { window_count as f64 / window_h / lanes } else { 0.0 };
+        let m = &self.metrics;
+        let summary = Summary {
+            scenario: cfg.name.clone(),
+            penetration: cfg.penetration,
+            demand_vphpl: cfg.demand.vph_per_lane,
+            strategy: strategy_name(&cfg.strategy).to_string(),
+            seed: cfg.seed,
+            dt_s: cfg.dt_s,
+            duration_s: cfg.duration_s,
+            warmup_s: cfg.warmup_s,
+            vehicles_entered: m.entered,
+            vehicles_exited: m.exited,
+            vehicles_in_network: self.vehicles_in_network() as u64,
+            vehicles_waiting: self.entrance.waiting() as u64,
+            lane_changes_per_vehicle: m.lane_changes_per_vehicle(),
+            avg_platoon_length: m.avg_platoon_length(),
+            platooning_probability: m.platooning_probability(),
+            cavs_counted: m.cavs_counted,
+            vehicles_counted: m.vehicles_counted,
+            discharge_flow_vphpl: discharge,
+            max_sustained_flow_vphpl: max_flow,
+            collisions: self.collisions,
+            vehicle_updates: self.vehicle_updates,
+            steps: self.step,
+            wall_seconds,
+        };
+        let mut detectors = Vec::new();
+        for d in &self.detectors {
+            d.records(interval, &mut detectors);
+        }
+        Output { summary, detectors }
+    }
+
+    /// Allocate a slot for a new vehicle.
+    pub(crate) fn alloc(&mut self, v: Vehicle) -> u32 {
+        if let Some(s) = self.free.pop() {
+            self.vehicles[s as usize] = v;
+            s
+        } else {
+            self.vehicles.push(v);
+            (self.vehicles.len() - 1) as u32
+        }
+    }
+
+    /// Is this slot's vehicle a CAV?
+    #[inline]
+    pub(crate) fn is_cav(&self, s: u32) -> bool {
+        s != NONE && self.vehicles[s as usize].kind == Kind::Cav
+    }
+}
+
+/// Short name of a strategy (summary field).
+pub fn strategy_name(s: &Strategy) -> &'static str {
+    match s {
+        Strategy::None => "none",
+        Strategy::Pd { .. } => "pd",
+        Strategy::FlowAware { .. } => "flow-aware",
+    }
+}
