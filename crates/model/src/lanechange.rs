@@ -179,25 +179,108 @@ impl Default for LaneChangeParams {
 
 /// Mandatory desire γ_m (spec 4.2) at distance `d_e_m` to the last point for the change, own
 /// speed `v` (t_e = d_e / v; v = 0 gives t_e = ∞), `n` changes still needed (n = 0 → 0).
+///
+/// Uses the [P15-code] form that falls with distance (spec 4.2 notes that the middle case
+/// printed in [P15-doc] rises with distance). The cases are tested in the spec's order: first
+/// "far away in both distance and time" → 0, then "within E_min or T_min" → 1, otherwise the
+/// larger of the distance and time terms, clamped to [0, 1]. A negative `d_e_m` (the point
+/// has been passed) gives 1.
 pub fn mandatory_desire(p: &LaneChangeParams, d_e_m: f64, v: f64, n: u32) -> f64 {
-    let _ = (p, d_e_m, v, n);
-    todo!("spec 4.2 mandatory")
+    if n == 0 {
+        return 0.0;
+    }
+    let n = f64::from(n);
+    // spec 4.2: t_e = d_e / v; a standing vehicle has all the time in the world.
+    let t_e = if v > 0.0 { d_e_m / v } else { f64::INFINITY };
+    let (e, t) = (p.mandatory_distance_m, p.mandatory_time_s);
+    let (e_min, t_min) = (p.mandatory_min_distance_m, p.mandatory_min_time_s);
+    if d_e_m >= n * e && t_e >= n * t {
+        return 0.0;
+    }
+    if d_e_m <= e_min || t_e <= t_min {
+        return 1.0;
+    }
+    // Here d_e > E_min and t_e > T_min, so both numerators are > 0: a zero denominator
+    // (E = E_min or T = T_min) gives −∞ for that term, never NaN; t_e = ∞ likewise.
+    let by_distance = 1.0 - (d_e_m - e_min) / (n * (e - e_min));
+    let by_time = 1.0 - (t_e - t_min) / (n * (t - t_min));
+    by_distance.max(by_time).clamp(0.0, 1.0)
 }
 
 /// Discretionary desire γ_d toward `side` (spec 4.2, [P15-code] Oct 2015 form): `v_ant` the
 /// anticipated speed in the target lane, `v_cur` the average speed ahead in the current lane.
 /// Includes η_dir (1 left, `right_discount` right). In [0, 1].
+///
+/// v_ref = max(v_cur, `min_reference_speed_mps`); γ_d = min(1, max(0, (v_ant − v_ref)/v_ref))·η.
+/// The floor on v_ref keeps the relative gain finite in a jam; if the floor is configured
+/// to 0 and v_cur ≤ 0, any positive v_ant counts as the full gain 1.
 pub fn discretionary_desire(p: &LaneChangeParams, v_ant: f64, v_cur: f64, side: Side) -> f64 {
-    let _ = (p, v_ant, v_cur, side);
-    todo!("spec 4.2 discretionary")
+    let eta = match side {
+        Side::Left => 1.0,
+        Side::Right => p.right_discount,
+    };
+    let v_ref = v_cur.max(p.min_reference_speed_mps);
+    let gain = if v_ref > 0.0 {
+        ((v_ant - v_ref) / v_ref).clamp(0.0, 1.0)
+    } else if v_ant > v_ref {
+        1.0
+    } else {
+        0.0
+    };
+    gain * eta
 }
 
 /// Closest approach g_min of a leader/follower pair while both brake (spec 4.3): initial net
 /// gap `g0`, leader speed `v_l` braking at `b_l` (assumed rate, ≤ 0 or ≥ 0), follower speed
 /// `v_f` braking at `b_f` < 0.
+///
+/// With Δv = v_l − v_f, Δa = b_l − b_f and t* = max(0, −Δv/Δa):
+/// * if Δa > 0 and the leader is still moving at t* (b_l ≥ 0, or −v_l/b_l > t*), the gap is
+///   smallest when the relative speed vanishes: g_min = g0 + Δv t* + ½Δa t*²
+///   (= g0 − Δv²/(2Δa) when Δv < 0, g0 otherwise);
+/// * otherwise the gap is evaluated when the follower stops, t_f = −v_f/b_f:
+///   g_min = g0 + min(0, Δv t_f + ½Δa t_f²). As in spec 4.3 the leader's motion is
+///   extrapolated with the constant rate b_l also after it would have stopped, which can only
+///   make g_min smaller (conservative).
+///
+/// Outside the model's precondition b_f < 0 (a follower that does not brake) the result is
+/// still defined and never NaN: g0 if the follower can never close in (it stands still, or
+/// both keep a constant relative speed Δv ≥ 0), −∞ if it never stops and the extrapolated
+/// gap is unbounded below.
 pub fn min_gap_while_braking(g0: f64, v_l: f64, b_l: f64, v_f: f64, b_f: f64) -> f64 {
-    let _ = (g0, v_l, b_l, v_f, b_f);
-    todo!("spec 4.3")
+    let dv = v_l - v_f;
+    let da = b_l - b_f;
+    if da > 0.0 {
+        // Closest approach of the two constant-deceleration parabolas (spec 4.3, first case).
+        let t_star = if dv < 0.0 { -dv / da } else { 0.0 };
+        let leader_moving_at_t_star = b_l >= 0.0 || -v_l / b_l > t_star;
+        if leader_moving_at_t_star {
+            // Closed form of g0 + Δv t* + ½Δa t*²; avoids ∞ − ∞ when Δa is tiny.
+            return if dv < 0.0 {
+                g0 - dv * dv / (2.0 * da)
+            } else {
+                g0
+            };
+        }
+    }
+    // Second case of spec 4.3: evaluate at the follower's stopping time.
+    if v_f <= 0.0 && b_f <= 0.0 {
+        // t_f = 0: a standing follower (that does not accelerate) cannot close in.
+        return g0;
+    }
+    let t_f = if b_f < 0.0 { -v_f / b_f } else { f64::INFINITY };
+    if !t_f.is_finite() {
+        // The follower never stops (b_f ≥ 0, outside the model): the gap stays bounded only
+        // if the relative speed stays constant and non-negative.
+        return if da == 0.0 && dv >= 0.0 {
+            g0
+        } else {
+            f64::NEG_INFINITY
+        };
+    }
+    // Δv t_f + ½Δa t_f², factored so that a huge t_f with Δa = 0 cannot produce ∞ · 0.
+    let change = t_f * (dv + 0.5 * da * t_f);
+    g0 + change.min(0.0)
 }
 
 /// The relaxed parameter factors used in gap acceptance (fully relaxed: φ_h, φ_j, φ_r).
@@ -209,24 +292,68 @@ pub fn gap_relax(p: &LaneChangeParams) -> Relax {
     }
 }
 
+/// The acceptance criterion of spec 4.3 shared by the lead and lag tests: g0 > d_jam' and
+/// g_min − v_f (τ_r' + θ) − d_jam' > 0, with the subject's fully relaxed τ_r' = φ_r τ_r and
+/// d_jam' = φ_j d_jam ("the changer assumes the others are like itself") and θ = `buffer_s`.
+fn gap_criterion(h: &HumanParams, lc: &LaneChangeParams, g0: f64, g_min: f64, v_f: f64) -> bool {
+    let relax = gap_relax(lc);
+    let reaction = relax.reaction * h.reaction_s;
+    let jam = relax.jam * h.jam_gap_m;
+    g0 > jam && g_min - v_f * (reaction + h.buffer_s) - jam > 0.0
+}
+
 /// Lead (forward) gap acceptance (spec 4.3): may the subject (params `h`, `lc`, speed `v`) move
 /// in behind a target-lane leader at net gap `g0` driving at `v_leader`?
-pub fn accept_lead_gap(h: &HumanParams, lc: &LaneChangeParams, g0: f64, v: f64, v_leader: f64) -> bool {
-    let _ = (h, lc, g0, v, v_leader);
-    todo!("spec 4.3 forward")
+///
+/// Leader = target-lane leader braking at b_ℓ* = σ_f c_b b; follower = the subject braking at
+/// its b = `h.max_decel`; the criterion uses the subject's speed as v_f.
+pub fn accept_lead_gap(
+    h: &HumanParams,
+    lc: &LaneChangeParams,
+    g0: f64,
+    v: f64,
+    v_leader: f64,
+) -> bool {
+    let b_leader = lc.sigma_forward * h.leader_brake_factor * h.max_decel;
+    let g_min = min_gap_while_braking(g0, v_leader, b_leader, v, h.max_decel);
+    gap_criterion(h, lc, g0, g_min, v)
 }
 
 /// Lag (backward) gap acceptance (spec 4.3): may the subject cut in ahead of a target-lane
 /// follower at net gap `g0` (subject's rear to follower's front) driving at `v_follower`?
 /// `a_ant` is the subject's anticipated acceleration behind its new leader. The follower is
 /// assumed to have the subject's parameters.
-pub fn accept_lag_gap(h: &HumanParams, lc: &LaneChangeParams, g0: f64, v: f64, v_follower: f64, a_ant: f64) -> bool {
-    let _ = (h, lc, g0, v, v_follower, a_ant);
-    todo!("spec 4.3 backward")
+///
+/// Leader = the subject braking at b_ℓ* = max(a_ant, σ_b c_b b) (it will not brake harder than
+/// it has to); follower = the target-lane follower braking at b = `h.max_decel`; the criterion
+/// uses the follower's speed as v_f.
+pub fn accept_lag_gap(
+    h: &HumanParams,
+    lc: &LaneChangeParams,
+    g0: f64,
+    v: f64,
+    v_follower: f64,
+    a_ant: f64,
+) -> bool {
+    let b_leader = a_ant.max(lc.sigma_backward * h.leader_brake_factor * h.max_decel);
+    let g_min = min_gap_while_braking(g0, v, b_leader, v_follower, h.max_decel);
+    gap_criterion(h, lc, g0, g_min, v_follower)
 }
 
 /// Relaxation factors `elapsed_s` after the event (spec 4.6): linear from φ to 1 over t_s.
+///
+/// φ_x(t) = φ_x + (1 − φ_x) t / t_s for 0 ≤ t < t_s, exactly 1 (`Relax::NONE`) from t_s on.
+/// A negative (or NaN) `elapsed_s` counts as 0; t_s ≤ 0 means no relaxation at all.
 pub fn relax_at(p: &LaneChangeParams, elapsed_s: f64) -> Relax {
-    let _ = (p, elapsed_s);
-    todo!("spec 4.6")
+    let t = elapsed_s.max(0.0);
+    if t >= p.relax_time_s || p.relax_time_s.is_nan() {
+        return Relax::NONE;
+    }
+    let frac = t / p.relax_time_s;
+    let recover = |phi: f64| phi + (1.0 - phi) * frac;
+    Relax {
+        headway: recover(p.relax_headway),
+        jam: recover(p.relax_jam),
+        reaction: recover(p.relax_reaction),
+    }
 }
