@@ -9,18 +9,22 @@
 //! speed regulation (3.2): a = k0 (v_F − v)
 //! ACC (3.3):  e = g − t_A v − d0,  d0 = max(s_min, min(75/v − 5, 2))
 //!             spacing > 120 m → speed regulation; < 100 m → gap family; between: previous family
+//!             (spacing = g + leader length, 4 m in `acc`); speed family: a = min(k0 (v_F − v),
+//!             closing law) [D]
 //!             regulation  |e| < 0.2 and |Δv| < 0.1 : a = k1 e + k2 Δv    (0.23, 0.07)
 //!             avoidance   e < 0                    : a = k1c e + k2c Δv  (0.8, 0.23)
 //!             closing     otherwise                : a = k1g e + k2g Δv  (0.04, 0.8)
 //! CACC (3.4): e = g − t_C v − s_min,  ė = Δv − t_C a,  v(k+1) = v(k) + kp e + kd ė  (per 0.1 s)
-//!             tg = g/v > 2 s and e > 1.66 m → speed regulation; tg < 1.5 s → CACC family;
-//!             between: previous family
+//!             tg = g/v > 2 s and e > 1.66 m → speed regulation (capped by the closing law [D]);
+//!             tg < 1.5 s, or tg > 2 s with e ≤ 1.66 m [D] → CACC family; between: previous family
 //!             regulation  0 < e < 0.2 and |Δv| < 0.1 : (0.45, 0.0125)
 //!             avoidance   e < 0                      : (0.45, 0.05)
 //!             closing     otherwise                  : (0.005, 0.05)
 //!             a = (v(k+1) − v(k)) / 0.1 applied over Δt
-//! safety (3.4, 3.8): v_safe = Gipps speed with τ_r = 0.4 s, θ = 0, b̂ = b;
-//!             if v_new > v_safe + min(2, g): v_new = max(0, v_safe + min(2, g))
+//! safety (3.4, 3.8): v_safe = Gipps speed with τ_r = 0.4 s, θ = 0, b̂ = b, jam gap s_min, at its
+//!             fixed point v = v_G (= Krauss form): v_safe = bτ_r + sqrt(b²τ_r² + v_l² − 2b(g − s_min));
+//!             tol = min(2, max(0, g − s_min)) [D; spec: min(2, g)];
+//!             if v_new > v_safe + tol: v_new = max(0, v_safe + tol) (may brake harder than b)
 //! limits:     (v_new − v)/Δt ∈ [b, a_M], 0 ≤ v_new ≤ v_F
 //! ```
 //!
@@ -46,6 +50,7 @@
 //! | – | `max_platoon` | 10 | veh | seed |
 //! | – | `sensor_range_m` | 250 | m | spec 3.9 |
 //! | – | `time_gap_shares` | 0.6:0.57, 0.7:0.24, 0.9:0.07, 1.1:0.12 | s : share | Nowakowski, spec 3.5 |
+//! | – | `time_gap_ramp_per_s` | 0.06 | s/s | spec 3.5 transitions (15 s for 0.9 s) [D: on] |
 
 use crate::Leader;
 use serde::{Deserialize, Serialize};
@@ -76,6 +81,9 @@ pub struct CavParams {
     pub sensor_range_m: f64,
     /// (CACC time gap in s, share) pairs; shares sum to 1.
     pub time_gap_shares: Vec<(f64, f64)>,
+    /// Rate at which a CAV's target time gap moves to a new setting (s of gap per s), spec 3.5
+    /// "Transitions" (Xiao 2018: over about 15 s, so 0.9 s / 15 s = 0.06). 0 = jump at once.
+    pub time_gap_ramp_per_s: f64,
 }
 
 impl Default for CavParams {
@@ -102,6 +110,7 @@ impl Default for CavParams {
             max_platoon: 10,
             sensor_range_m: 250.0,
             time_gap_shares: vec![(0.6, 0.57), (0.7, 0.24), (0.9, 0.07), (1.1, 0.12)],
+            time_gap_ramp_per_s: 0.06,
         }
     }
 }
@@ -134,60 +143,295 @@ pub struct Command {
     pub family: Family,
 }
 
+/// Length (m) assumed for the leader when [`acc`] turns the net gap into the spacing of the
+/// 100/120 m hysteresis band (spec 3.3): every vehicle is 4 m long in the seed (spec 0.1). Use
+/// [`acc_with_leader_length`] when the actual leader length is known.
+pub const ASSUMED_LEADER_LENGTH_M: f64 = 4.0;
+
+/// The CACC speed-update interval (s) the gains are tuned for (spec 3.4).
+pub const CACC_CONTROL_INTERVAL_S: f64 = 0.1;
+
+/// Weakest braking magnitude (m/s²) accepted for `max_decel` (guards b ≥ 0).
+const MIN_BRAKE_MPS2: f64 = 1e-3;
+/// Smallest step (s) accepted by [`finalize`] (guards dt ≤ 0).
+const MIN_DT_S: f64 = 1e-6;
+
+/// `x` clamped to [lo, hi] without panicking when lo > hi (then `lo` wins).
+fn bound(x: f64, lo: f64, hi: f64) -> f64 {
+    x.min(hi).max(lo)
+}
+
 /// Speed regulation (spec 3.2): k0 (v_des − v).
 pub fn speed_regulation(p: &CavParams, v: f64, v_des: f64) -> f64 {
-    let _ = (p, v, v_des);
-    todo!("spec 3.2")
+    p.speed_gain * (v_des - v)
+}
+
+/// ACC standstill margin d0(v) = max(s_min, min(75/v − 5, 2)) m (spec 3.3, Xiao 2018 margin
+/// floored at the seed's minimum space gap [D]); 2 m (then floored) at v ≤ 0.
+pub fn acc_standstill_margin(p: &CavParams, v: f64) -> f64 {
+    let xiao = if v > 0.0 {
+        (75.0 / v - 5.0).min(2.0)
+    } else {
+        2.0
+    };
+    xiao.max(p.standstill_gap_m)
 }
 
 /// ACC (spec 3.3) with time gap `time_gap_s` (normally `p.acc_time_gap_s`), hysteresis on the
-/// spacing; `leader = None` (or beyond the sensor) means speed regulation. `leader_length_m` is
-/// needed because the 100/120 m hysteresis is on spacing (front to front).
-pub fn acc(p: &CavParams, v: f64, v_des: f64, leader: Option<Leader>, time_gap_s: f64, prev: Family) -> Command {
-    let _ = (p, v, v_des, leader, time_gap_s, prev);
-    todo!("spec 3.3")
+/// spacing; `leader = None` (or beyond the sensor) means speed regulation. The 100/120 m band is
+/// on spacing (front to front); this function has no leader length, so it uses
+/// spacing = net gap + [`ASSUMED_LEADER_LENGTH_M`]. [`acc_with_leader_length`] takes the length.
+pub fn acc(
+    p: &CavParams,
+    v: f64,
+    v_des: f64,
+    leader: Option<Leader>,
+    time_gap_s: f64,
+    prev: Family,
+) -> Command {
+    acc_with_leader_length(
+        p,
+        v,
+        v_des,
+        leader,
+        ASSUMED_LEADER_LENGTH_M,
+        time_gap_s,
+        prev,
+    )
+}
+
+/// [`acc`] with the leader's length, so that the 100/120 m hysteresis (spec 3.3) is applied to
+/// the true spacing = net gap + `leader_length_m`.
+pub fn acc_with_leader_length(
+    p: &CavParams,
+    v: f64,
+    v_des: f64,
+    leader: Option<Leader>,
+    leader_length_m: f64,
+    time_gap_s: f64,
+    prev: Family,
+) -> Command {
+    let cruise = Command {
+        accel: speed_regulation(p, v, v_des),
+        mode: CavMode::SpeedRegulation,
+        family: Family::Speed,
+    };
+    let l = match leader {
+        // spec 3.9: a predecessor beyond the sensor range is no predecessor.
+        Some(l) if l.gap_m <= p.sensor_range_m => l,
+        _ => return cruise,
+    };
+    // spec 3.3 hysteresis: spacing > 120 m → speed, < 100 m → gap family, between → previous.
+    let spacing = l.gap_m + leader_length_m;
+    let [near, far] = p.acc_range_m;
+    let family = if spacing > far {
+        Family::Speed
+    } else if spacing < near {
+        Family::Gap
+    } else {
+        prev
+    };
+    // spec 3.3: e = g − t_A v − d0, Δv = v_l − v.
+    if family == Family::Speed {
+        // [D] cruise never accelerates harder than gap closing would toward the leader in
+        // range (a cruise controller still sees the car ahead); far away the cruise term wins.
+        let e = l.gap_m - time_gap_s * v - acc_standstill_margin(p, v);
+        let closing = p.acc_closing_gains[0] * e + p.acc_closing_gains[1] * (l.v_mps - v);
+        return Command {
+            accel: cruise.accel.min(closing),
+            ..cruise
+        };
+    }
+    let e = l.gap_m - time_gap_s * v - acc_standstill_margin(p, v);
+    let dv = l.v_mps - v;
+    let (mode, [k_gap, k_speed]) = if e.abs() < p.reg_gap_band_m && dv.abs() < p.reg_speed_band_mps
+    {
+        (CavMode::GapRegulation, p.acc_reg_gains)
+    } else if e < 0.0 {
+        (CavMode::CollisionAvoidance, p.acc_avoid_gains)
+    } else {
+        (CavMode::GapClosing, p.acc_closing_gains)
+    };
+    Command {
+        accel: k_gap * e + k_speed * dv,
+        mode,
+        family: Family::Gap,
+    }
 }
 
 /// CACC (spec 3.4) with time gap `time_gap_s` (the vehicle's t_C, or the inter-platoon gap for
 /// a new string leader behind a full platoon). `a_own` is the vehicle's current acceleration
 /// (for ė = Δv − t_C a). Returns the acceleration equivalent of the speed update, per spec
 /// (computed for the 0.1 s control interval; independent of the simulation step).
-pub fn cacc(p: &CavParams, v: f64, a_own: f64, v_des: f64, leader: Leader, time_gap_s: f64, prev: Family) -> Command {
-    let _ = (p, v, a_own, v_des, leader, time_gap_s, prev);
-    todo!("spec 3.4")
+///
+/// Family choice on tg = g/v, evaluated without dividing (g > 2 v, g < 1.5 v) so that v → 0 is
+/// safe: at v = 0 a positive gap counts as a large tg, a gap ≤ 0 as a small one. tg > 2 s with
+/// e ≤ 1.66 m (only possible below about 2.3 m/s at t_C = 0.6 s) selects the CACC family [D]:
+/// the 1.66 m threshold exists to keep gap control close to a (nearly) stopped leader.
+pub fn cacc(
+    p: &CavParams,
+    v: f64,
+    a_own: f64,
+    v_des: f64,
+    leader: Leader,
+    time_gap_s: f64,
+    prev: Family,
+) -> Command {
+    let g = leader.gap_m;
+    let vv = v.max(0.0);
+    // spec 3.4: e = g − t_C v − s_min, ė = Δv − t_C a.
+    let e = g - time_gap_s * v - p.standstill_gap_m;
+    let dv = leader.v_mps - v;
+    let [tg_low, tg_high] = p.cacc_tg_band_s;
+    let tg_large = g > 0.0 && g > tg_high * vv;
+    let tg_small = g <= 0.0 || g < tg_low * vv;
+    let family = if tg_large && e > p.speed_control_min_gap_m {
+        Family::Speed
+    } else if tg_small || tg_large {
+        Family::Gap
+    } else {
+        prev
+    };
+    if family == Family::Speed {
+        // spec 3.4: speed regulation as the speed update v + k0 (v_F − v)Δt, i.e. a = k0 (v_F − v),
+        // [D] never above what gap closing toward the leader asks for (at low speed tg > 2 s
+        // happens a few metres behind a stopped leader; plain cruise would accelerate into it).
+        let closing = (p.cacc_closing_gains[0] * e
+            + p.cacc_closing_gains[1] * (dv - time_gap_s * a_own))
+            / CACC_CONTROL_INTERVAL_S;
+        return Command {
+            accel: speed_regulation(p, v, v_des).min(closing),
+            mode: CavMode::SpeedRegulation,
+            family,
+        };
+    }
+    let (mode, [kp, kd]) = if e > 0.0 && e < p.reg_gap_band_m && dv.abs() < p.reg_speed_band_mps {
+        (CavMode::GapRegulation, p.cacc_reg_gains)
+    } else if e < 0.0 {
+        (CavMode::CollisionAvoidance, p.cacc_avoid_gains)
+    } else {
+        (CavMode::GapClosing, p.cacc_closing_gains)
+    };
+    let e_dot = dv - time_gap_s * a_own;
+    // v(k+1) = v(k) + kp e + kd ė per 0.1 s → a = (v(k+1) − v(k)) / 0.1.
+    Command {
+        accel: (kp * e + kd * e_dot) / CACC_CONTROL_INTERVAL_S,
+        mode,
+        family,
+    }
 }
 
 /// Gipps-type safe speed for the CAV safety override (spec 3.4, 3.8): τ_r = `p.reaction_s`,
 /// θ = 0, b̂ = b = `p.max_decel`, jam gap `p.standstill_gap_m`.
+///
+/// The signature has no own speed, so the Gipps speed (spec 2.3) is taken at its fixed point
+/// v = v_G: v² − 2bτ_r v + 2b(g − s_min) − v_l² = 0, i.e.
+/// v_safe = bτ_r + sqrt(b²τ_r² + v_l² − 2b(g − s_min)) (b < 0), the Krauss form SUMO uses: the
+/// largest speed from which, after τ_r, braking at b stops behind the leader braking at b.
+/// 0 if the radicand is negative; never negative.
 pub fn safe_speed(p: &CavParams, gap_m: f64, v_leader: f64) -> f64 {
-    let _ = (p, gap_m, v_leader);
-    todo!("spec 3.4/3.8")
+    let b = p.max_decel.min(-MIN_BRAKE_MPS2);
+    let tau = p.reaction_s.max(0.0);
+    let v_l = v_leader.max(0.0);
+    let radicand = b * b * tau * tau + v_l * v_l - 2.0 * b * (gap_m - p.standstill_gap_m);
+    if radicand < 0.0 {
+        0.0
+    } else {
+        (b * tau + radicand.sqrt()).max(0.0)
+    }
+}
+
+/// The smallest net gap at which [`safe_speed`] allows holding speed v behind a leader at the
+/// same speed: s_min + τ_r v (spec 3.8; from v_safe(g, v) ≥ v with b̂ = b, θ = 0).
+pub fn safety_gap(p: &CavParams, v: f64) -> f64 {
+    p.standstill_gap_m + p.reaction_s.max(0.0) * v.max(0.0)
 }
 
 /// Apply the safety override (if there is a leader) and the vehicle limits to a commanded
 /// acceleration: returns the acceleration to integrate over `dt`, such that
 /// (v_new − v)/dt ∈ [max_decel, max_accel] except where the safety override requires harder
 /// braking (never below what reaches v = 0 in this step), 0 ≤ v_new ≤ v_des.
-pub fn finalize(p: &CavParams, v: f64, a_cmd: f64, v_des: f64, leader: Option<Leader>, dt: f64) -> f64 {
-    let _ = (p, v, a_cmd, v_des, leader, dt);
-    todo!("spec 3.4 'After the law'")
+///
+/// Order: the cap v_new ≤ v_des, then the acceleration limits (which win when v > v_des: the
+/// excess speed is shed at no more than |b|, as in [P15-code]), then the override
+/// v_new ≤ max(0, v_safe + min(2, g)) (spec 3.4), which alone may brake harder than b, then
+/// v_new ≥ 0.
+pub fn finalize(
+    p: &CavParams,
+    v: f64,
+    a_cmd: f64,
+    v_des: f64,
+    leader: Option<Leader>,
+    dt: f64,
+) -> f64 {
+    let dt = dt.max(MIN_DT_S);
+    let v = v.max(0.0);
+    let a_cmd = if a_cmd.is_nan() { 0.0 } else { a_cmd };
+    let mut a = a_cmd.min((v_des.max(0.0) - v) / dt);
+    a = bound(a, p.max_decel, p.max_accel);
+    if let Some(l) = leader {
+        // spec 3.4 "After the law": if v_new > v_safe + min(2, g): v_new = max(0, v_safe + min(2, g)).
+        // [D] Here v_safe already keeps s_min, so the tolerance uses the gap beyond s_min:
+        // min(2, max(0, g − s_min)). With the raw g a CAV behind a stopped leader inside s_min
+        // would creep forward at g m/s into it (seen as collisions in jams).
+        let tolerance = (l.gap_m - p.standstill_gap_m).clamp(0.0, 2.0);
+        let cap = (safe_speed(p, l.gap_m, l.v_mps) + tolerance).max(0.0);
+        if v + a * dt > cap {
+            a = (cap - v) / dt;
+        }
+    }
+    if v + a * dt < 0.0 {
+        a = -v / dt;
+    }
+    a
 }
 
 /// Steady-state net gap of a CAV following at time gap t at speed v under CACC (t v + s_min),
 /// but never below the safety-override gap (spec 3.8). Used for insertion.
 pub fn cacc_equilibrium_gap(p: &CavParams, time_gap_s: f64, v: f64) -> f64 {
-    let _ = (p, time_gap_s, v);
-    todo!()
+    let v = v.max(0.0);
+    (time_gap_s * v + p.standstill_gap_m).max(safety_gap(p, v))
 }
 
 /// Steady-state net gap of a CAV under ACC at speed v: t_A v + d0(v), not below the safety gap.
 pub fn acc_equilibrium_gap(p: &CavParams, time_gap_s: f64, v: f64) -> f64 {
-    let _ = (p, time_gap_s, v);
-    todo!()
+    let v = v.max(0.0);
+    (time_gap_s * v + acc_standstill_margin(p, v)).max(safety_gap(p, v))
+}
+
+/// Move the effective time gap `current` toward `target` by at most `p.time_gap_ramp_per_s·dt`
+/// (spec 3.5 transitions). A non-positive `current` (no previous setting) jumps to `target`.
+pub fn ramp_time_gap(p: &CavParams, current: f64, target: f64, dt: f64) -> f64 {
+    if current <= 0.0 || p.time_gap_ramp_per_s <= 0.0 {
+        return target;
+    }
+    let step = p.time_gap_ramp_per_s * dt;
+    current + (target - current).clamp(-step, step)
 }
 
 /// The CACC time gap for a uniform deviate `u` in [0, 1) from `p.time_gap_shares` (spec 3.5).
+///
+/// Cumulative shares (normalised by their sum): with the defaults u < 0.57 → 0.6 s,
+/// u < 0.81 → 0.7 s, u < 0.88 → 0.9 s, otherwise 1.1 s. Negative shares count as 0; if all
+/// shares are 0 the listed gaps are equally likely; an empty list gives `p.acc_time_gap_s`.
 pub fn draw_time_gap(p: &CavParams, u: f64) -> f64 {
-    let _ = (p, u);
-    todo!("spec 3.5")
+    let shares = &p.time_gap_shares;
+    let Some(&(last_gap, _)) = shares.last() else {
+        return p.acc_time_gap_s;
+    };
+    let u = if u.is_nan() { 0.0 } else { u.clamp(0.0, 1.0) };
+    let total: f64 = shares.iter().map(|&(_, s)| s.max(0.0)).sum();
+    if total <= 0.0 || !total.is_finite() {
+        let i = ((u * shares.len() as f64) as usize).min(shares.len() - 1);
+        return shares[i].0;
+    }
+    let target = u * total;
+    let mut cumulative = 0.0;
+    for &(gap, share) in shares {
+        cumulative += share.max(0.0);
+        if target < cumulative {
+            return gap;
+        }
+    }
+    last_gap
 }

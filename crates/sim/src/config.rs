@@ -143,3 +143,47 @@ impl Config {
         Ok(())
     }
 }
+
+impl Config {
+    /// The paper's homogeneous road with the spec defaults (the same values as the built-in
+    /// `homogeneous` scenario file; handy for tests and benchmarks of the engine alone).
+    pub fn homogeneous(penetration: f64, demand_vphpl: f64, duration_s: f64, warmup_s: f64, seed: u64) -> Config {
+        Config {
+            name: "homogeneous".into(),
+            seed,
+            dt_s: 0.1,
+            duration_s,
+            warmup_s,
+            penetration,
+            road: Road {
+                lanes: 3,
+                length_m: 6500.0,
+                control_start_m: 5000.0,
+                control_end_m: 6000.0,
+            },
+            demand: Demand {
+                vph_per_lane: demand_vphpl,
+            },
+            detectors: vec![
+                DetectorSpec {
+                    name: "upstream".into(),
+                    position_m: 4900.0,
+                },
+                DetectorSpec {
+                    name: "control_mid".into(),
+                    position_m: 5500.0,
+                },
+                DetectorSpec {
+                    name: "discharge".into(),
+                    position_m: 6100.0,
+                },
+            ],
+            aggregation_s: 300.0,
+            measurement_detector: 2,
+            strategy: Strategy::None,
+            human: HumanDists::default(),
+            cav: CavParams::default(),
+            lane_change: LaneChangeDists::default(),
+        }
+    }
+}

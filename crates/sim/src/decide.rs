@@ -30,6 +30,7 @@ impl Simulation {
                     accel: 0.0,
                     mode: Mode::Cf,
                     family: Family::Speed,
+                    time_gap: 0.0,
                     change: None,
                 },
             );
@@ -104,6 +105,7 @@ impl Simulation {
             accel: human::smooth_accel(v.a, target, v.human.smoothing),
             mode,
             family: v.family,
+            time_gap: v.time_gap_s,
             change: None,
         }
     }
@@ -114,6 +116,7 @@ impl Simulation {
         let v_des = v.human.desired_speed;
         let ld = self.nb[s as usize].leader;
         let leader = leader.filter(|l| l.gap_m <= p.sensor_range_m);
+        let mut time_gap = v.time_gap_s;
         let cmd = match leader {
             None => cav::Command {
                 accel: cav::speed_regulation(p, v.v, v_des),
@@ -121,19 +124,24 @@ impl Simulation {
                 family: Family::Speed,
             },
             Some(l) if self.is_cav(ld) => {
-                let t = if self.platoon_pos[s as usize] == 1 {
+                let target = if !self.linked[s as usize] {
                     p.inter_platoon_gap_s
                 } else {
                     v.cacc_gap_s
                 };
-                cav::cacc(p, v.v, v.a, v_des, l, t, v.family)
+                time_gap = cav::ramp_time_gap(p, time_gap, target, self.dt);
+                cav::cacc(p, v.v, v.a, v_des, l, time_gap, v.family)
             }
-            Some(l) => cav::acc(p, v.v, v_des, Some(l), p.acc_time_gap_s, v.family),
+            Some(l) => {
+                time_gap = cav::ramp_time_gap(p, time_gap, p.acc_time_gap_s, self.dt);
+                cav::acc(p, v.v, v_des, Some(l), time_gap, v.family)
+            }
         };
         Decision {
             accel: cav::finalize(p, v.v, cmd.accel, v_des, leader, self.dt),
             mode: Mode::Cf,
             family: cmd.family,
+            time_gap,
             change: None,
         }
     }
@@ -147,7 +155,7 @@ impl Simulation {
         let n_lanes = self.lanes.len() as u32;
         let pd_lane = n_lanes - 1;
         let is_cav = v.is_cav();
-        let follower = self.linked[s as usize] && self.platoon_pos[s as usize] > 1;
+        let follower = self.linked[s as usize];
         let organize = is_cav && self.organization_active(v);
         let (side, gamma) = if organize {
             if v.lane == pd_lane {
@@ -262,7 +270,7 @@ impl Simulation {
             lcm::accept_lag_gap(h, &v.lc, v.rear() - f.x, v.v, f.v, a_ant)
         };
         // Only a platoon leader changes lanes: a follower splits first (spec 3.6.4).
-        let must_split = self.linked[s as usize] && self.platoon_pos[s as usize] > 1;
+        let must_split = self.linked[s as usize];
         let change = lead_ok && lag_ok && !must_split;
         let target = if change {
             a_cur
@@ -286,6 +294,7 @@ impl Simulation {
                 mandatory: d.mandatory,
             },
             family: Family::Speed,
+            time_gap: v.time_gap_s,
             change: change.then_some(d.side),
         }
     }

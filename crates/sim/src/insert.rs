@@ -77,6 +77,8 @@ fn create(cfg: &Config, id: u64) -> Vehicle {
         human,
         lc: cfg.lane_change.sample(&zl),
         cacc_gap_s,
+        time_gap_s: 0.0,
+        string_pred: NEVER,
         rng,
         x: 0.0,
         x_prev: 0.0,
@@ -144,9 +146,10 @@ impl Simulation {
             veh.entered_step = self.step + 1;
             veh.measured = veh.entered_step >= self.warmup_step;
             if veh.is_cav() {
+                veh.time_gap_s = veh.cacc_gap_s;
                 if let Some(&ld) = self.lanes[lane].last() {
-                    let l = &self.vehicles[ld as usize];
-                    if l.rear() < 2.0 * speed.max(1.0) {
+                    veh.time_gap_s = self.entry_time_gap(&veh, ld);
+                    if self.vehicles[ld as usize].rear() < 2.0 * speed.max(1.0) {
                         veh.family = Family::Gap;
                     }
                 }
@@ -155,6 +158,19 @@ impl Simulation {
             let s = self.alloc(veh);
             self.lanes[lane].push(s);
             used |= 1 << lane;
+        }
+    }
+
+    /// The time gap a CAV entering behind slot `ld` keeps (spec 3.6): its own t_C behind a CAV
+    /// whose platoon has room, the inter-platoon gap behind a full one, t_A behind a human.
+    fn entry_time_gap(&self, veh: &Vehicle, ld: u32) -> f64 {
+        let p = &self.cfg.cav;
+        if !self.vehicles[ld as usize].is_cav() {
+            p.acc_time_gap_s
+        } else if self.platoon_pos.get(ld as usize).copied().unwrap_or(1) >= p.max_platoon {
+            p.inter_platoon_gap_s
+        } else {
+            veh.cacc_gap_s
         }
     }
 
@@ -180,15 +196,11 @@ impl Simulation {
                     if leader.gap_m > p.sensor_range_m {
                         return true;
                     }
+                    let t = self.entry_time_gap(veh, ld);
                     let eq = if l.is_cav() {
-                        let t = if self.platoon_pos.get(ld as usize).copied().unwrap_or(1) >= p.max_platoon {
-                            p.inter_platoon_gap_s
-                        } else {
-                            veh.cacc_gap_s
-                        };
                         cav::cacc_equilibrium_gap(p, t, v)
                     } else {
-                        cav::acc_equilibrium_gap(p, p.acc_time_gap_s, v)
+                        cav::acc_equilibrium_gap(p, t, v)
                     };
                     leader.gap_m >= eq && cav::safe_speed(p, leader.gap_m, l.v) >= v
                 }

@@ -44,6 +44,8 @@ impl Simulation {
             self.nb.resize(n, Neighbours::default());
             self.platoon_pos.resize(n, 1);
             self.linked.resize(n, false);
+            self.sub_size.resize(n, 1);
+            self.string_pred_next.resize(n, crate::vehicle::NEVER);
             self.changed_this_step.resize(n, u64::MAX);
         }
         let n_lanes = self.lanes.len();
@@ -94,37 +96,73 @@ impl Simulation {
         self.platoons();
     }
 
-    /// CACC links and platoon positions (spec 3.6), front to back in every lane, and the
-    /// platoon statistics: each CAV's largest platoon (spec 5.1.6; a link counts only while the
-    /// follower is not in speed regulation, spec 6.15).
+    /// CACC strings (spec 3.6) and platoon statistics (spec 5.1.6, 6.15).
+    ///
+    /// A *candidate link* exists when an automated CAV follows a CAV within sensor range and is
+    /// not in speed regulation (time gap ≤ 2 s, spec 6.15). Membership is sticky [D]: a CAV
+    /// stays in the string of the predecessor it joined while the candidate link to that same
+    /// vehicle lasts; a new link is a *join*, allowed only if the predecessor's position plus
+    /// the size of the joining sub-string is at most `max_platoon`. Otherwise the CAV leads its
+    /// own string and keeps the inter-platoon gap. (Re-splitting merged strings at 10 by
+    /// recounting positions every step, spec 3.6.6, moved every follower behind a merge or a
+    /// broken link to a new gap at once; the resulting braking waves halved 100 % CAV
+    /// capacity.) A member's position is its predecessor's + 1; a string is a platoon.
     fn platoons(&mut self) {
-        let max = self.cfg.cav.max_platoon.max(1);
-        let range = self.cfg.cav.sensor_range_m;
+        let p = &self.cfg.cav;
+        let max = p.max_platoon.max(1);
+        let range = p.sensor_range_m;
+        let t_far = p.cacc_tg_band_s[1];
+        let slack = p.standstill_gap_m + p.speed_control_min_gap_m;
+        let vehicles = &self.vehicles;
+        let candidate = |f: u32, ld: u32| -> bool {
+            if ld == NONE {
+                return false;
+            }
+            let (fv, lv) = (&vehicles[f as usize], &vehicles[ld as usize]);
+            let gap = lv.rear() - fv.x;
+            fv.automated() && lv.is_cav() && gap <= range && gap <= t_far * fv.v + slack
+        };
         for l in 0..self.lanes.len() {
             let lane = &self.lanes[l];
-            // Statistics run: members [run_start, k) of the current statistical platoon.
+            let n = lane.len();
+            // Back to front: size of the sub-string each vehicle leads (previous memberships).
+            for k in (0..n).rev() {
+                let s = lane[k] as usize;
+                let mut size = 1;
+                if k + 1 < n {
+                    let f = lane[k + 1];
+                    if vehicles[f as usize].string_pred == vehicles[s].id && candidate(f, lane[k]) {
+                        size += self.sub_size[f as usize];
+                    }
+                }
+                self.sub_size[s] = size;
+            }
+            // Front to back: memberships and positions.
+            for k in 0..n {
+                let s = lane[k];
+                let ld = if k > 0 { lane[k - 1] } else { NONE };
+                let mut pred_id = crate::vehicle::NEVER;
+                let mut pos = 1;
+                if candidate(s, ld) {
+                    let lpos = self.platoon_pos[ld as usize];
+                    let lid = vehicles[ld as usize].id;
+                    let member = vehicles[s as usize].string_pred == lid;
+                    if (member && lpos < max) || (!member && lpos + self.sub_size[s as usize] <= max) {
+                        pred_id = lid;
+                        pos = lpos + 1;
+                    }
+                }
+                self.string_pred_next[s as usize] = pred_id;
+                self.platoon_pos[s as usize] = pos;
+                self.linked[s as usize] = pred_id != crate::vehicle::NEVER;
+            }
+        }
+        for l in 0..self.lanes.len() {
+            let lane = &self.lanes[l];
             let mut run_start = 0usize;
             for (k, &s) in lane.iter().enumerate() {
-                let v = &self.vehicles[s as usize];
-                let ld = if k > 0 { lane[k - 1] } else { NONE };
-                let linked = v.automated()
-                    && ld != NONE
-                    && self.vehicles[ld as usize].is_cav()
-                    && self.vehicles[ld as usize].rear() - v.x <= range;
-                let pos = if linked {
-                    let p = self.platoon_pos[ld as usize] + 1;
-                    if p > max {
-                        1
-                    } else {
-                        p
-                    }
-                } else {
-                    1
-                };
-                self.linked[s as usize] = linked;
-                self.platoon_pos[s as usize] = pos;
-                let stat_link = linked && pos > 1 && v.family == platoonsim_model::cav::Family::Gap;
-                if !stat_link {
+                self.vehicles[s as usize].string_pred = self.string_pred_next[s as usize];
+                if !self.linked[s as usize] {
                     close_run(&mut self.vehicles, &lane[run_start..k]);
                     run_start = k;
                 }

@@ -15,6 +15,8 @@ pub(crate) struct Decision {
     pub accel: f64,
     pub mode: crate::vehicle::Mode,
     pub family: platoonsim_model::cav::Family,
+    /// Effective CAV time gap after this step (spec 3.5 transitions).
+    pub time_gap: f64,
     /// Lane change to execute after integration.
     pub change: Option<Side>,
 }
@@ -36,7 +38,10 @@ pub struct Simulation {
     // Scratch, indexed by slot, rebuilt every step (no allocation once warmed up).
     pub(crate) nb: Vec<Neighbours>,
     pub(crate) platoon_pos: Vec<u32>,
+    /// Member of its predecessor's CACC string (spec 3.6).
     pub(crate) linked: Vec<bool>,
+    pub(crate) sub_size: Vec<u32>,
+    pub(crate) string_pred_next: Vec<u64>,
     pub(crate) decisions: Vec<Decision>,
     pub(crate) changed_this_step: Vec<u64>,
     pub(crate) change_list: Vec<(u32, Side)>,
@@ -75,6 +80,8 @@ impl Simulation {
             nb: Vec::new(),
             platoon_pos: Vec::new(),
             linked: Vec::new(),
+            sub_size: Vec::new(),
+            string_pred_next: Vec::new(),
             decisions: Vec::new(),
             changed_this_step: Vec::new(),
             change_list: Vec::new(),
@@ -178,6 +185,7 @@ impl Simulation {
                 }
                 veh.mode = d.mode;
                 veh.family = d.family;
+                veh.time_gap_s = d.time_gap;
                 if let Relaxation::Since(since) = veh.relax {
                     let elapsed = (self.step + 1 - since) as f64 * dt;
                     if elapsed >= veh.lc.relax_time_s {

@@ -48,6 +48,12 @@ pub struct Vehicle {
     pub lc: LaneChangeParams,
     /// CACC time gap t_C (s); CAVs only (0 for humans).
     pub cacc_gap_s: f64,
+    /// Id of the predecessor whose CACC string this CAV has joined (`NEVER`: it leads its own
+    /// string). Membership is sticky: see `sense.rs`.
+    pub string_pred: u64,
+    /// Effective target time gap of the CAV controller, ramping toward the current setting
+    /// (spec 3.5 transitions); 0 before the first setting.
+    pub time_gap_s: f64,
     /// Own random stream (lane choice, yielding draws).
     pub rng: Stream,
 
