@@ -31,7 +31,7 @@
 //! | symbol | field | default | unit | source |
 //! |---|---|---|---|---|
 //! | k0 | `speed_gain` | 0.4 | 1/s | SUMO, [P15-code] |
-//! | t_A | `acc_time_gap_s` | 1.1 | s | spec 3.3 [D] |
+//! | t_A | `acc_time_gap_s` | 1.1 | s | spec 3.3 \[D\] |
 //! | k1, k2 | `acc_reg_gains` | 0.23, 0.07 | 1/s², 1/s | Milanés & Shladover 2014 |
 //! | k1g, k2g | `acc_closing_gains` | 0.04, 0.8 | | Xiao 2017 |
 //! | k1c, k2c | `acc_avoid_gains` | 0.8, 0.23 | | SUMO |
@@ -167,7 +167,7 @@ pub fn speed_regulation(p: &CavParams, v: f64, v_des: f64) -> f64 {
 }
 
 /// ACC standstill margin d0(v) = max(s_min, min(75/v − 5, 2)) m (spec 3.3, Xiao 2018 margin
-/// floored at the seed's minimum space gap [D]); 2 m (then floored) at v ≤ 0.
+/// floored at the seed's minimum space gap \[D\]); 2 m (then floored) at v ≤ 0.
 pub fn acc_standstill_margin(p: &CavParams, v: f64) -> f64 {
     let xiao = if v > 0.0 {
         (75.0 / v - 5.0).min(2.0)
@@ -266,7 +266,7 @@ pub fn acc_with_leader_length(
 ///
 /// Family choice on tg = g/v, evaluated without dividing (g > 2 v, g < 1.5 v) so that v → 0 is
 /// safe: at v = 0 a positive gap counts as a large tg, a gap ≤ 0 as a small one. tg > 2 s with
-/// e ≤ 1.66 m (only possible below about 2.3 m/s at t_C = 0.6 s) selects the CACC family [D]:
+/// e ≤ 1.66 m (only possible below about 2.3 m/s at t_C = 0.6 s) selects the CACC family \[D\]:
 /// the 1.66 m threshold exists to keep gap control close to a (nearly) stopped leader.
 pub fn cacc(
     p: &CavParams,
@@ -354,8 +354,9 @@ pub fn safety_gap(p: &CavParams, v: f64) -> f64 {
 ///
 /// Order: the cap v_new ≤ v_des, then the acceleration limits (which win when v > v_des: the
 /// excess speed is shed at no more than |b|, as in [P15-code]), then the override
-/// v_new ≤ max(0, v_safe + min(2, g)) (spec 3.4), which alone may brake harder than b, then
-/// v_new ≥ 0.
+/// v_new ≤ max(0, v_safe + min(2, max(0, g − s_min))) (spec 3.4 with the \[D\] tolerance below),
+/// which alone may brake harder than b, then v_new ≥ 0. When v > v_des the limits win, so v_new
+/// may stay above v_des for a few steps.
 pub fn finalize(
     p: &CavParams,
     v: f64,

@@ -10,7 +10,7 @@
 //! IDM free (2.2): a_F = a_M [1 − (v/v_F)^δ],                   bounded below by b_c when v > v_F
 //! Gipps (2.3):   A = b_f (τ_r/2 + θ),  b̂ = c_b b_f,
 //!                C = b_f [2(g − d_jam) − v τ_r − v_l²/b̂],
-//!                v_G = A + sqrt(A² − C)  (0 if A² − C < 0),  a_G = min(a_M, (v_G − v)/τ_r)
+//!                v_G = max(0, A + sqrt(A² − C))  (0 if A² − C < 0),  a_G = min(a_M, (v_G − v)/τ_r)
 //! target (2.4):  a* = min(a_F, a_N, a_G)  (a_F alone without a leader)
 //! smoothing:     a(t) = a(t−Δt) + (a* − a(t−Δt)) / ω
 //! ```
@@ -162,44 +162,134 @@ impl HumanDists {
     }
 }
 
+/// Smallest time constant (s) used in any division (guards degenerate τ, τ_r, relax factors).
+const MIN_TIME_S: f64 = 1e-3;
+/// Weakest braking magnitude (m/s²) accepted for b_f and b̂ (guards b_f ≥ 0).
+const MIN_BRAKE_MPS2: f64 = 1e-3;
+
+/// The relaxed Newell parameters (τ', d_jam'), spec 2.5: τ' = φ_h τ, d_jam' = φ_j d_jam.
+fn newell_params(p: &HumanParams, r: Relax) -> (f64, f64) {
+    let tau = (r.headway * p.headway_s).max(MIN_TIME_S);
+    let jam = r.jam * p.jam_gap_m;
+    (tau, jam)
+}
+
+/// The relaxed Gipps parameters (τ_r', d_jam', θ, b_f, b̂), spec 2.3/2.5, with guards so that
+/// τ_r' > 0 and b_f, b̂ < 0 even for degenerate inputs.
+struct GippsParams {
+    reaction: f64,
+    jam: f64,
+    buffer: f64,
+    b_f: f64,
+    b_hat: f64,
+}
+
+fn gipps_params(p: &HumanParams, r: Relax) -> GippsParams {
+    let b_f = p.max_decel.min(-MIN_BRAKE_MPS2);
+    GippsParams {
+        reaction: (r.reaction * p.reaction_s).max(MIN_TIME_S),
+        jam: r.jam * p.jam_gap_m,
+        buffer: p.buffer_s.max(0.0),
+        b_f,
+        b_hat: (p.leader_brake_factor * b_f).min(-MIN_BRAKE_MPS2),
+    }
+}
+
+/// `x` clamped to [lo, hi] without panicking when lo > hi (then `lo` wins) or on NaN bounds.
+fn bound(x: f64, lo: f64, hi: f64) -> f64 {
+    x.min(hi).max(lo)
+}
+
 /// Newell term a_N (spec 2.1), with relaxed τ and d_jam, clamped to [b_f, a_M].
 pub fn newell_accel(p: &HumanParams, v: f64, gap_m: f64, r: Relax) -> f64 {
-    let _ = (p, v, gap_m, r);
-    todo!("spec 2.1")
+    let (tau, jam) = newell_params(p, r);
+    // spec 2.1: v_N = (s − L − d_jam)/τ with s − L = g (net gap); a_N = (v_N − v)/(τ/2).
+    let v_newell = (gap_m - jam) / tau;
+    let a = (v_newell - v) / (0.5 * tau);
+    bound(a, p.max_decel, p.max_accel)
 }
 
 /// IDM free-road term a_F (spec 2.2) toward desired speed `v_des` (m/s); when v > v_des the
 /// result is bounded below by b_c (shed excess speed gently). `v_des` may differ from
 /// `p.desired_speed` (lane caps, spec 2.7).
 pub fn free_accel(p: &HumanParams, v: f64, v_des: f64) -> f64 {
-    let _ = (p, v, v_des);
-    todo!("spec 2.2")
+    let v = v.max(0.0);
+    if v_des <= 0.0 {
+        // Degenerate desired speed: hold a standstill, shed any speed at b_c (spec 2.2).
+        return if v > 0.0 {
+            p.comfort_decel.min(0.0)
+        } else {
+            0.0
+        };
+    }
+    // spec 2.2: a_F = a_M [1 − (v/v_F)^δ].
+    let a = p.max_accel * (1.0 - (v / v_des).powf(p.free_exponent));
+    if v > v_des {
+        // [P15-code]: excess speed is shed no harder than the comfortable deceleration b_c.
+        a.max(p.comfort_decel)
+    } else {
+        a
+    }
+}
+
+/// Gipps speed v_G (spec 2.3, Ciuffo form) for net gap `gap_m`, own speed `v`, leader speed
+/// `v_l`. Negative radicand → 0 ("the follower must stop", [P15-code]); the result is also
+/// floored at 0 because the literal formula gives v_G = A < 0 just above the radicand's root
+/// and would then jump back to 0 below it (a_G would brake *less* at a smaller gap).
+fn gipps_speed(g: &GippsParams, v: f64, gap_m: f64, v_l: f64) -> f64 {
+    let a = g.b_f * (0.5 * g.reaction + g.buffer);
+    let c = g.b_f * (2.0 * (gap_m - g.jam) - v * g.reaction - v_l * v_l / g.b_hat);
+    let radicand = a * a - c;
+    if radicand < 0.0 {
+        0.0
+    } else {
+        (a + radicand.sqrt()).max(0.0)
+    }
 }
 
 /// Gipps safe-distance term a_G (spec 2.3), Ciuffo form, relaxed τ_r and d_jam; capped above
 /// by a_M, not clamped below (emergency braking may exceed b_f).
 pub fn gipps_accel(p: &HumanParams, v: f64, leader: Leader, r: Relax) -> f64 {
-    let _ = (p, v, leader, r);
-    todo!("spec 2.3")
+    let g = gipps_params(p, r);
+    let v_g = gipps_speed(&g, v, leader.gap_m, leader.v_mps.max(0.0));
+    // spec 2.3: a_G = (v_G − v)/τ_r, capped above by a_M only.
+    ((v_g - v) / g.reaction).min(p.max_accel)
 }
 
 /// Target acceleration a* = min(a_F, a_N, a_G) (spec 2.4); a_F alone without a leader.
 pub fn target_accel(p: &HumanParams, v: f64, v_des: f64, leader: Option<Leader>, r: Relax) -> f64 {
-    let _ = (p, v, v_des, leader, r);
-    todo!("spec 2.4")
+    let a_free = free_accel(p, v, v_des);
+    match leader {
+        None => a_free,
+        Some(l) => a_free
+            .min(newell_accel(p, v, l.gap_m, r))
+            .min(gipps_accel(p, v, l, r)),
+    }
 }
 
 /// Acceleration smoothing (spec 2.4): a_prev + (a_target − a_prev)/ω.
 pub fn smooth_accel(a_prev: f64, a_target: f64, smoothing: f64) -> f64 {
-    let _ = (a_prev, a_target, smoothing);
-    todo!("spec 2.4")
+    // ω ≥ 1 (spec 2.4); anything smaller (or NaN) is treated as ω = 1 (no smoothing).
+    let omega = smoothing.max(1.0);
+    a_prev + (a_target - a_prev) / omega
 }
 
 /// Steady-state (equilibrium) net gap at speed v (leader at the same speed): the smallest gap g
 /// for which both the Newell and the Gipps terms allow holding speed v, i.e.
 /// max(d_jam' + τ' v, g_Gipps(v)) with the relaxed parameters. Used for insertion and the
 /// capacity checks of spec 2.8.
+///
+/// Gipps closed form (spec 2.3 with v_l = v): v_G ≥ v ⇔ A² − C ≥ (v − A)² (v − A > 0 since
+/// A < 0) ⇔ g ≥ g_Gipps(v) = d_jam' + (τ_r' + θ) v + ½ v² (1/b̂ − 1/b_f).
+///
+/// Note: the capacity table of spec 2.8 (2,027 veh/h at θ = 0.15 s) is reproduced only if
+/// d_jam is left out of g_Gipps; with d_jam inside C as spec 2.3 writes it, the maximum
+/// steady-state flow of the mean driver is about 1,946 veh/h (tests document both).
 pub fn equilibrium_gap(p: &HumanParams, v: f64, r: Relax) -> f64 {
-    let _ = (p, v, r);
-    todo!("spec 2.8")
+    let v = v.max(0.0);
+    let (tau, jam_n) = newell_params(p, r);
+    let g = gipps_params(p, r);
+    let newell = jam_n + tau * v;
+    let gipps = g.jam + (g.reaction + g.buffer) * v + 0.5 * v * v * (1.0 / g.b_hat - 1.0 / g.b_f);
+    newell.max(gipps)
 }
