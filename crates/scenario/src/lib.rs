@@ -1,1 +1,169 @@
-//! placeholder
+//! # platoonsim-scenario: scenario files
+//!
+//! A scenario is a TOML file read in two levels: [`raw::RawScenario`] (serde, unknown keys
+//! rejected, numbers as written) and then [`validate::validate`] into the engine's
+//! [`platoonsim_sim::Config`]. Command-line [`Overrides`] act on the parsed document before
+//! either level, so an overridden value is checked exactly like one written in the file.
+//! Errors ([`ScenarioError`]) name the key path, the value and what is allowed; nothing here
+//! panics on user input.
+//!
+//! Principal entry points: [`load`] / [`load_with`] (a built-in name or a file path),
+//! [`from_toml`] (text), [`BUILTINS`], and [`to_toml`] (a resolved config back to a complete
+//! scenario file).
+//!
+//! ```toml
+//! name = "example"
+//! [run]          # all optional: seed = 1, dt_s = 0.1, duration_s = 3600, warmup_s = 1200, penetration = 0.5
+//! penetration = 0.25
+//! [road]         # required
+//! lanes = 3
+//! length_m = 6500
+//! control_start_m = 5000
+//! control_end_m = 6000
+//! [demand]       # required
+//! vph_per_lane = 2000
+//! [[detectors]]  # at least one
+//! name = "discharge"
+//! position_m = 6100
+//! [measurement]  # detector required if there is more than one; aggregation_s = 300
+//! detector = "discharge"
+//! [strategy]     # kind = "none" | "pd" | "flow-aware"; zone, time window and thresholds optional
+//! kind = "pd"
+//! [human]        # [human], [cav], [lane_change]: model parameters, every key optional
+//! buffer_s = 0.2
+//! ```
+
+pub mod error;
+pub mod format;
+pub mod overrides;
+pub mod raw;
+pub mod validate;
+
+pub use error::{Problem, ScenarioError};
+pub use overrides::{Overrides, StrategyKind};
+pub use raw::RawScenario;
+
+use platoonsim_sim::Config;
+use std::path::Path;
+
+/// A scenario shipped inside the binary.
+#[derive(Clone, Copy, Debug)]
+pub struct Builtin {
+    pub name: &'static str,
+    pub description: &'static str,
+    /// The scenario file's text.
+    pub toml: &'static str,
+}
+
+/// The built-in scenarios.
+pub const BUILTINS: &[Builtin] = &[Builtin {
+    name: "homogeneous",
+    description: "the paper's 3-lane homogeneous freeway: 5 km approach, 1 km control section \
+                  (5000-6000 m), detectors at 4900/5500/6100 m, 60 min with a 20 min warm-up, \
+                  50 % CAV, 2500 veh/h/lane",
+    toml: include_str!("../scenarios/homogeneous.toml"),
+}];
+
+/// The built-in scenario of that name.
+pub fn builtin(name: &str) -> Option<&'static Builtin> {
+    BUILTINS.iter().find(|b| b.name == name)
+}
+
+/// Where a scenario's text came from, resolved from a name or a path.
+#[derive(Clone, Debug)]
+pub struct Source {
+    /// For messages: `built-in scenario 'homogeneous'` or the file path.
+    pub origin: String,
+    /// The name used when the file sets none (the built-in name or the file stem).
+    pub default_name: String,
+    /// The scenario file's text.
+    pub text: String,
+}
+
+/// Find a scenario: an argument with a path separator or ending in `.toml` is a file; any
+/// other is a built-in name, or, failing that, a file.
+pub fn resolve(name_or_path: &str) -> Result<Source, ScenarioError> {
+    let looks_like_path = name_or_path.contains(['/', '\\']) || name_or_path.ends_with(".toml");
+    if !looks_like_path {
+        if let Some(b) = builtin(name_or_path) {
+            return Ok(Source {
+                origin: format!("built-in scenario '{}'", b.name),
+                default_name: b.name.to_string(),
+                text: b.toml.to_string(),
+            });
+        }
+    }
+    let path = Path::new(name_or_path);
+    if !path.is_file() {
+        return Err(ScenarioError::UnknownScenario {
+            name: name_or_path.to_string(),
+            builtins: BUILTINS
+                .iter()
+                .map(|b| b.name)
+                .collect::<Vec<_>>()
+                .join(", "),
+        });
+    }
+    let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let default_name = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "scenario".to_string());
+    Ok(Source {
+        origin: path.display().to_string(),
+        default_name,
+        text,
+    })
+}
+
+/// Load a built-in scenario or a scenario file, as written.
+pub fn load(name_or_path: &str) -> Result<Config, ScenarioError> {
+    load_with(name_or_path, &Overrides::default())
+}
+
+/// Load a built-in scenario or a scenario file with command-line overrides.
+pub fn load_with(name_or_path: &str, overrides: &Overrides) -> Result<Config, ScenarioError> {
+    let source = resolve(name_or_path)?;
+    from_toml(
+        &source.text,
+        &source.origin,
+        &source.default_name,
+        overrides,
+    )
+}
+
+/// Read scenario text: parse, apply overrides, read the raw level, validate.
+pub fn from_toml(
+    text: &str,
+    origin: &str,
+    default_name: &str,
+    overrides: &Overrides,
+) -> Result<Config, ScenarioError> {
+    let raw = raw_from_toml(text, origin, overrides)?;
+    validate::validate(&raw, default_name, origin)
+}
+
+/// The first level only: parse and apply overrides, read into a [`RawScenario`].
+pub fn raw_from_toml(
+    text: &str,
+    origin: &str,
+    overrides: &Overrides,
+) -> Result<RawScenario, ScenarioError> {
+    let mut doc = raw::parse_document(text, origin)?;
+    overrides.apply(&mut doc)?;
+    raw::from_document(&doc, origin)
+}
+
+/// The description of a scenario (the file's `description` key), if it has one.
+pub fn description(name_or_path: &str) -> Result<Option<String>, ScenarioError> {
+    let source = resolve(name_or_path)?;
+    Ok(raw_from_toml(&source.text, &source.origin, &Overrides::default())?.description)
+}
+
+/// A resolved config as a complete scenario file that loads back to the same config.
+pub fn to_toml(config: &Config) -> String {
+    format::to_toml(config, None)
+}

@@ -1,0 +1,29 @@
+//! `platoonsim show`: a scenario with every key resolved.
+
+use crate::args::{ShowArgs, ShowFormat};
+use crate::output;
+use anyhow::Result;
+use std::io::Write;
+
+pub fn show(args: &ShowArgs) -> Result<()> {
+    let config = args.scenario.load()?;
+    let text = match args.format {
+        ShowFormat::Toml => format!(
+            "# Scenario '{}' with every key resolved (`platoonsim show {}`).\n\
+             # Save it to a .toml file, edit it, and run it with `platoonsim run FILE.toml`.\n\n{}",
+            config.name,
+            args.scenario.scenario,
+            platoonsim_scenario::to_toml(&config)
+        ),
+        ShowFormat::Json => String::from_utf8(output::json(&config)?)?,
+    };
+    let mut stdout = std::io::stdout().lock();
+    // A closed pipe (`| head`) is not an error worth reporting.
+    match stdout
+        .write_all(text.as_bytes())
+        .and_then(|_| stdout.flush())
+    {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        other => Ok(other?),
+    }
+}

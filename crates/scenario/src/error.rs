@@ -1,0 +1,82 @@
+//! Scenario errors. Every message names where the problem is (file, key path), the value found
+//! and what is allowed.
+
+use std::fmt;
+use std::path::PathBuf;
+
+/// One invalid value found by validation: `field = value: allowed`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Problem {
+    /// Key path in the scenario file, e.g. `run.penetration` or `detectors[2].position_m`.
+    pub field: String,
+    /// The value as found (rendered as TOML), or `(missing)`.
+    pub value: String,
+    /// What is allowed, as a sentence fragment, e.g. `must be in [0, 1]`.
+    pub allowed: String,
+}
+
+impl fmt::Display for Problem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} = {}: {}", self.field, self.value, self.allowed)
+    }
+}
+
+/// Everything that can go wrong between a scenario name or file and a validated
+/// [`platoonsim_sim::Config`].
+#[derive(Debug, thiserror::Error)]
+pub enum ScenarioError {
+    /// The argument is neither a built-in scenario nor an existing file.
+    #[error("unknown scenario '{name}': not a built-in scenario (built-ins: {builtins}) and no such file")]
+    UnknownScenario { name: String, builtins: String },
+
+    /// The file exists but cannot be read.
+    #[error("cannot read scenario file {}: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+
+    /// Not valid TOML (the parser's message carries the line and column).
+    #[error("{origin}: not valid TOML: {message}")]
+    Syntax { origin: String, message: String },
+
+    /// Valid TOML, but a key is unknown or a value has the wrong type.
+    #[error("{origin}: {path}: {message}")]
+    Structure {
+        origin: String,
+        /// Key path, e.g. `road.foo` or `human.headway_s`.
+        path: String,
+        message: String,
+    },
+
+    /// A `--set KEY=VALUE` (or typed) override that cannot be applied.
+    #[error("invalid override '{arg}': {reason}")]
+    Override { arg: String, reason: String },
+
+    /// Well-formed, but some values are out of range or inconsistent.
+    #[error("{origin}: invalid scenario:{}", list(problems))]
+    Invalid {
+        origin: String,
+        problems: Vec<Problem>,
+    },
+}
+
+fn list(problems: &[Problem]) -> String {
+    let mut s = String::new();
+    for p in problems {
+        s.push_str("\n  ");
+        s.push_str(&p.to_string());
+    }
+    s
+}
+
+impl ScenarioError {
+    /// The validation problems, if this is an [`ScenarioError::Invalid`].
+    pub fn problems(&self) -> &[Problem] {
+        match self {
+            ScenarioError::Invalid { problems, .. } => problems,
+            _ => &[],
+        }
+    }
+}

@@ -1,0 +1,318 @@
+//! Level one: the scenario file as written. Serde structs with `deny_unknown_fields`, every
+//! number kept as written (`Option` where the file may leave it out); nothing is checked here
+//! but the shape. [`crate::validate`] turns a [`RawScenario`] into a
+//! [`platoonsim_sim::Config`].
+//!
+//! The model sections (`[human]`, `[cav]`, `[lane_change]`) are the model crate's own
+//! parameter structs; keys left out take the model specification's defaults, including single
+//! fields of a distribution (`human.desired_speed_kmh.mean = 100` keeps the default sd, min
+//! and max).
+
+use crate::error::ScenarioError;
+use platoonsim_model::cav::CavParams;
+use platoonsim_model::human::HumanDists;
+use platoonsim_model::lanechange::LaneChangeDists;
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+use toml::{Table, Value};
+
+/// A whole scenario file.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RawScenario {
+    /// Scenario name (copied into the summary). Default: the file name without extension.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Free text, shown by `platoonsim scenarios`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    pub run: RawRun,
+    pub road: RawRoad,
+    pub demand: RawDemand,
+    pub detectors: Vec<RawDetector>,
+    pub measurement: RawMeasurement,
+    pub strategy: RawStrategy,
+    pub human: HumanDists,
+    pub cav: CavParams,
+    pub lane_change: LaneChangeDists,
+}
+
+/// `[run]`: seed, step, duration, warm-up, CAV share. All optional.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RawRun {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dt_s: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub duration_s: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub warmup_s: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub penetration: Option<f64>,
+}
+
+/// `[road]`: all keys required.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RawRoad {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lanes: Option<u32>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub length_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub control_start_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub control_end_m: Option<f64>,
+}
+
+/// `[demand]`.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RawDemand {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vph_per_lane: Option<f64>,
+}
+
+/// One `[[detectors]]` entry.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RawDetector {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub position_m: Option<f64>,
+}
+
+/// `[measurement]`: which detector measures the discharge, and the aggregation interval.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RawMeasurement {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub detector: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub aggregation_s: Option<f64>,
+}
+
+/// `[strategy]`: platoon organization. Only `kind` decides whether it acts; the other keys
+/// are checked whatever the kind so that `--strategy` can switch it on.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RawStrategy {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kind: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub zone_start_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub zone_end_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub start_s: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub end_s: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub flow_threshold_vphpl: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub speed_threshold_kmh: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub radius_m: Option<f64>,
+}
+
+/// Parse TOML text into a document (a table). Syntax errors carry toml's line and column.
+pub fn parse_document(text: &str, origin: &str) -> Result<Table, ScenarioError> {
+    text.parse::<Table>().map_err(|e| ScenarioError::Syntax {
+        origin: origin.to_string(),
+        message: e.to_string().trim_end().to_string(),
+    })
+}
+
+/// Turn a document (after overrides) into a [`RawScenario`]. On failure the error names the
+/// offending key path (`road.foo`, `detectors[1].position_m`, `human.headway_s`).
+pub fn from_document(doc: &Table, origin: &str) -> Result<RawScenario, ScenarioError> {
+    let mut doc = doc.clone();
+    fill_model_defaults(&mut doc);
+    RawScenario::deserialize(Value::Table(doc.clone())).map_err(|_| {
+        let (path, message) = diagnose(&doc);
+        ScenarioError::Structure {
+            origin: origin.to_string(),
+            path,
+            message,
+        }
+    })
+}
+
+/// The model sections accept partial tables, down to single fields of a distribution: merge
+/// what the file gives onto the defaults.
+fn fill_model_defaults(doc: &mut Table) {
+    let defaults = [
+        ("human", Value::try_from(HumanDists::default())),
+        ("cav", Value::try_from(CavParams::default())),
+        ("lane_change", Value::try_from(LaneChangeDists::default())),
+    ];
+    for (key, default) in defaults {
+        let Some(user) = doc.get(key) else { continue };
+        if !user.is_table() {
+            continue; // left for the type error
+        }
+        let Ok(mut merged) = default else { continue };
+        merge(&mut merged, user);
+        doc.insert(key.to_string(), merged);
+    }
+}
+
+/// Deep merge: tables merge key by key, anything else replaces.
+fn merge(base: &mut Value, over: &Value) {
+    match (base, over) {
+        (Value::Table(b), Value::Table(o)) => {
+            for (k, v) in o {
+                match b.get_mut(k) {
+                    Some(bv) => merge(bv, v),
+                    None => {
+                        b.insert(k.clone(), v.clone());
+                    }
+                }
+            }
+        }
+        (b, o) => *b = o.clone(),
+    }
+}
+
+/// Find the first key whose value alone fails to deserialize, two levels deep, and say why.
+fn diagnose(doc: &Table) -> (String, String) {
+    for (key, value) in doc {
+        if try_single::<RawScenario>(key, value).is_ok() {
+            continue;
+        }
+        return match key.as_str() {
+            "run" => narrow::<RawRun>("run", value),
+            "road" => narrow::<RawRoad>("road", value),
+            "demand" => narrow::<RawDemand>("demand", value),
+            "measurement" => narrow::<RawMeasurement>("measurement", value),
+            "strategy" => narrow::<RawStrategy>("strategy", value),
+            "human" => narrow::<HumanDists>("human", value),
+            "cav" => narrow::<CavParams>("cav", value),
+            "lane_change" => narrow::<LaneChangeDists>("lane_change", value),
+            "detectors" => match value {
+                Value::Array(items) => items
+                    .iter()
+                    .enumerate()
+                    .map(|(i, item)| (i, item, RawDetector::deserialize(item.clone())))
+                    .find(|(_, _, r)| r.is_err())
+                    .map(|(i, item, _)| narrow::<RawDetector>(&format!("detectors[{i}]"), item))
+                    .unwrap_or_else(|| ("detectors".into(), single_message(key, value))),
+                _ => (
+                    "detectors".into(),
+                    format!(
+                        "must be an array of tables ([[detectors]] entries), found {}",
+                        value.type_str()
+                    ),
+                ),
+            },
+            _ => (key.clone(), rewrite(&single_message(key, value), None)),
+        };
+    }
+    // Not expected: every key passes alone but the whole fails.
+    let message = match RawScenario::deserialize(Value::Table(doc.clone())) {
+        Err(e) => e.message().to_string(),
+        Ok(_) => "cannot be read".to_string(),
+    };
+    ("(document)".into(), message)
+}
+
+fn try_single<T: DeserializeOwned>(key: &str, value: &Value) -> Result<T, toml::de::Error> {
+    let mut t = Table::new();
+    t.insert(key.to_string(), value.clone());
+    T::deserialize(Value::Table(t))
+}
+
+fn single_message(key: &str, value: &Value) -> String {
+    match try_single::<RawScenario>(key, value) {
+        Err(e) => e.message().to_string(),
+        Ok(_) => String::new(),
+    }
+}
+
+/// Within section `path` (expected to deserialize as `T`), find the failing key.
+fn narrow<T: DeserializeOwned>(path: &str, value: &Value) -> (String, String) {
+    let Value::Table(table) = value else {
+        return (
+            path.to_string(),
+            format!("must be a table ([{path}]), found {}", value.type_str()),
+        );
+    };
+    for (key, v) in table {
+        if let Err(e) = try_single::<T>(key, v) {
+            // An unknown field one level further down (a distribution's `{ mean, sd, ... }`).
+            if let (Some(inner), Value::Table(_)) = (unknown_field_name(e.message()), v) {
+                if inner != key {
+                    let section = format!("{path}.{key}");
+                    return (
+                        format!("{section}.{inner}"),
+                        rewrite(e.message(), Some(&section)),
+                    );
+                }
+            }
+            let message = rewrite(e.message(), Some(path));
+            let self_describing = ["unknown", "invalid type", "invalid value"]
+                .iter()
+                .any(|p| message.starts_with(p));
+            if self_describing {
+                return (format!("{path}.{key}"), message);
+            }
+            return (
+                format!("{path}.{key}"),
+                format!("{message} (found {})", render(v)),
+            );
+        }
+    }
+    let message = match T::deserialize(value.clone()) {
+        Err(e) => e.message().to_string(),
+        Ok(_) => "cannot be read".to_string(),
+    };
+    (path.to_string(), message)
+}
+
+fn unknown_field_name(message: &str) -> Option<&str> {
+    message
+        .strip_prefix("unknown field `")?
+        .split_once('`')
+        .map(|(name, _)| name)
+}
+
+/// Serde says "unknown field `foo`, expected one of `a`, `b`"; say it the scenario way.
+fn rewrite(message: &str, section: Option<&str>) -> String {
+    let Some(rest) = message.strip_prefix("unknown field `") else {
+        return message.to_string();
+    };
+    let Some((name, tail)) = rest.split_once('`') else {
+        return message.to_string();
+    };
+    let tail = tail.trim_start_matches(", ");
+    let allowed = if let Some(list) = tail.strip_prefix("expected one of ") {
+        list.replace('`', "")
+    } else if let Some(list) = tail.strip_prefix("expected ") {
+        list.replace('`', "").replace(" or ", ", ")
+    } else {
+        "(none)".to_string()
+    };
+    match section {
+        Some(s) => format!("unknown field '{name}' in [{s}]; allowed keys: {allowed}"),
+        None => format!("unknown key '{name}' at the top level; allowed keys: {allowed}"),
+    }
+}
+
+/// A value as TOML text (strings quoted, tables inline).
+pub fn render(v: &Value) -> String {
+    v.to_string()
+}
+
+/// A float the way a user writes it: `7000`, `1.5`, `nan`, `inf`.
+pub fn num(v: f64) -> String {
+    if v.is_nan() {
+        "nan".into()
+    } else if v.is_infinite() {
+        if v > 0.0 { "inf" } else { "-inf" }.into()
+    } else {
+        format!("{v}")
+    }
+}
