@@ -42,7 +42,11 @@ impl Dist {
     /// `None` if the distribution is well formed (finite, sd ≥ 0, min ≤ mean ≤ max),
     /// otherwise a sentence saying what is wrong (used by scenario validation).
     pub fn problem(&self) -> Option<String> {
-        if !(self.mean.is_finite() && self.sd.is_finite() && self.min.is_finite() && self.max.is_finite()) {
+        if !(self.mean.is_finite()
+            && self.sd.is_finite()
+            && self.min.is_finite()
+            && self.max.is_finite())
+        {
             return Some("all of mean, sd, min, max must be finite numbers".into());
         }
         if self.sd < 0.0 {
@@ -52,7 +56,10 @@ impl Dist {
             return Some(format!("min = {} must be <= max = {}", self.min, self.max));
         }
         if self.mean < self.min || self.mean > self.max {
-            return Some(format!("mean = {} must lie in [min, max] = [{}, {}]", self.mean, self.min, self.max));
+            return Some(format!(
+                "mean = {} must lie in [min, max] = [{}, {}]",
+                self.mean, self.min, self.max
+            ));
         }
         None
     }

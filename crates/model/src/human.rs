@@ -23,7 +23,7 @@
 //! | d_jam | `jam_gap_m` | 1.5 | N(1.5, 0.5) in [1.0, 2.0] | m |
 //! | τ | `headway_s` | 1.25 | N(1.25, 0.3) in [1.05, 1.45] | s |
 //! | τ_r | `reaction_s` | 1.2 | N(1.2, 0.2) in [1.0, 1.4] | s |
-//! | θ | `buffer_s` | 0.15 | fixed (calibration knob, spec 2.8) | s |
+//! | θ | `buffer_s` | 0.10 | fixed; calibrated: steady-state capacity 2,000 veh/h/lane with d_jam in the Gipps term (spec 2.3, 2.8, 6.1; docs/calibration.md) | s |
 //! | c_b | `leader_brake_factor` | 1.1 | fixed | – |
 //! | a_M | `max_accel` | 1.5 | N(1.5, 0.5) in [1, 2] | m/s² |
 //! | b_f | `max_decel` | −4.0 | fixed | m/s² |
@@ -99,7 +99,8 @@ impl Default for HumanDists {
             jam_gap_m: Dist::clamped(1.5, 0.5, 1.0, 2.0),
             headway_s: Dist::clamped(1.25, 0.3, 1.05, 1.45),
             reaction_s: Dist::clamped(1.2, 0.2, 1.0, 1.4),
-            buffer_s: 0.15,
+            // Calibrated (spec 6.1): 3600/(τ_r + θ + 0.5) = 2,000 veh/h/lane; docs/calibration.md.
+            buffer_s: 0.10,
             leader_brake_factor: 1.1,
             max_accel: Dist::clamped(1.5, 0.5, 1.0, 2.0),
             max_decel: Dist::fixed(-4.0),

@@ -25,7 +25,7 @@
 //! | E_min, T_min | `mandatory_min_distance_m`, `mandatory_min_time_s` | 50, 3 | fixed | m, s |
 //! | η_r | `right_discount` | 0.7 | fixed | – |
 //! | κ | `mandatory_weight` | 0.8 | fixed | – |
-//! | ε | `threshold` | 0.25 | N(0.25, 0.2) in [0.2, 0.5] | – |
+//! | ε | `threshold` | 0.25 | N(0.25, 0.2) in [0.1, 0.5] (floor lowered from 0.2: docs/calibration.md) | – |
 //! | σ_f, σ_b | `sigma_forward`, `sigma_backward` | 0.6, 0.75 | fixed | – |
 //! | φ_h, φ_j, φ_r | `relax_headway`, `relax_jam`, `relax_reaction` | 0.4, 0.6, 0.2 | fixed | – |
 //! | t_s | `relax_time_s` | 8 | fixed | s |
@@ -114,7 +114,8 @@ impl Default for LaneChangeDists {
             mandatory_min_time_s: 3.0,
             right_discount: 0.7,
             mandatory_weight: 0.8,
-            threshold: Dist::clamped(0.25, 0.2, 0.2, 0.5),
+            // [P15-doc] mean and sd; floor 0.1 instead of 0.2 (calibration, spec 6.19; docs/calibration.md).
+            threshold: Dist::clamped(0.25, 0.2, 0.1, 0.5),
             sigma_forward: 0.6,
             sigma_backward: 0.75,
             relax_headway: 0.4,

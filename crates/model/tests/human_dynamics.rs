@@ -13,8 +13,12 @@ const RELAXED: Relax = Relax {
     reaction: 0.2,
 };
 
+/// The spec 2.6 mean driver with θ = 0.15 s (the hand computations below use it).
 fn p() -> HumanParams {
-    HumanParams::default()
+    HumanParams {
+        buffer_s: 0.15,
+        ..HumanParams::default()
+    }
 }
 
 #[test]

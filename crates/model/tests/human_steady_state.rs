@@ -44,7 +44,8 @@ fn mean_parameters_are_the_spec_2_6_means() {
     assert_eq!(p.jam_gap_m, 1.5);
     assert_eq!(p.headway_s, 1.25);
     assert_eq!(p.reaction_s, 1.2);
-    assert_eq!(p.buffer_s, 0.15);
+    // θ is the calibration knob (spec 6.1): 0.10 s makes the steady-state capacity 2,000.
+    assert_eq!(p.buffer_s, 0.10);
     assert_eq!(p.leader_brake_factor, 1.1);
     assert_eq!(p.max_decel, -4.0);
     assert!((p.desired_speed - 110.0 / 3.6).abs() < 1e-12);
@@ -82,6 +83,18 @@ fn capacity_of_the_mean_driver_per_spec_2_3_equations() {
 }
 
 #[test]
+fn calibrated_default_capacity_is_2000_veh_per_hour() {
+    // spec 6.1: θ calibrated so that the 0 % CAV capacity is about 2,000 veh/h/lane; with the
+    // spec 2.3 equations that is θ = 0.10 s: 3600 / (1.2 + 0.1 + 0.5) = 2,000.
+    let p = HumanDists::default().mean();
+    let (q, v_kmh) = max_flow(p.length_m, p.desired_speed, |v| {
+        equilibrium_gap(&p, v, Relax::NONE)
+    });
+    assert!(rel_err(q, 2000.0) < 1e-3, "{q}");
+    assert!((v_kmh - 79.2).abs() < 0.5, "{v_kmh}");
+}
+
+#[test]
 fn equilibrium_gap_is_where_newell_and_gipps_both_allow_holding_speed() {
     let p = HumanParams::default();
     for r in [
@@ -113,9 +126,9 @@ fn equilibrium_gap_is_where_newell_and_gipps_both_allow_holding_speed() {
 
 #[test]
 fn equilibrium_gap_is_newell_bound_at_standstill_and_gipps_bound_when_moving() {
-    let p = HumanParams::default();
+    let p = mean_driver(0.15);
     assert!((equilibrium_gap(&p, 0.0, Relax::NONE) - 1.5).abs() < 1e-12);
-    // Gipps: d_jam + (τ_r + θ) v + v²/88 at 20 m/s = 1.5 + 27 + 4.545…
+    // Gipps (θ = 0.15): d_jam + (τ_r + θ) v + v²/88 at 20 m/s = 1.5 + 27 + 4.545…
     assert!((equilibrium_gap(&p, 20.0, Relax::NONE) - (1.5 + 27.0 + 400.0 / 88.0)).abs() < 1e-9);
     // Negative speed is treated as 0.
     assert_eq!(

@@ -6,7 +6,13 @@ use platoonsim_sim::{run, Config, PdConfig, Strategy};
 fn main() {
     let a: Vec<String> = std::env::args().skip(1).collect();
     let f = |i: usize, d: f64| a.get(i).and_then(|s| s.parse().ok()).unwrap_or(d);
-    let mut cfg = Config::homogeneous(f(0, 0.5), f(1, 2500.0), f(2, 3600.0), f(3, 1200.0), f(4, 1.0) as u64);
+    let mut cfg = Config::homogeneous(
+        f(0, 0.5),
+        f(1, 2500.0),
+        f(2, 3600.0),
+        f(3, 1200.0),
+        f(4, 1.0) as u64,
+    );
     if let Some(s) = a.get(5) {
         if s == "pd" {
             cfg.strategy = Strategy::Pd {
@@ -31,6 +37,13 @@ fn main() {
     }
     if let Ok(m) = std::env::var("MAXP") {
         cfg.cav.max_platoon = m.parse().unwrap();
+    }
+    if let Ok(t) = std::env::var("THR") {
+        let v: Vec<f64> = t.split(',').map(|x| x.parse().unwrap()).collect();
+        cfg.lane_change.threshold = platoonsim_model::dist::Dist::clamped(v[0], v[1], v[2], v[3]);
+    }
+    if let Ok(t) = std::env::var("SCAN") {
+        cfg.lane_change.scan_distance_m = t.parse().unwrap();
     }
     if std::env::var("NOLC").is_ok() {
         cfg.lane_change.forbid_zone_m = 1e9;
@@ -57,7 +70,14 @@ fn main() {
     );
     if std::env::var("DET").is_ok() {
         for r in out.detectors.iter().filter(|r| r.lane == "all") {
-            println!("{} {:>6} {:>5.0} {:>7.0} {:?}", r.detector, r.interval_start_s, r.count, r.flow_vph / 3.0, r.speed_kmh.map(|v| v.round()));
+            println!(
+                "{} {:>6} {:>5.0} {:>7.0} {:?}",
+                r.detector,
+                r.interval_start_s,
+                r.count,
+                r.flow_vph / 3.0,
+                r.speed_kmh.map(|v| v.round())
+            );
         }
     }
 }

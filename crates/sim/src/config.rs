@@ -117,16 +117,25 @@ impl Config {
             ));
         }
         if !(0.0..=1.0).contains(&self.penetration) {
-            return Err(format!("run.penetration = {}: must be in [0, 1]", self.penetration));
+            return Err(format!(
+                "run.penetration = {}: must be in [0, 1]",
+                self.penetration
+            ));
         }
         if !(1..=8).contains(&self.road.lanes) {
             return Err(format!("road.lanes = {}: must be 1 to 8", self.road.lanes));
         }
         if !(self.demand.vph_per_lane.is_finite() && self.demand.vph_per_lane >= 0.0) {
-            return Err(format!("demand.vph_per_lane = {}: must be a finite number >= 0", self.demand.vph_per_lane));
+            return Err(format!(
+                "demand.vph_per_lane = {}: must be a finite number >= 0",
+                self.demand.vph_per_lane
+            ));
         }
         for (i, d) in self.detectors.iter().enumerate() {
-            if !(d.position_m.is_finite() && d.position_m > 0.0 && d.position_m < self.road.length_m) {
+            if !(d.position_m.is_finite()
+                && d.position_m > 0.0
+                && d.position_m < self.road.length_m)
+            {
                 return Err(format!(
                     "detectors[{i}].position_m = {}: must lie inside the road (0, {})",
                     d.position_m, self.road.length_m
@@ -147,7 +156,13 @@ impl Config {
 impl Config {
     /// The paper's homogeneous road with the spec defaults (the same values as the built-in
     /// `homogeneous` scenario file; handy for tests and benchmarks of the engine alone).
-    pub fn homogeneous(penetration: f64, demand_vphpl: f64, duration_s: f64, warmup_s: f64, seed: u64) -> Config {
+    pub fn homogeneous(
+        penetration: f64,
+        demand_vphpl: f64,
+        duration_s: f64,
+        warmup_s: f64,
+        seed: u64,
+    ) -> Config {
         Config {
             name: "homogeneous".into(),
             seed,

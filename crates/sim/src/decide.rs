@@ -96,7 +96,8 @@ impl Simulation {
                     gap_m: r.rear() - v.x,
                     v_mps: r.v,
                 };
-                let a_virt = human::target_accel(&v.human, v.v, v_des, Some(virt), lcm::gap_relax(&v.lc));
+                let a_virt =
+                    human::target_accel(&v.human, v.v, v_des, Some(virt), lcm::gap_relax(&v.lc));
                 target = target.min(a_virt.max(v.human.comfort_decel));
                 mode = Mode::Ycf { to: r.id };
             }
@@ -197,7 +198,10 @@ impl Simulation {
             if since < v.lc.min_interval_s {
                 return None;
             }
-            if gamma < 1.0 && v.last_lc_side == Some(opposite(side)) && since < v.lc.return_factor * v.lc.min_interval_s {
+            if gamma < 1.0
+                && v.last_lc_side == Some(opposite(side))
+                && since < v.lc.return_factor * v.lc.min_interval_s
+            {
                 return None;
             }
         }
@@ -249,7 +253,14 @@ impl Simulation {
     }
 
     /// BLC (spec 4.3): gap acceptance and the before-change behaviour.
-    fn before_lane_change(&self, s: u32, v: &Vehicle, nb: &Neighbours, leader: Option<Leader>, d: Desire) -> Decision {
+    fn before_lane_change(
+        &self,
+        s: u32,
+        v: &Vehicle,
+        nb: &Neighbours,
+        leader: Option<Leader>,
+        d: Desire,
+    ) -> Decision {
         let (tl, tf) = match d.side {
             Side::Left => (nb.left_leader, nb.left_follower),
             Side::Right => (nb.right_leader, nb.right_follower),
@@ -261,7 +272,10 @@ impl Simulation {
         let a_ant = human::target_accel(h, v.v, v_des, lead_view, lcm::gap_relax(&v.lc));
         let lead_ok = match lead_view {
             None => true,
-            Some(l) => lcm::accept_lead_gap(h, &v.lc, l.gap_m, v.v, l.v_mps) && (d.mandatory || a_ant >= 0.0),
+            Some(l) => {
+                lcm::accept_lead_gap(h, &v.lc, l.gap_m, v.v, l.v_mps)
+                    && (d.mandatory || a_ant >= 0.0)
+            }
         };
         let lag_ok = if tf == NONE {
             true
@@ -348,7 +362,9 @@ pub(crate) fn opposite(s: Side) -> Side {
 /// A uniform draw in [0, 1) for the pair (driver, requester): "a fresh U(0,1) at each new
 /// request" (spec 4.5), reproducible without storing anything.
 pub(crate) fn pair_uniform(seed: u64, a: u64, b: u64) -> f64 {
-    let mut z = seed ^ a.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ b.rotate_left(32).wrapping_mul(0xC2B2_AE3D_27D4_EB4F);
+    let mut z = seed
+        ^ a.wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        ^ b.rotate_left(32).wrapping_mul(0xC2B2_AE3D_27D4_EB4F);
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     z ^= z >> 31;

@@ -62,13 +62,22 @@ impl Simulation {
         }
         if tf != NONE {
             let f = &self.vehicles[tf as usize];
-            let a_ant = human::target_accel(&v.human, v.v, v.human.desired_speed, lead, lcm::gap_relax(&v.lc));
+            let a_ant = human::target_accel(
+                &v.human,
+                v.v,
+                v.human.desired_speed,
+                lead,
+                lcm::gap_relax(&v.lc),
+            );
             if !lcm::accept_lag_gap(&v.human, &v.lc, v.rear() - f.x, v.v, f.v, a_ant) {
                 return;
             }
         }
         // Execute.
-        let k = self.lanes[from].iter().position(|&o| o == s).expect("vehicle is in its lane");
+        let k = self.lanes[from]
+            .iter()
+            .position(|&o| o == s)
+            .expect("vehicle is in its lane");
         self.lanes[from].remove(k);
         self.lanes[to].insert(j, s);
         self.changed_this_step[s as usize] = step;

@@ -129,7 +129,10 @@ impl Simulation {
             let (lane, speed) = if n_full > 0 {
                 let mut head = self.entrance.queue.pop_front().expect("queue has a head");
                 let pick = head.rng.index(n_full);
-                let lane = (0..n_lanes).filter(|l| full & (1 << l) != 0).nth(pick).expect("pick < n_full");
+                let lane = (0..n_lanes)
+                    .filter(|l| full & (1 << l) != 0)
+                    .nth(pick)
+                    .expect("pick < n_full");
                 self.entrance.queue.push_front(head);
                 (lane, v_des)
             } else if let Some(b) = best {
@@ -190,7 +193,9 @@ impl Simulation {
         }
         let ok = |v: f64| -> bool {
             match veh.kind {
-                Kind::Human => human::target_accel(&veh.human, v, v_des, Some(leader), Relax::NONE) >= 0.0,
+                Kind::Human => {
+                    human::target_accel(&veh.human, v, v_des, Some(leader), Relax::NONE) >= 0.0
+                }
                 Kind::Cav => {
                     let p = &self.cfg.cav;
                     if leader.gap_m > p.sensor_range_m {

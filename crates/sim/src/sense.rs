@@ -147,7 +147,9 @@ impl Simulation {
                     let lpos = self.platoon_pos[ld as usize];
                     let lid = vehicles[ld as usize].id;
                     let member = vehicles[s as usize].string_pred == lid;
-                    if (member && lpos < max) || (!member && lpos + self.sub_size[s as usize] <= max) {
+                    if (member && lpos < max)
+                        || (!member && lpos + self.sub_size[s as usize] <= max)
+                    {
                         pred_id = lid;
                         pos = lpos + 1;
                     }

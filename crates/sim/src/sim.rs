@@ -113,7 +113,9 @@ impl Simulation {
 
     /// Vehicles on the road, lane by lane (0 = rightmost), front first.
     pub fn lane_vehicles(&self, lane: usize) -> impl Iterator<Item = &Vehicle> + '_ {
-        self.lanes[lane].iter().map(move |&s| &self.vehicles[s as usize])
+        self.lanes[lane]
+            .iter()
+            .map(move |&s| &self.vehicles[s as usize])
     }
 
     /// Number of vehicles on the road.
@@ -303,7 +305,11 @@ impl Simulation {
             max_flow = max_flow.max(c as f64 * 3600.0 / interval / lanes);
         }
         let window_h = window_intervals as f64 * interval / 3600.0;
-        let discharge = if window_h > 0.0 { window_count as f64 / window_h / lanes } else { 0.0 };
+        let discharge = if window_h > 0.0 {
+            window_count as f64 / window_h / lanes
+        } else {
+            0.0
+        };
         let m = &self.metrics;
         let summary = Summary {
             scenario: cfg.name.clone(),
