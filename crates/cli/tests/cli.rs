@@ -222,12 +222,16 @@ fn clap_rejects_an_unknown_strategy() {
 
 // These run the simulation; un-ignore them once platoonsim_sim::run is implemented.
 
-const SHORT: &[&str] = &["--duration", "600", "--warmup", "300", "--quiet"];
+/// A 10-minute run (the flags in `extra` may not repeat these).
+const SHORT: &[&str] = &["--duration", "600", "--quiet"];
 
 fn short_run(test: &str, extra: &[&str]) -> PathBuf {
     let out = scratch(test).join("out");
     let mut args = vec!["run", "homogeneous"];
     args.extend_from_slice(SHORT);
+    if !extra.contains(&"--warmup") {
+        args.extend_from_slice(&["--warmup", "300"]);
+    }
     args.extend_from_slice(extra);
     args.extend_from_slice(&["--out", s(&out)]);
     let o = platoonsim(&args);

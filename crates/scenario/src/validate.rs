@@ -367,15 +367,18 @@ pub fn validate(
         },
     };
     let aggregation = c.opt(raw.measurement.aggregation_s, defaults::AGGREGATION_S);
-    if dt_ok && duration_ok {
+    if dt_ok {
+        // The engine counts intervals in steps; an interval that is not a whole number of steps
+        // would be reported with a length it does not have.
+        let steps = aggregation.v / dt.v;
+        let whole = (steps - steps.round()).abs() <= 1e-6 * steps.max(1.0);
         c.check(
             "measurement.aggregation_s",
             aggregation,
-            aggregation.v >= dt.v && aggregation.v <= duration.v,
+            aggregation.v >= dt.v && whole,
             format!(
-                "must be at least run.dt_s = {} and at most run.duration_s = {}",
-                dt.shown(),
-                duration.shown()
+                "must be a whole number of steps of run.dt_s = {}",
+                dt.shown()
             ),
         );
     } else {

@@ -592,20 +592,59 @@ fn non_finite_model_values() {
 #[test]
 fn other_ranges() {
     let cases: &[(&str, &str)] = &[
-        ("road.lanes=0", "road.lanes = 0: must be an integer from 1 to 8"),
-        ("road.lanes=9", "road.lanes = 9: must be an integer from 1 to 8"),
-        ("demand.vph_per_lane=-1", "demand.vph_per_lane = -1: must be in [0, 10000] veh/h/lane"),
-        ("strategy.kind=dedicated", "strategy.kind = \"dedicated\": must be one of \"none\", \"pd\", \"flow-aware\""),
-        ("measurement.aggregation_s=0.01", "measurement.aggregation_s = 0.01: must be at least run.dt_s = 0.1 and at most run.duration_s = 3600"),
-        ("detectors[1].name=upstream", "detectors[1].name = \"upstream\": duplicates detectors[0].name; names must be unique"),
-        ("cav.max_platoon=0", "cav.max_platoon = 0: must be >= 1 vehicle"),
-        ("human.smoothing=0.5", "human.smoothing = 0.5: must be >= 1 (1 = no smoothing)"),
-        ("lane_change.relax_jam=0", "lane_change.relax_jam = 0: must be in (0, 1]"),
+        (
+            "road.lanes=0",
+            "road.lanes = 0: must be an integer from 1 to 8",
+        ),
+        (
+            "road.lanes=9",
+            "road.lanes = 9: must be an integer from 1 to 8",
+        ),
+        (
+            "demand.vph_per_lane=-1",
+            "demand.vph_per_lane = -1: must be in [0, 10000] veh/h/lane",
+        ),
+        (
+            "strategy.kind=dedicated",
+            "strategy.kind = \"dedicated\": must be one of \"none\", \"pd\", \"flow-aware\"",
+        ),
+        (
+            "measurement.aggregation_s=0.01",
+            "measurement.aggregation_s = 0.01: must be a whole number of steps of run.dt_s = 0.1",
+        ),
+        (
+            "measurement.aggregation_s=300.05",
+            "measurement.aggregation_s = 300.05: must be a whole number of steps of run.dt_s = 0.1",
+        ),
+        (
+            "detectors[1].name=upstream",
+            "detectors[1].name = \"upstream\": duplicates detectors[0].name; names must be unique",
+        ),
+        (
+            "cav.max_platoon=0",
+            "cav.max_platoon = 0: must be >= 1 vehicle",
+        ),
+        (
+            "human.smoothing=0.5",
+            "human.smoothing = 0.5: must be >= 1 (1 = no smoothing)",
+        ),
+        (
+            "lane_change.relax_jam=0",
+            "lane_change.relax_jam = 0: must be in (0, 1]",
+        ),
         ("name=''", "name = \"\": must be a non-empty string"),
     ];
     for (set, expected) in cases {
         let p = problems(with_set(HOMOGENEOUS, &[set]));
         assert_eq!(p, vec![expected.to_string()], "--set {set}");
+    }
+    // Whole numbers of steps, and longer than the run, are fine.
+    for ok in [
+        "measurement.aggregation_s=60",
+        "measurement.aggregation_s=0.3",
+        "measurement.aggregation_s=7200",
+    ] {
+        with_set(HOMOGENEOUS, &[ok]).unwrap_or_else(|e| panic!("{ok}: {e}"));
     }
 }
 
