@@ -377,18 +377,92 @@ fn sumo_like(
     variant(p, v, a, l, tc, true, true)
 }
 
+/// |H(e^{jωΔt})| of one follower held in one mode (gains kp, kd per 0.1 s step), for the
+/// discrete loop simulated above: v' = v + kp e + kd (Δv − t a), a = (v − v_prev)/Δt,
+/// trapezoidal positions. H = (kp P + kd) / (z − 1 + kp P + kp t + kd + kd t (1 − 1/z)/Δt),
+/// P = Δt (z + 1) / (2 (z − 1)).
+fn gain_one_mode(kp: f64, kd: f64, tc: f64, period_s: f64) -> f64 {
+    #[derive(Clone, Copy)]
+    struct C(f64, f64);
+    let add = |a: C, b: C| C(a.0 + b.0, a.1 + b.1);
+    let mul = |a: C, b: C| C(a.0 * b.0 - a.1 * b.1, a.0 * b.1 + a.1 * b.0);
+    let div = |a: C, b: C| {
+        let d = b.0 * b.0 + b.1 * b.1;
+        C((a.0 * b.0 + a.1 * b.1) / d, (a.1 * b.0 - a.0 * b.1) / d)
+    };
+    let r = |x: f64| C(x, 0.0);
+    let w = 2.0 * std::f64::consts::PI / period_s * DT;
+    let z = C(w.cos(), w.sin());
+    let p = div(mul(r(DT), add(z, r(1.0))), mul(r(2.0), add(z, r(-1.0))));
+    let a = div(add(r(1.0), mul(r(-1.0), div(r(1.0), z))), r(DT));
+    let num = add(mul(r(kp), p), r(kd));
+    let den = add(
+        add(add(z, r(-1.0)), num),
+        add(r(kp * tc), mul(r(kd * tc), a)),
+    );
+    let h = div(num, den);
+    (h.0 * h.0 + h.1 * h.1).sqrt()
+}
+
+#[test]
+fn one_mode_linear_gains_match_the_simulation_picture() {
+    let p = CavParams::default();
+    let [kp, kd] = p.cacc_reg_gains;
+    // kp = 0.45 modes: amplify slightly at 0.6 s (|H| > 1 near 6-8 s periods), not at 0.7 s.
+    assert!(gain_one_mode(kp, kd, 0.6, 6.5) > 1.015);
+    assert!((4..200).all(|period| gain_one_mode(kp, kd, 0.7, period as f64) <= 1.0 + 1e-9));
+    // Gap closing amplifies slow oscillations at every t_C.
+    let [kp, kd] = p.cacc_closing_gains;
+    for tc in [0.6, 0.7, 0.9, 1.1] {
+        assert!(gain_one_mode(kp, kd, tc, 50.0) > 1.05, "{tc}");
+    }
+}
+
 #[test]
 #[ignore]
 fn print_tables() {
     let p = CavParams::default();
+    println!("One-mode linear |H| at periods 5 10 20 40 60 s, and max over 2-2000 s:");
+    for tc in [0.6, 0.7, 0.9, 1.1] {
+        for (name, [kp, kd]) in [
+            ("regulation", p.cacc_reg_gains),
+            ("avoidance", p.cacc_avoid_gains),
+            ("closing", p.cacc_closing_gains),
+        ] {
+            let at: Vec<f64> = [5.0, 10.0, 20.0, 40.0, 60.0]
+                .iter()
+                .map(|&t| gain_one_mode(kp, kd, tc, t))
+                .collect();
+            let (mut best, mut best_t) = (0.0, 0.0);
+            for k in 20..20000 {
+                let t = k as f64 * 0.1;
+                let g = gain_one_mode(kp, kd, tc, t);
+                if g > best {
+                    (best, best_t) = (g, t);
+                }
+            }
+            println!(
+                "t_C {tc} {name:>10}: {} | max {best:.4} at {best_t:.1} s",
+                fmt(&at)
+            );
+        }
+    }
+    // Smallest net gap minus s_min and hardest braking over all spec-law runs below.
+    let (mut worst_margin, mut worst_accel) = (f64::INFINITY, f64::INFINITY);
+    let mut note = |o: &Outcome| {
+        worst_margin = worst_margin.min(o.min_gap - p.standstill_gap_m);
+        worst_accel = worst_accel.min(o.min_accel);
+    };
     println!("Spec law, 5 vehicles, peak |v − 25| (m/s):");
     for tc in [0.6, 0.7, 0.9, 1.1] {
         for d in DIPS {
             let o = run(&p, spec_law, 5, tc, dip(d), 120.0);
+            note(&o);
             println!("t_C {tc} dip {:>4} m/s² x {} s: {}", d.0, d.1, fmt(&o.peak));
         }
         for period in [5.0, 10.0, 20.0, 40.0] {
             let o = run(&p, spec_law, 5, tc, sine(period), 200.0);
+            note(&o);
             println!("t_C {tc} sine 1 m/s {period:>2} s: {}", fmt(&o.peak));
         }
     }
@@ -396,9 +470,23 @@ fn print_tables() {
     for tc in [0.6, 0.7, 0.9, 1.1] {
         for pr in [dip((-2.0, 3.0)), sine(20.0), sine(40.0)] {
             let o = run(&p, spec_law, 10, tc, pr, 300.0);
+            note(&o);
             println!("t_C {tc} {pr:?}: {}", fmt(&o.peak));
         }
     }
+    for amp in [0.3, 2.0] {
+        let pr = Profile::Sine {
+            amp,
+            period: 20.0,
+            cycles: 5.0,
+        };
+        let o = run(&p, spec_law, 10, 0.6, pr, 300.0);
+        note(&o);
+        println!("t_C 0.6 10 veh {pr:?}: {}", fmt(&o.peak));
+    }
+    println!(
+        "spec-law runs: smallest gap − s_min {worst_margin:.2} m, hardest accel {worst_accel:.2} m/s²"
+    );
     let o = run(&p, spec_law, 5, 0.6, dip((-2.0, 3.0)), 120.0);
     println!(
         "modes near peak [speed, regulation, closing, avoidance], 0.6 s, -2x3: {:?}",

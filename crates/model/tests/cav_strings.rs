@@ -1,12 +1,9 @@
 //! String behaviour of the CAV controllers (spec 5.3.1, 5.3.2): a single lane, Δt = 0.1 s,
 //! synchronous updates, ballistic integration (spec 1), `finalize` applied every step.
 //!
-//! Finding (reported): with the spec 3.4 law and gains the CACC string at t_C = 0.6 s is
-//! *slightly* string-unstable: after the first follower the peak speed deviation grows by
-//! about 1-2 % per vehicle. Continuous-time analysis of v̇ = K_p e + K_d ė (K_p = kp/0.1,
-//! K_d = kd/0.1, ė = Δv − t_C a) gives |G(jω)| ≤ 1 for all ω iff K_p t_C² ≥ 2, i.e.
-//! t_C ≥ 0.667 s with kp = 0.45 (independent of kd); the simulation agrees: monotone
-//! attenuation at 0.9 and 1.1 s, roughly flat at 0.7 s, slow growth at 0.6 s.
+//! The CACC string-stability tests (spec 5.3.2: dips and sinusoids at t_C = 0.6-1.1 s) are in
+//! `cav_string.rs`, with the findings in `docs/cacc-string-stability.md`: at 0.6 s the string
+//! attenuates at the first follower and then grows by up to about 2 % per vehicle.
 
 use platoonsim_model::cav::{acc, cacc, finalize, CavParams, Family};
 use platoonsim_model::Leader;
@@ -123,66 +120,11 @@ fn round3(x: &[f64]) -> Vec<f64> {
 const DIP: (f64, f64) = (-2.0, 3.0);
 
 #[test]
-fn cacc_string_at_0p6_s_attenuates_at_the_first_follower_then_grows_slowly() {
-    let p = CavParams::default();
-    let o = run_string(&p, Law::Cacc(0.6), 5, 25.0, DIP.0, DIP.1, 120.0);
-    println!(
-        "CACC 0.6 s, 5 vehicles: peak |v − 25| = {:?}, min gap {:.2} m, min accel {:.2}",
-        round3(&o.peak_dev),
-        o.min_gap,
-        o.min_accel
-    );
-    // No collision, and the safety margin is never used up.
-    assert!(o.min_gap > p.standstill_gap_m, "{}", o.min_gap);
-    // The first follower attenuates the leader's 6 m/s dip.
-    assert!(o.peak_dev[1] < o.peak_dev[0]);
-    // Spec 5.3.2 asks peak(i+1) ≤ peak(i) for every i: NOT met with the spec's equations at
-    // 0.6 s (see module comment). Bound the growth instead: < 2.5 % per vehicle, and the
-    // whole 5-vehicle string stays below the leader's dip.
-    for i in 1..4 {
-        assert!(
-            o.peak_dev[i + 1] <= 1.025 * o.peak_dev[i],
-            "vehicle {}: {:?}",
-            i + 1,
-            o.peak_dev
-        );
-    }
-    assert!(o.peak_dev[4] < o.peak_dev[0]);
-    assert!(
-        o.peak_dev[2] > o.peak_dev[1],
-        "expected the mild growth documented above: {:?}",
-        o.peak_dev
-    );
-    // The dip stays within the vehicle limits (no safety override needed).
-    assert!(o.min_accel >= p.max_decel - 1e-9);
-}
-
-#[test]
-fn cacc_string_is_string_stable_at_larger_time_gaps() {
-    let p = CavParams::default();
-    for tc in [0.9, 1.1] {
-        let o = run_string(&p, Law::Cacc(tc), 8, 25.0, DIP.0, DIP.1, 120.0);
-        println!(
-            "CACC {tc} s, 8 vehicles: peak |v − 25| = {:?}",
-            round3(&o.peak_dev)
-        );
-        for i in 0..7 {
-            assert!(
-                o.peak_dev[i + 1] <= o.peak_dev[i],
-                "t_C {tc}, vehicle {}: {:?}",
-                i + 1,
-                o.peak_dev
-            );
-        }
-        assert!(o.min_gap > p.standstill_gap_m);
-    }
-}
-
-#[test]
 fn cacc_string_in_equilibrium_stays_in_equilibrium() {
     let p = CavParams::default();
     let o = run_string(&p, Law::Cacc(0.6), 5, 25.0, 0.0, 0.0, 60.0);
     assert!(o.peak_dev.iter().all(|&d| d < 1e-9), "{:?}", o.peak_dev);
+    assert!(o.min_accel.abs() < 1e-9, "{}", o.min_accel);
 }
 
 #[test]
