@@ -36,6 +36,7 @@
 //! | – | `slow_down_desire` | 0.5 | fixed | – |
 //! | w_CAV | `cav_weight_leader`, `cav_weight_follower` | 0.5, 0 | fixed | – |
 //! | v_ref floor | `min_reference_speed_mps` | 2.3 | fixed | m/s |
+//! | – | `min_speed_gain_mps` | 2.34 (5 mph) | fixed; γ_d = 0 below this gain ([P15-doc] gate) | m/s |
 
 use crate::dist::Dist;
 use crate::human::HumanParams;
@@ -72,6 +73,7 @@ pub struct LaneChangeParams {
     pub return_factor: f64,
     pub slow_down_desire: f64,
     pub min_reference_speed_mps: f64,
+    pub min_speed_gain_mps: f64,
 }
 
 /// Scenario-level lane-change parameters with per-driver distributions (spec 4.9).
@@ -99,6 +101,8 @@ pub struct LaneChangeDists {
     pub return_factor: f64,
     pub slow_down_desire: f64,
     pub min_reference_speed_mps: f64,
+    /// Smallest absolute speed gain v_ant − v̄_0 that creates a discretionary desire (m/s).
+    pub min_speed_gain_mps: f64,
     pub cav_weight_leader: f64,
     pub cav_weight_follower: f64,
     /// No lane changes within this distance of an entrance ("forbid zone", spec 4.1) (m).
@@ -130,6 +134,7 @@ impl Default for LaneChangeDists {
             return_factor: 3.0,
             slow_down_desire: 0.5,
             min_reference_speed_mps: 2.3,
+            min_speed_gain_mps: 2.34,
             cav_weight_leader: 0.5,
             cav_weight_follower: 0.0,
             forbid_zone_m: 100.0,
@@ -163,6 +168,7 @@ impl LaneChangeDists {
             return_factor: self.return_factor,
             slow_down_desire: self.slow_down_desire,
             min_reference_speed_mps: self.min_reference_speed_mps,
+            min_speed_gain_mps: self.min_speed_gain_mps,
         }
     }
 
@@ -220,6 +226,11 @@ pub fn discretionary_desire(p: &LaneChangeParams, v_ant: f64, v_cur: f64, side: 
         Side::Left => 1.0,
         Side::Right => p.right_discount,
     };
+    // [P15-doc]: no discretionary desire below an absolute speed gain (the code's commented
+    // 2.34 m/s = 5 mph); keeps drivers in slow queues from chasing small lane-speed noise.
+    if v_ant - v_cur < p.min_speed_gain_mps {
+        return 0.0;
+    }
     let v_ref = v_cur.max(p.min_reference_speed_mps);
     let gain = if v_ref > 0.0 {
         ((v_ant - v_ref) / v_ref).clamp(0.0, 1.0)

@@ -151,8 +151,22 @@ fn discretionary_reference_speed_floor() {
     // Floor configured away: a standing current lane and a moving target give the full gain.
     let mut q = p;
     q.min_reference_speed_mps = 0.0;
+    q.min_speed_gain_mps = 0.0;
     assert_eq!(discretionary_desire(&q, 1.0, 0.0, Side::Left), 1.0);
     assert_eq!(discretionary_desire(&q, 0.0, 0.0, Side::Left), 0.0);
+}
+
+#[test]
+fn no_discretionary_desire_below_the_absolute_speed_gain() {
+    // [P15-doc]: the gain v_ant − v̄_0 must reach 2.34 m/s (5 mph).
+    let p = p();
+    assert_eq!(p.min_speed_gain_mps, 2.34);
+    // Crawling queue: 3 m/s next to 1 m/s is a relative gain of 0.3 but only 2 m/s absolute.
+    assert_eq!(discretionary_desire(&p, 3.0, 1.0, Side::Left), 0.0);
+    // 2.5 m/s absolute: relative to the 2.3 m/s floor, (3.5 − 2.3)/2.3 capped at 1 … (3.5 − 2.3)/2.3 = 0.52.
+    assert!((discretionary_desire(&p, 3.5, 1.0, Side::Left) - (3.5 - 2.3) / 2.3).abs() < 1e-12);
+    // Free flow: 30 vs 25 m/s passes the gate, gain 0.2.
+    assert!((discretionary_desire(&p, 30.0, 25.0, Side::Left) - 0.2).abs() < 1e-12);
 }
 
 // ---- relaxation (spec 4.6) -----------------------------------------------------------------

@@ -45,13 +45,16 @@ fn main() {
     if let Ok(t) = std::env::var("SCAN") {
         cfg.lane_change.scan_distance_m = t.parse().unwrap();
     }
+    if let Ok(t) = std::env::var("GAIN") {
+        cfg.lane_change.min_speed_gain_mps = t.parse().unwrap();
+    }
     if std::env::var("NOLC").is_ok() {
         cfg.lane_change.forbid_zone_m = 1e9;
     }
     let out = run(&cfg, None).unwrap();
     let s = &out.summary;
     println!(
-        "pen {} dem {} | entered {} exited {} net {} wait {} | lc/veh {:.3} Lbar {:.2} Pp {:.3} | Q {:.0} Qmax {:.0} | coll {} | upd {} in {:.2}s = {:.2} M/s",
+        "pen {} dem {} | entered {} exited {} net {} wait {} | lc/veh {:.3} (cav {:.2} hum {:.2}) Lbar {:.2} Pp {:.3} | Q {:.0} Qmax {:.0} | coll {} | upd {} in {:.2}s = {:.2} M/s",
         s.penetration,
         s.demand_vphpl,
         s.vehicles_entered,
@@ -59,6 +62,8 @@ fn main() {
         s.vehicles_in_network,
         s.vehicles_waiting,
         s.lane_changes_per_vehicle,
+        s.lane_changes_per_cav,
+        s.lane_changes_per_human,
         s.avg_platoon_length,
         s.platooning_probability,
         s.discharge_flow_vphpl,

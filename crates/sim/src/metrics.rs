@@ -10,6 +10,7 @@ pub struct Metrics {
     /// Vehicles counted (entered in the window).
     pub vehicles_counted: u64,
     pub lane_changes: u64,
+    pub lane_changes_cav: u64,
     pub cavs_counted: u64,
     pub platoon_length_sum: u64,
     pub cavs_platooned: u64,
@@ -23,6 +24,7 @@ impl Metrics {
         self.vehicles_counted += 1;
         self.lane_changes += v.lane_changes as u64;
         if v.is_cav() {
+            self.lane_changes_cav += v.lane_changes as u64;
             self.cavs_counted += 1;
             self.platoon_length_sum += v.max_platoon as u64;
             if v.max_platoon > 1 {
@@ -43,6 +45,15 @@ impl Metrics {
     /// All lane changes / all vehicles (seed Sec. 4.1).
     pub fn lane_changes_per_vehicle(&self) -> f64 {
         ratio(self.lane_changes as f64, self.vehicles_counted)
+    }
+
+    /// Lane changes per CAV and per human-driven vehicle (the paper's Table 3 note: both rise).
+    pub fn lane_changes_by_type(&self) -> (f64, f64) {
+        let humans = self.vehicles_counted - self.cavs_counted;
+        (
+            ratio(self.lane_changes_cav as f64, self.cavs_counted),
+            ratio((self.lane_changes - self.lane_changes_cav) as f64, humans),
+        )
     }
 
     /// L̄ (seed eq. 1); 0 if no CAV was counted.

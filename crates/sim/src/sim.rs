@@ -325,6 +325,8 @@ impl Simulation {
             vehicles_in_network: self.vehicles_in_network() as u64,
             vehicles_waiting: self.entrance.waiting() as u64,
             lane_changes_per_vehicle: m.lane_changes_per_vehicle(),
+            lane_changes_per_cav: m.lane_changes_by_type().0,
+            lane_changes_per_human: m.lane_changes_by_type().1,
             avg_platoon_length: m.avg_platoon_length(),
             platooning_probability: m.platooning_probability(),
             cavs_counted: m.cavs_counted,

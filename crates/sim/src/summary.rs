@@ -20,6 +20,9 @@ pub struct Summary {
     pub vehicles_waiting: u64,
     /// Lane changes of vehicles that entered in the window / those vehicles.
     pub lane_changes_per_vehicle: f64,
+    /// The same per CAV and per human-driven vehicle.
+    pub lane_changes_per_cav: f64,
+    pub lane_changes_per_human: f64,
     /// L̄: mean over CAVs (entered in the window) of the largest platoon each was in.
     pub avg_platoon_length: f64,
     /// P_P: share of those CAVs ever in a platoon of 2 or more.
