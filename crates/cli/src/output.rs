@@ -101,10 +101,10 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
          Vehicles: {entered} entered, {exited} exited, {inside} still on the road, {waiting} \
          waiting at the entrance. Discharge at detector '{detector}': {q:.1} veh/h/lane over \
          the measurement window; highest {agg} s flow {qmax:.1} veh/h/lane. Lane changes per \
-         vehicle {lc:.3} ({counted} vehicles); average platoon length {lbar:.2} and platooning \
-         probability {pp:.3} ({cavs} CAVs). Collisions: {collisions}. {updates} vehicle \
-         updates in {wall:.2} s{rate}. Files in {dir}: summary.json, detectors.csv, \
-         scenario.json, scenario.toml.",
+         vehicle {lc:.3} ({counted} vehicles; per CAV {lc_cav:.3}, per human {lc_human:.3}); \
+         average platoon length {lbar:.2} and platooning probability {pp:.3} ({cavs} CAVs). \
+         Collisions: {collisions}. {updates} vehicle updates in {wall:.2} s{rate}. \
+         Files in {dir}: summary.json, detectors.csv, scenario.json, scenario.toml.",
         name = s.scenario,
         dur = s.duration_s,
         dt = s.dt_s,
@@ -121,6 +121,8 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
         agg = config.aggregation_s,
         qmax = s.max_sustained_flow_vphpl,
         lc = s.lane_changes_per_vehicle,
+        lc_cav = s.lane_changes_per_cav,
+        lc_human = s.lane_changes_per_human,
         counted = s.vehicles_counted,
         lbar = s.avg_platoon_length,
         pp = s.platooning_probability,
@@ -197,32 +199,16 @@ mod tests {
         );
     }
 
-    fn summary() -> Summary {
-        Summary {
-            scenario: "homogeneous".into(),
-            penetration: 0.5,
-            demand_vphpl: 2500.0,
-            strategy: "none".into(),
-            seed: 1,
-            dt_s: 0.1,
-            duration_s: 3600.0,
-            warmup_s: 1200.0,
-            vehicles_entered: 27000,
-            vehicles_exited: 26500,
-            vehicles_in_network: 500,
-            vehicles_waiting: 12,
-            lane_changes_per_vehicle: 0.045,
-            avg_platoon_length: 2.8,
-            platooning_probability: 0.74,
-            cavs_counted: 9000,
-            vehicles_counted: 18000,
-            discharge_flow_vphpl: 2260.5,
-            max_sustained_flow_vphpl: 2301.0,
-            collisions: 0,
-            vehicle_updates: 123_456_789,
-            steps: 36000,
-            wall_seconds: 9.5,
-        }
+    /// A real five-minute run of the homogeneous road.
+    fn short_run() -> (Config, Output) {
+        let o = platoonsim_scenario::Overrides {
+            duration_s: Some(300.0),
+            warmup_s: Some(60.0),
+            ..Default::default()
+        };
+        let config = platoonsim_scenario::load_with("homogeneous", &o).unwrap();
+        let out = platoonsim_sim::run(&config, None).unwrap();
+        (config, out)
     }
 
     #[test]
@@ -230,11 +216,7 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("platoonsim-output-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
-        let config = platoonsim_scenario::load("homogeneous").unwrap();
-        let out = Output {
-            summary: summary(),
-            detectors: vec![record(Some(100.0))],
-        };
+        let (config, out) = short_run();
         let written = write_run(&dir, &config, &out).unwrap();
         assert_eq!(written.len(), 4);
         let mut names: Vec<String> = std::fs::read_dir(&dir)
@@ -253,7 +235,9 @@ mod tests {
         );
         let s: serde_json::Value =
             serde_json::from_slice(&std::fs::read(dir.join("summary.json")).unwrap()).unwrap();
-        assert_eq!(s["vehicle_updates"], 123_456_789);
+        assert_eq!(s["vehicle_updates"], out.summary.vehicle_updates);
+        let csv = std::fs::read(dir.join("detectors.csv")).unwrap();
+        assert_eq!(csv, detectors_csv(&out.detectors).unwrap());
         let c: serde_json::Value =
             serde_json::from_slice(&std::fs::read(dir.join("scenario.json")).unwrap()).unwrap();
         assert_eq!(c["road"]["length_m"], 6500.0);
@@ -263,15 +247,19 @@ mod tests {
 
     #[test]
     fn paragraph_mentions_the_key_figures() {
-        let config = platoonsim_scenario::load("homogeneous").unwrap();
-        let p = paragraph(&config, &summary(), Path::new("out/run"));
+        let (config, out) = short_run();
+        let s = &out.summary;
+        let p = paragraph(&config, s, Path::new("out/run"));
         let flat = p.replace('\n', " ");
+        let discharge = format!("{:.1} veh/h/lane", s.discharge_flow_vphpl);
+        let entered = format!("{} entered", s.vehicles_entered);
         for part in [
-            "homogeneous",
+            "homogeneous:",
             "50 % CAV",
-            "2260.5 veh/h/lane",
+            "2500 veh/h/lane demand",
             "detector 'discharge'",
-            "13.00 M per second",
+            &discharge,
+            &entered,
             "out/run",
         ] {
             assert!(flat.contains(part), "{part} missing in:\n{p}");
