@@ -1,6 +1,5 @@
-//! The `platoonsim` binary end to end. Tests that need the engine are marked
-//! `#[ignore = "needs engine"]` until `platoonsim_sim::run` exists; the others fail (or
-//! succeed) before any simulation starts.
+//! The `platoonsim` binary end to end. The engine-backed tests run real (short) simulations;
+//! the others fail (or succeed) before any simulation starts.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -252,7 +251,6 @@ fn summary_without_wall_time(dir: &Path) -> serde_json::Value {
 }
 
 #[test]
-#[ignore = "needs engine"]
 fn run_writes_summary_detectors_and_scenario() {
     let out = short_run(
         "files",
@@ -336,7 +334,6 @@ fn run_writes_summary_detectors_and_scenario() {
 }
 
 #[test]
-#[ignore = "needs engine"]
 fn same_seed_is_bit_identical_and_another_seed_differs() {
     let a = short_run("seed-a", &["--seed", "11"]);
     let b = short_run("seed-b", &["--seed", "11"]);
@@ -348,7 +345,6 @@ fn same_seed_is_bit_identical_and_another_seed_differs() {
 }
 
 #[test]
-#[ignore = "needs engine"]
 fn strategies_run() {
     for strategy in ["pd", "flow-aware"] {
         let out = short_run(
@@ -362,7 +358,6 @@ fn strategies_run() {
 }
 
 #[test]
-#[ignore = "needs engine"]
 fn bench_reports_updates_per_second() {
     let o = platoonsim(&["bench", "--duration", "120", "--repeat", "2", "--json"]);
     assert!(o.status.success(), "{}", stderr(&o));

@@ -54,7 +54,7 @@ fn main() {
     let out = run(&cfg, None).unwrap();
     let s = &out.summary;
     println!(
-        "pen {} dem {} | entered {} exited {} net {} wait {} | lc/veh {:.3} (cav {:.2} hum {:.2}) Lbar {:.2} Pp {:.3} | Q {:.0} Qmax {:.0} | coll {} | upd {} in {:.2}s = {:.2} M/s",
+        "pen {} dem {} | entered {} exited {} net {} wait {} | lc/veh {:.3} (cav {:.2} hum {:.2}) Lbar {:.2} Pp {:.3} (tg2 {:.2} {:.3}) | Q {:.0} Qmax {:.0} | coll {} | upd {} in {:.2}s = {:.2} M/s",
         s.penetration,
         s.demand_vphpl,
         s.vehicles_entered,
@@ -66,6 +66,8 @@ fn main() {
         s.lane_changes_per_human,
         s.avg_platoon_length,
         s.platooning_probability,
+        s.avg_platoon_length_tg2,
+        s.platooning_probability_tg2,
         s.discharge_flow_vphpl,
         s.max_sustained_flow_vphpl,
         s.collisions,

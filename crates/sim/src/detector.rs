@@ -8,6 +8,17 @@
 
 use crate::summary::DetectorRecord;
 
+/// One vehicle's movement during one step: front bumper from `x0` to `x1` (x1 ≥ x0), speed from
+/// `v0` to `v1`, vehicle length `len`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Passage {
+    pub x0: f64,
+    pub x1: f64,
+    pub v0: f64,
+    pub v1: f64,
+    pub len: f64,
+}
+
 /// Accumulators for one lane (or the cross-section) in one interval.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Acc {
@@ -48,10 +59,16 @@ impl Detector {
         }
     }
 
-    /// Record the passage of one vehicle in one step: front from `x0` to `x1` (x1 ≥ x0),
-    /// speeds `v0` → `v1`, length `len`, step `dt`, in `lane`.
+    /// Record one vehicle's movement in one step of length `dt`, in `lane`.
     #[inline]
-    pub fn observe(&mut self, lane: usize, x0: f64, x1: f64, v0: f64, v1: f64, len: f64, dt: f64) {
+    pub fn observe(&mut self, lane: usize, m: Passage, dt: f64) {
+        let Passage {
+            x0,
+            x1,
+            v0,
+            v1,
+            len,
+        } = m;
         let p = self.position_m;
         let acc = &mut self.current[lane];
         if x0 < p && p <= x1 {
@@ -144,7 +161,14 @@ mod tests {
         // A 4 m car at 20 m/s passes in 0.1 s steps: front from 90 to 120.
         let mut x = 90.0;
         while x < 120.0 {
-            d.observe(1, x, x + 2.0, 20.0, 20.0, 4.0, 0.1);
+            let m = Passage {
+                x0: x,
+                x1: x + 2.0,
+                v0: 20.0,
+                v1: 20.0,
+                len: 4.0,
+            };
+            d.observe(1, m, 0.1);
             x += 2.0;
         }
         d.close_interval();
@@ -165,7 +189,14 @@ mod tests {
     fn stopped_vehicle_over_detector_occupies_it() {
         let mut d = Detector::new("d", 100.0, 1);
         for _ in 0..10 {
-            d.observe(0, 102.0, 102.0, 0.0, 0.0, 4.0, 0.1);
+            let m = Passage {
+                x0: 102.0,
+                x1: 102.0,
+                v0: 0.0,
+                v1: 0.0,
+                len: 4.0,
+            };
+            d.observe(0, m, 0.1);
         }
         d.close_interval();
         let b = d.broadcast(1.0).unwrap();

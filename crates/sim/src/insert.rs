@@ -92,6 +92,7 @@ fn create(cfg: &Config, id: u64) -> Vehicle {
         last_lc_side: None,
         lane_changes: 0,
         max_platoon: 1,
+        max_platoon_tg2: 1,
     }
 }
 

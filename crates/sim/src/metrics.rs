@@ -14,6 +14,8 @@ pub struct Metrics {
     pub cavs_counted: u64,
     pub platoon_length_sum: u64,
     pub cavs_platooned: u64,
+    pub platoon_length_sum_tg2: u64,
+    pub cavs_platooned_tg2: u64,
 }
 
 impl Metrics {
@@ -29,6 +31,10 @@ impl Metrics {
             self.platoon_length_sum += v.max_platoon as u64;
             if v.max_platoon > 1 {
                 self.cavs_platooned += 1;
+            }
+            self.platoon_length_sum_tg2 += v.max_platoon_tg2 as u64;
+            if v.max_platoon_tg2 > 1 {
+                self.cavs_platooned_tg2 += 1;
             }
         }
     }
@@ -59,6 +65,14 @@ impl Metrics {
     /// L̄ (seed eq. 1); 0 if no CAV was counted.
     pub fn avg_platoon_length(&self) -> f64 {
         ratio(self.platoon_length_sum as f64, self.cavs_counted)
+    }
+
+    /// L̄ and P_P with the strict link criterion of spec 6.15 (tg ≤ 2 s).
+    pub fn platoon_stats_tg2(&self) -> (f64, f64) {
+        (
+            ratio(self.platoon_length_sum_tg2 as f64, self.cavs_counted),
+            ratio(self.cavs_platooned_tg2 as f64, self.cavs_counted),
+        )
     }
 
     /// P_P (seed eq. 2); 0 if no CAV was counted.

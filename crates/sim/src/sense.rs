@@ -159,31 +159,55 @@ impl Simulation {
                 self.linked[s as usize] = pred_id != crate::vehicle::NEVER;
             }
         }
+        // Statistics (spec 5.1.6). Paper definition [S]: "when a CAV immediately follows
+        // another CAV, it automatically starts to form a platoon", and P_P ≈ 1 − (1 − p)² "given
+        // the subject vehicle is a CAV, its leader and/or follower is a CAV": a link is an
+        // automated CAV directly behind a CAV within sensor range. Strict variant (spec 6.15):
+        // only string members (not in speed regulation). Runs longer than `max` count as
+        // platoons of at most `max`.
         for l in 0..self.lanes.len() {
             let lane = &self.lanes[l];
-            let mut run_start = 0usize;
+            let (mut adj_start, mut tg2_start) = (0usize, 0usize);
             for (k, &s) in lane.iter().enumerate() {
                 self.vehicles[s as usize].string_pred = self.string_pred_next[s as usize];
+                let ld = if k > 0 { lane[k - 1] } else { NONE };
+                let adjacent = {
+                    let fv = &self.vehicles[s as usize];
+                    ld != NONE && fv.automated() && {
+                        let lv = &self.vehicles[ld as usize];
+                        lv.is_cav() && lv.rear() - fv.x <= range
+                    }
+                };
+                if !adjacent || k - adj_start >= max as usize {
+                    close_run(&mut self.vehicles, &lane[adj_start..k], false);
+                    adj_start = k;
+                }
                 if !self.linked[s as usize] {
-                    close_run(&mut self.vehicles, &lane[run_start..k]);
-                    run_start = k;
+                    close_run(&mut self.vehicles, &lane[tg2_start..k], true);
+                    tg2_start = k;
                 }
             }
-            close_run(&mut self.vehicles, &lane[run_start..]);
+            close_run(&mut self.vehicles, &lane[adj_start..], false);
+            close_run(&mut self.vehicles, &lane[tg2_start..], true);
         }
     }
 }
 
 /// A statistical platoon ends: every CAV in it records its size.
-fn close_run(vehicles: &mut [Vehicle], run: &[u32]) {
+fn close_run(vehicles: &mut [Vehicle], run: &[u32], strict: bool) {
     let size = run.len() as u32;
     if size < 2 {
         return;
     }
     for &s in run {
         let v = &mut vehicles[s as usize];
-        if v.max_platoon < size {
-            v.max_platoon = size;
+        let m = if strict {
+            &mut v.max_platoon_tg2
+        } else {
+            &mut v.max_platoon
+        };
+        if *m < size {
+            *m = size;
         }
     }
 }

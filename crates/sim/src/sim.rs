@@ -1,7 +1,7 @@
 //! The simulation state and the step.
 
 use crate::config::{Config, Strategy};
-use crate::detector::Detector;
+use crate::detector::{Detector, Passage};
 use crate::insert::Entrance;
 use crate::metrics::Metrics;
 use crate::sense::{Neighbours, NONE};
@@ -156,7 +156,7 @@ impl Simulation {
         self.insert();
         self.observe_detectors();
         self.step += 1;
-        if self.step % self.agg_steps == 0 {
+        if self.step.is_multiple_of(self.agg_steps) {
             for d in &mut self.detectors {
                 d.close_interval();
             }
@@ -229,7 +229,14 @@ impl Simulation {
                         break;
                     }
                     let v0 = (v.v - v.a * dt).max(0.0);
-                    det.observe(l, v.x_prev, v.x, v0, v.v, v.human.length_m, dt);
+                    let m = Passage {
+                        x0: v.x_prev,
+                        x1: v.x,
+                        v0,
+                        v1: v.v,
+                        len: v.human.length_m,
+                    };
+                    det.observe(l, m, dt);
                 }
             }
         }
@@ -329,6 +336,8 @@ impl Simulation {
             lane_changes_per_human: m.lane_changes_by_type().1,
             avg_platoon_length: m.avg_platoon_length(),
             platooning_probability: m.platooning_probability(),
+            avg_platoon_length_tg2: m.platoon_stats_tg2().0,
+            platooning_probability_tg2: m.platoon_stats_tg2().1,
             cavs_counted: m.cavs_counted,
             vehicles_counted: m.vehicles_counted,
             discharge_flow_vphpl: discharge,

@@ -27,6 +27,11 @@ pub struct Summary {
     pub avg_platoon_length: f64,
     /// P_P: share of those CAVs ever in a platoon of 2 or more.
     pub platooning_probability: f64,
+    /// L̄ and P_P counting a link only while the follower is not in speed regulation (time gap
+    /// ≤ 2 s, spec 6.15); the two fields above use the paper's definition (a CAV directly
+    /// behind a CAV under CACC, within sensor range).
+    pub avg_platoon_length_tg2: f64,
+    pub platooning_probability_tg2: f64,
     /// CAVs counted in the platoon statistics.
     pub cavs_counted: u64,
     /// Vehicles counted in the lane-change statistic.

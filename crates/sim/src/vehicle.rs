@@ -72,8 +72,11 @@ pub struct Vehicle {
     pub last_lc_side: Option<Side>,
     /// Lane changes made.
     pub lane_changes: u32,
-    /// Largest platoon this CAV has been a member of (1 = never linked).
+    /// Largest platoon this CAV has been in (1 = never), paper definition: a chain of CAVs each
+    /// directly following the previous one under CACC within sensor range (`sense.rs`).
     pub max_platoon: u32,
+    /// The same with the spec 6.15 link criterion (follower not in speed regulation, tg ≤ 2 s).
+    pub max_platoon_tg2: u32,
 }
 
 impl Vehicle {

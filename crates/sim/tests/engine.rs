@@ -1,0 +1,153 @@
+//! Engine contracts: determinism, conservation, no overlap, no NaN, queueing at the entrance,
+//! and two step sizes (issue 2, "What it must show").
+
+use platoonsim_sim::{run, Config, Output, PdConfig, Simulation, Strategy};
+
+fn short(pen: f64, demand: f64, seed: u64) -> Config {
+    Config::homogeneous(pen, demand, 900.0, 300.0, seed)
+}
+
+fn strip_wall(mut o: Output) -> Output {
+    o.summary.wall_seconds = 0.0;
+    o
+}
+
+#[test]
+fn same_seed_gives_bit_identical_outputs_and_another_seed_differs() {
+    let a = strip_wall(run(&short(0.5, 2000.0, 7), None).unwrap());
+    let b = strip_wall(run(&short(0.5, 2000.0, 7), None).unwrap());
+    assert_eq!(a.summary, b.summary);
+    assert_eq!(a.detectors, b.detectors);
+    // Bit-identical floating point, not just equal within a tolerance.
+    let bits = |o: &Output| -> Vec<u64> {
+        o.detectors
+            .iter()
+            .filter_map(|r| r.speed_kmh.map(f64::to_bits))
+            .collect()
+    };
+    assert_eq!(bits(&a), bits(&b));
+    let c = strip_wall(run(&short(0.5, 2000.0, 8), None).unwrap());
+    assert_ne!(a.summary.vehicles_entered, 0);
+    assert_ne!(a.detectors, c.detectors);
+    assert_ne!(a.summary.vehicle_updates, c.summary.vehicle_updates);
+}
+
+#[test]
+fn vehicles_are_conserved_and_never_overlap() {
+    for (pen, demand, strategy) in [
+        (0.0, 2600.0, false),
+        (0.5, 1500.0, false),
+        (1.0, 4500.0, false),
+        (0.5, 2500.0, true),
+    ] {
+        let mut cfg = Config::homogeneous(pen, demand, 1800.0, 600.0, 3);
+        if strategy {
+            cfg.strategy = Strategy::Pd {
+                pd: PdConfig {
+                    zone_start_m: 5000.0,
+                    zone_end_m: 6000.0,
+                    start_s: 600.0,
+                    end_s: 1800.0,
+                },
+            };
+        }
+        let s = run(&cfg, None).unwrap().summary;
+        assert_eq!(
+            s.vehicles_entered,
+            s.vehicles_exited + s.vehicles_in_network,
+            "{pen} {demand}"
+        );
+        assert_eq!(s.collisions, 0, "overlap at {pen} {demand} pd={strategy}");
+        assert!(s.vehicles_exited > 0);
+        for x in [
+            s.lane_changes_per_vehicle,
+            s.avg_platoon_length,
+            s.platooning_probability,
+            s.discharge_flow_vphpl,
+        ] {
+            assert!(x.is_finite());
+        }
+    }
+}
+
+#[test]
+fn every_step_keeps_lanes_sorted_with_positive_gaps_and_finite_states() {
+    let mut sim = Simulation::new(Config::homogeneous(0.5, 2500.0, 600.0, 0.0, 11)).unwrap();
+    while !sim.finished() {
+        sim.step().unwrap();
+        for lane in 0..3 {
+            let mut ahead: Option<(f64, f64)> = None;
+            for v in sim.lane_vehicles(lane) {
+                assert!(v.x.is_finite() && v.v.is_finite() && v.a.is_finite());
+                assert!(v.v >= 0.0, "negative speed {}", v.v);
+                if let Some((x, len)) = ahead {
+                    assert!(
+                        x - len - v.x >= 0.0,
+                        "overlap behind x = {x} at t = {}",
+                        sim.time_s()
+                    );
+                }
+                ahead = Some((v.x, v.human.length_m));
+            }
+        }
+    }
+    assert_eq!(sim.collisions(), 0);
+}
+
+#[test]
+fn demand_above_capacity_builds_an_entry_queue_instead_of_losing_vehicles() {
+    let s = run(&Config::homogeneous(0.0, 3000.0, 1200.0, 0.0, 1), None)
+        .unwrap()
+        .summary;
+    assert!(s.vehicles_waiting > 300, "queue {}", s.vehicles_waiting);
+    // About 3 lanes × 3000 veh/h × 1/3 h = 3000 arrivals: all are either on the road, gone, or queued.
+    let arrivals = s.vehicles_entered + s.vehicles_waiting;
+    assert!((2800..3200).contains(&arrivals), "{arrivals}");
+    // Below capacity nobody waits at the end.
+    let s = run(&Config::homogeneous(0.5, 1000.0, 900.0, 0.0, 1), None)
+        .unwrap()
+        .summary;
+    assert!(s.vehicles_waiting < 5, "{}", s.vehicles_waiting);
+}
+
+#[test]
+fn half_the_step_gives_the_same_traffic() {
+    let mut fine = Config::homogeneous(0.5, 1500.0, 1800.0, 600.0, 5);
+    fine.dt_s = 0.05;
+    let coarse = run(&Config::homogeneous(0.5, 1500.0, 1800.0, 600.0, 5), None)
+        .unwrap()
+        .summary;
+    let fine = run(&fine, None).unwrap().summary;
+    assert_eq!(fine.collisions, 0);
+    assert_eq!(fine.steps, 2 * coarse.steps);
+    // Same arrivals (same streams), same free-flow discharge within 2 %.
+    assert_eq!(
+        fine.vehicles_entered + fine.vehicles_waiting,
+        coarse.vehicles_entered + coarse.vehicles_waiting
+    );
+    let rel = (fine.discharge_flow_vphpl - coarse.discharge_flow_vphpl).abs()
+        / coarse.discharge_flow_vphpl;
+    assert!(
+        rel < 0.02,
+        "{} vs {}",
+        fine.discharge_flow_vphpl,
+        coarse.discharge_flow_vphpl
+    );
+    assert!((fine.platooning_probability - coarse.platooning_probability).abs() < 0.05);
+}
+
+#[test]
+fn invalid_config_is_an_error_not_a_panic() {
+    let mut cfg = short(0.5, 1000.0, 1);
+    cfg.penetration = 1.5;
+    assert!(Simulation::new(cfg)
+        .err()
+        .unwrap()
+        .contains("run.penetration = 1.5"));
+    let mut cfg = short(0.5, 1000.0, 1);
+    cfg.detectors[0].position_m = 9000.0;
+    assert!(Simulation::new(cfg)
+        .err()
+        .unwrap()
+        .contains("detectors[0].position_m"));
+}
