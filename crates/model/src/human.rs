@@ -224,7 +224,7 @@ pub fn free_accel(p: &HumanParams, v: f64, v_des: f64) -> f64 {
         };
     }
     // spec 2.2: a_F = a_M [1 − (v/v_F)^δ].
-    let a = p.max_accel * (1.0 - (v / v_des).powf(p.free_exponent));
+    let a = p.max_accel * (1.0 - pow_exponent(v / v_des, p.free_exponent));
     if v > v_des {
         // [P15-code]: excess speed is shed no harder than the comfortable deceleration b_c.
         a.max(p.comfort_decel)
@@ -245,6 +245,16 @@ fn gipps_speed(g: &GippsParams, v: f64, gap_m: f64, v_l: f64) -> f64 {
         0.0
     } else {
         (a + radicand.sqrt()).max(0.0)
+    }
+}
+
+/// x^δ, exact and fast for the usual whole exponents (δ = 4 by default): powi instead of powf.
+#[inline]
+fn pow_exponent(x: f64, delta: f64) -> f64 {
+    if delta.fract() == 0.0 && delta.abs() <= 16.0 {
+        x.powi(delta as i32)
+    } else {
+        x.powf(delta)
     }
 }
 
