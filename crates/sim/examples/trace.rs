@@ -9,12 +9,27 @@ fn main() {
         cfg.lane_change.forbid_zone_m = 1e9;
     }
     let lane = f(3, 0.0) as usize;
+    let (x_lo, x_hi) = (f(4, 0.0), f(5, 1e9));
+    if std::env::var("PD").is_ok() {
+        cfg.warmup_s = 1200.0;
+        cfg.strategy = platoonsim_sim::Strategy::Pd {
+            pd: platoonsim_sim::PdConfig {
+                zone_start_m: 5000.0,
+                zone_end_m: 6000.0,
+                start_s: 1200.0,
+                end_s: 1e9,
+            },
+        };
+    }
     let mut sim = Simulation::new(cfg).unwrap();
     while !sim.finished() {
         sim.step().unwrap();
     }
     let mut prev: Option<(f64, f64)> = None;
-    for v in sim.lane_vehicles(lane) {
+    for v in sim
+        .lane_vehicles(lane)
+        .filter(|v| v.x >= x_lo && v.x <= x_hi)
+    {
         let gap = prev.map(|(x, l)| x - l - v.x).unwrap_or(f64::NAN);
         println!(
             "{:>5} {:?} x {:>8.1} v {:>5.1} a {:>5.2} gap {:>6.1} tc {:.1} vdes {:.1} {:?} {:?} {:?}",

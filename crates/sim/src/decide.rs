@@ -32,6 +32,7 @@ impl Simulation {
                     family: Family::Speed,
                     time_gap: 0.0,
                     change: None,
+                    takeover: false,
                 },
             );
         }
@@ -108,6 +109,7 @@ impl Simulation {
             family: v.family,
             time_gap: v.time_gap_s,
             change: None,
+            takeover: false,
         }
     }
 
@@ -144,6 +146,7 @@ impl Simulation {
             family: cmd.family,
             time_gap,
             change: None,
+            takeover: false,
         }
     }
 
@@ -274,7 +277,17 @@ impl Simulation {
         };
         let v_des = v.human.desired_speed;
         let h = &v.human;
-        let a_cur = human::target_accel(h, v.v, v_des, leader, self.relax_now(v));
+        // An automated CAV hands over to its driver now ("manual mode from a lane-change desire
+        // on", spec 3.1). At a CACC gap of 0.6 s the human model alone would brake hard; the
+        // driver takes over with relaxed car following that recovers over t_s, as after a cut-in
+        // (spec 4.6) [D].
+        let takeover = v.automated();
+        let relax = if takeover {
+            lcm::gap_relax(&v.lc)
+        } else {
+            self.relax_now(v)
+        };
+        let a_cur = human::target_accel(h, v.v, v_des, leader, relax);
         let lead_view = self.view(v, tl);
         let a_ant = human::target_accel(h, v.v, v_des, lead_view, lcm::gap_relax(&v.lc));
         let lead_ok = match lead_view {
@@ -317,6 +330,7 @@ impl Simulation {
             family: Family::Speed,
             time_gap: v.time_gap_s,
             change: change.then_some(d.side),
+            takeover,
         }
     }
 

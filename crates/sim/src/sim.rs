@@ -19,6 +19,8 @@ pub(crate) struct Decision {
     pub time_gap: f64,
     /// Lane change to execute after integration.
     pub change: Option<Side>,
+    /// An automated CAV hands over to its driver in this step: relaxation starts (spec 4.6).
+    pub takeover: bool,
 }
 
 /// The whole simulation state.
@@ -188,6 +190,9 @@ impl Simulation {
                 veh.mode = d.mode;
                 veh.family = d.family;
                 veh.time_gap_s = d.time_gap;
+                if d.takeover {
+                    veh.relax = Relaxation::Since(self.step);
+                }
                 if let Relaxation::Since(since) = veh.relax {
                     let elapsed = (self.step + 1 - since) as f64 * dt;
                     if elapsed >= veh.lc.relax_time_s {
