@@ -23,7 +23,7 @@ fn p() -> LaneChangeParams {
             p.relax_reaction,
             p.relax_time_s
         ),
-        (0.4, 0.6, 0.2, 8.0)
+        (0.4, 0.6, 0.5, 8.0)
     );
     p
 }
@@ -179,9 +179,9 @@ fn relaxation_recovers_linearly_over_t_s() {
     let half = relax_at(&p, 4.0);
     assert_close(half.headway, 0.7, "φ_h at t_s/2");
     assert_close(half.jam, 0.8, "φ_j at t_s/2");
-    assert_close(half.reaction, 0.6, "φ_r at t_s/2");
+    assert_close(half.reaction, 0.75, "φ_r at t_s/2");
     let q = relax_at(&p, 2.0);
-    assert_close(q.reaction, 0.2 + 0.8 * 0.25, "φ_r at t_s/4");
+    assert_close(q.reaction, 0.5 + 0.5 * 0.25, "φ_r at t_s/4");
     let almost = relax_at(&p, 7.999);
     assert!(almost.headway < 1.0 && almost.jam < 1.0 && almost.reaction < 1.0);
     assert_eq!(relax_at(&p, 8.0), Relax::NONE);
