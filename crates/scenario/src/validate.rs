@@ -670,6 +670,7 @@ fn check_cav(c: &mut Checker, p: &CavParams) {
     nonneg(c, "cav.reg_speed_band_mps", p.reg_speed_band_mps);
     nonneg(c, "cav.standstill_gap_m", p.standstill_gap_m);
     nonneg(c, "cav.reaction_s", p.reaction_s);
+    nonneg(c, "cav.time_gap_ramp_per_s", p.time_gap_ramp_per_s);
     c.value(
         "cav.max_accel",
         p.max_accel,
@@ -821,6 +822,7 @@ fn check_lane_change(c: &mut Checker, l: &LaneChangeDists, road_length: Option<f
     }
     nonneg(c, "lane_change.min_interval_s", l.min_interval_s);
     nonneg(c, "lane_change.return_factor", l.return_factor);
+    nonneg(c, "lane_change.min_speed_gain_mps", l.min_speed_gain_mps);
     c.value(
         "lane_change.min_reference_speed_mps",
         l.min_reference_speed_mps,

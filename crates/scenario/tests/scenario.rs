@@ -633,6 +633,14 @@ fn other_ranges() {
             "lane_change.relax_jam = 0: must be in (0, 1]",
         ),
         ("name=''", "name = \"\": must be a non-empty string"),
+        (
+            "lane_change.min_speed_gain_mps=-1",
+            "lane_change.min_speed_gain_mps = -1: must be >= 0",
+        ),
+        (
+            "cav.time_gap_ramp_per_s=-0.5",
+            "cav.time_gap_ramp_per_s = -0.5: must be >= 0",
+        ),
     ];
     for (set, expected) in cases {
         let p = problems(with_set(HOMOGENEOUS, &[set]));
