@@ -251,7 +251,10 @@ fn gipps_speed(g: &GippsParams, v: f64, gap_m: f64, v_l: f64) -> f64 {
 /// x^δ, exact and fast for the usual whole exponents (δ = 4 by default): powi instead of powf.
 #[inline]
 fn pow_exponent(x: f64, delta: f64) -> f64 {
-    if delta.fract() == 0.0 && delta.abs() <= 16.0 {
+    if delta == 4.0 {
+        let x2 = x * x;
+        x2 * x2
+    } else if delta.fract() == 0.0 && delta.abs() <= 16.0 {
         x.powi(delta as i32)
     } else {
         x.powf(delta)

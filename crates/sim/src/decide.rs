@@ -184,7 +184,14 @@ impl Simulation {
             if w <= 0.0 {
                 return None;
             }
-            let v_cur = self.avg_speed_ahead(v.lane as usize, nb.idx as usize, v.x, v_des_of(v));
+            // Speeds are what the driver could achieve: capped at its desired speed.
+            let v_cur = self
+                .avg_speed_ahead(v.lane as usize, nb.idx as usize, v.x, v_des_of(v))
+                .min(v_des_of(v));
+            // v_ant ≤ v_des, so no side can beat the absolute gain gate: nothing to scan.
+            if v_des_of(v) - v_cur < v.lc.min_speed_gain_mps {
+                return None;
+            }
             let mut best: Option<(Side, f64)> = None;
             for (side, ld) in [(Side::Left, nb.left_leader), (Side::Right, nb.right_leader)] {
                 let exists = match side {
@@ -259,7 +266,7 @@ impl Simulation {
         }
         let from = self.nb[target_leader as usize].idx as usize + 1;
         let avg = self.avg_speed_ahead(tl.lane as usize, from, v.x, v_des);
-        avg.min(tl.v)
+        avg.min(tl.v).min(v_des)
     }
 
     /// BLC (spec 4.3): gap acceptance and the before-change behaviour.
