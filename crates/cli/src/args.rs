@@ -2,6 +2,7 @@
 
 use anyhow::Result;
 use clap::{Args, Parser, Subcommand, ValueEnum};
+use platoonsim_experiment::ExperimentName;
 use platoonsim_scenario::{Overrides, StrategyKind};
 use platoonsim_sim::Config;
 use std::path::PathBuf;
@@ -32,6 +33,13 @@ pub enum Command {
     Scenarios,
     /// Print a scenario with every key resolved (defaults and overrides applied).
     Show(ShowArgs),
+    /// Run one of the paper's experiments (a grid of cells x seeds, in parallel); write
+    /// runs.csv, summary.csv, summary.md and run.json to OUT/NAME/. Resumable: finished runs
+    /// are kept in OUT/NAME/runs/ and reused by a rerun with the same arguments.
+    Experiment(ExperimentArgs),
+    /// Run every experiment and write OUT/REPORT.md and OUT/report.html (our results beside
+    /// the paper's, with the differences). --quick uses 3 seeds per cell.
+    Reproduce(ReproduceArgs),
 }
 
 /// Which scenario, and what to change in it. Overrides act on the scenario file before it
@@ -165,6 +173,88 @@ pub enum ShowFormat {
     Json,
 }
 
+/// An experiment of the paper.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ExperimentArg {
+    /// Fig. 4: baseline capacity (demand above capacity) and PD bottleneck capacity at 0-100 % CAV.
+    Capacity,
+    /// Table 3: baseline vs PD lane at 50 % CAV and 1000-2500 veh/h/lane.
+    Sensitivity,
+    /// Baseline vs Flow-Aware vs PD at 50 % CAV and 2500 veh/h/lane.
+    FlowAware,
+}
+
+impl From<ExperimentArg> for ExperimentName {
+    fn from(e: ExperimentArg) -> Self {
+        match e {
+            ExperimentArg::Capacity => ExperimentName::Capacity,
+            ExperimentArg::Sensitivity => ExperimentName::Sensitivity,
+            ExperimentArg::FlowAware => ExperimentName::FlowAware,
+        }
+    }
+}
+
+/// Flags shared by `experiment` and `reproduce`.
+#[derive(Debug, Args)]
+pub struct GridArgs {
+    /// Output root directory; each experiment writes to DIR/<experiment>/.
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+
+    /// Parallel runs (worker threads; each run is single-threaded). Default: one per core.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub jobs: Option<u32>,
+
+    /// Recompute every run instead of reusing the run files of an earlier invocation (run
+    /// files are otherwise reused when the configuration, seed and platoonsim build match).
+    #[arg(long)]
+    pub fresh: bool,
+}
+
+#[derive(Debug, Args)]
+pub struct ExperimentArgs {
+    /// Which experiment.
+    #[arg(value_enum, value_name = "NAME")]
+    pub name: ExperimentArg,
+
+    /// Seeds per cell (seeds 1..=N); the mean and a 95 % confidence interval are reported.
+    #[arg(long, value_name = "N", default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..))]
+    pub seeds: u32,
+
+    #[command(flatten)]
+    pub grid: GridArgs,
+
+    /// Simulated time of every run, for a quicker look (the paper's: 3600 s).
+    #[arg(long, value_name = "S", default_value_t = 3600.0)]
+    pub duration: f64,
+
+    /// Warm-up of the runs that have one; PD acts after it (the paper's: 1200 s).
+    #[arg(long, value_name = "S", default_value_t = 1200.0)]
+    pub warmup: f64,
+}
+
+#[derive(Debug, Args)]
+pub struct ReproduceArgs {
+    /// Fewer seeds (3 per cell) so that it finishes within minutes.
+    #[arg(long)]
+    pub quick: bool,
+
+    /// Seeds per cell (default 10, or 3 with --quick).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub seeds: Option<u32>,
+
+    #[command(flatten)]
+    pub grid: GridArgs,
+
+    /// Simulated time of every run (tests only: the report is the paper's with 3600 s).
+    #[arg(long, value_name = "S", default_value_t = 3600.0, hide = true)]
+    pub duration: f64,
+
+    /// Warm-up of the runs that have one (tests only; the paper's: 1200 s).
+    #[arg(long, value_name = "S", default_value_t = 1200.0, hide = true)]
+    pub warmup: f64,
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -211,5 +301,44 @@ mod tests {
         assert_eq!(o.strategy, Some(StrategyKind::FlowAware));
         assert_eq!(o.set, vec!["human.buffer_s=0.2", "run.dt_s=0.05"]);
         assert_eq!(run.out, PathBuf::from("out/run"));
+    }
+
+    #[test]
+    fn experiment_and_reproduce_flags() {
+        let cli = Cli::try_parse_from(["platoonsim", "experiment", "flow-aware"]).unwrap();
+        let Command::Experiment(e) = cli.command else {
+            panic!()
+        };
+        assert_eq!(ExperimentName::from(e.name), ExperimentName::FlowAware);
+        assert_eq!((e.seeds, e.grid.jobs, e.grid.fresh), (10, None, false));
+        assert_eq!(e.grid.out, PathBuf::from("out"));
+        assert_eq!((e.duration, e.warmup), (3600.0, 1200.0));
+
+        let cli = Cli::try_parse_from([
+            "platoonsim",
+            "-q",
+            "reproduce",
+            "--quick",
+            "--out",
+            "o",
+            "--jobs",
+            "1",
+            "--seeds",
+            "4",
+        ])
+        .unwrap();
+        assert!(cli.quiet);
+        let Command::Reproduce(r) = cli.command else {
+            panic!()
+        };
+        assert!(r.quick);
+        assert_eq!((r.seeds, r.grid.jobs), (Some(4), Some(1)));
+        assert_eq!(r.grid.out, PathBuf::from("o"));
+
+        assert!(Cli::try_parse_from(["platoonsim", "experiment", "table9"]).is_err());
+        assert!(
+            Cli::try_parse_from(["platoonsim", "experiment", "capacity", "--seeds", "0"]).is_err()
+        );
+        assert!(Cli::try_parse_from(["platoonsim", "reproduce", "--jobs", "0"]).is_err());
     }
 }

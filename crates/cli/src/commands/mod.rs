@@ -1,7 +1,8 @@
-//! One module per command. To come (issue 3): `experiment` (a grid of runs in parallel, with
-//! resumable atomic result files) and `reproduce` (every experiment, with a report).
+//! One module per command.
 
 pub mod bench;
+pub mod experiment;
+pub mod reproduce;
 pub mod run;
 pub mod scenarios;
 pub mod show;
@@ -16,5 +17,7 @@ pub fn dispatch(cli: Cli) -> Result<()> {
         Command::Bench(args) => bench::bench(&args, cli.quiet),
         Command::Scenarios => scenarios::scenarios(),
         Command::Show(args) => show::show(&args),
+        Command::Experiment(args) => experiment::experiment(&args, cli.quiet),
+        Command::Reproduce(args) => reproduce::reproduce(&args, cli.quiet),
     }
 }

@@ -1,0 +1,145 @@
+//! `platoonsim experiment` and `platoonsim reproduce` end to end, on short runs.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn platoonsim(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_platoonsim"))
+        .args(args)
+        .output()
+        .expect("cannot start platoonsim")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn scratch(test: &str) -> PathBuf {
+    let dir =
+        std::env::temp_dir().join(format!("platoonsim-cli-exp-{}-{test}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+#[test]
+fn help_lists_the_experiment_commands() {
+    let o = platoonsim(&["--help"]);
+    let text = stdout(&o);
+    for cmd in ["experiment", "reproduce"] {
+        assert!(text.contains(cmd), "{cmd} missing from --help:\n{text}");
+    }
+    let o = platoonsim(&["experiment", "--help"]);
+    let text = stdout(&o);
+    for part in [
+        "capacity",
+        "sensitivity",
+        "flow-aware",
+        "--seeds <N>",
+        "--out <DIR>",
+        "--jobs <N>",
+        "--fresh",
+    ] {
+        assert!(
+            text.contains(part),
+            "{part} missing from experiment --help:\n{text}"
+        );
+    }
+    let o = platoonsim(&["reproduce", "--help"]);
+    let text = stdout(&o);
+    for part in ["--quick", "--seeds <N>", "--out <DIR>", "--jobs <N>"] {
+        assert!(
+            text.contains(part),
+            "{part} missing from reproduce --help:\n{text}"
+        );
+    }
+    assert!(
+        !text.contains("--duration"),
+        "test-only flag shown:\n{text}"
+    );
+}
+
+#[test]
+fn experiment_writes_its_files_and_a_rerun_reuses_every_run() {
+    let out = scratch("fa");
+    let args = [
+        "experiment",
+        "flow-aware",
+        "--seeds",
+        "2",
+        "--jobs",
+        "2",
+        "--duration",
+        "600",
+        "--warmup",
+        "300",
+        "--out",
+        s(&out),
+        "--quiet",
+    ];
+    let o = platoonsim(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = stdout(&o);
+    assert!(text.contains("6 runs (6 computed, 0 reused)"), "{text}");
+    let dir = out.join("flow-aware");
+    for f in ["runs.csv", "summary.csv", "summary.md", "run.json"] {
+        assert!(dir.join(f).is_file(), "{f} missing");
+    }
+    assert_eq!(std::fs::read_dir(dir.join("runs")).unwrap().count(), 6);
+    let runs = std::fs::read(dir.join("runs.csv")).unwrap();
+
+    let o = platoonsim(&args);
+    assert!(o.status.success());
+    assert!(
+        stdout(&o).contains("6 runs (0 computed, 6 reused)"),
+        "{}",
+        stdout(&o)
+    );
+    assert_eq!(std::fs::read(dir.join("runs.csv")).unwrap(), runs);
+
+    let prov: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("run.json")).unwrap()).unwrap();
+    assert_eq!(prov["arguments"][1], "experiment");
+    assert_eq!(prov["reused"], 6);
+}
+
+#[test]
+fn reproduce_writes_the_report() {
+    let out = scratch("reproduce");
+    let o = platoonsim(&[
+        "reproduce",
+        "--seeds",
+        "2",
+        "--duration",
+        "600",
+        "--warmup",
+        "300",
+        "--out",
+        s(&out),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = stdout(&o);
+    assert!(text.contains("Total wall time"), "{text}");
+    let md = std::fs::read_to_string(out.join("REPORT.md")).unwrap();
+    for part in [
+        "## 1. Capacity",
+        "## 2. Platoon organization at various demands (paper Table 3)",
+        "## 3. Flow-Aware",
+        "## Run time",
+        "## Notes on differences",
+        "platoonsim reproduce --seeds 2",
+    ] {
+        assert!(md.contains(part), "{part} missing from REPORT.md");
+    }
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(html.starts_with("<!DOCTYPE html>"));
+    assert!(html.contains("<table>") && html.contains("Notes on differences"));
+    for exp in ["capacity", "sensitivity", "flow-aware"] {
+        assert!(out.join(exp).join("summary.csv").is_file(), "{exp}");
+    }
+}

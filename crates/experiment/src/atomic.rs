@@ -1,0 +1,91 @@
+//! Atomic file writes: every result file goes through [`write_atomic`], so a reader (or a
+//! rerun after an interruption) sees either the old file or the complete new one, never a
+//! half-written one.
+
+use std::fs::{self, File};
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+
+/// Write `contents` to `path` atomically: write `<name>.tmp` in the same directory, flush it
+/// to disk, rename it over `path`, then flush the directory entry (best effort).
+pub fn write_atomic(path: &Path, contents: &[u8]) -> io::Result<()> {
+    let tmp = tmp_path(path)?;
+    let result = (|| {
+        let mut f = File::create(&tmp)?;
+        f.write_all(contents)?;
+        f.sync_all()?;
+        drop(f);
+        fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = fs::remove_file(&tmp);
+    }
+    result?;
+    sync_dir(path);
+    Ok(())
+}
+
+fn tmp_path(path: &Path) -> io::Result<PathBuf> {
+    let name = path.file_name().ok_or_else(|| {
+        io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("{} is not a file path", path.display()),
+        )
+    })?;
+    let mut tmp_name = name.to_os_string();
+    tmp_name.push(".tmp");
+    Ok(path.with_file_name(tmp_name))
+}
+
+/// Make the rename durable (on platforms where a directory can be opened and synced).
+fn sync_dir(path: &Path) {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    if let Ok(d) = File::open(dir) {
+        let _ = d.sync_all();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("platoonsim-atomic-{}-{name}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn writes_and_replaces_without_leaving_a_tmp_file() {
+        let dir = scratch("replace");
+        let path = dir.join("summary.json");
+        write_atomic(&path, b"first").unwrap();
+        write_atomic(&path, b"second").unwrap();
+        assert_eq!(fs::read(&path).unwrap(), b"second");
+        let names: Vec<_> = fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(names, vec![std::ffi::OsString::from("summary.json")]);
+    }
+
+    #[test]
+    fn failure_leaves_the_old_file_and_no_tmp() {
+        let dir = scratch("failure");
+        let path = dir.join("x.csv");
+        write_atomic(&path, b"old").unwrap();
+        // The rename cannot replace a non-empty directory: make the target one.
+        let blocked = dir.join("blocked");
+        fs::create_dir_all(blocked.join("inside")).unwrap();
+        assert!(write_atomic(&blocked, b"new").is_err());
+        assert!(!dir.join("blocked.tmp").exists());
+        assert_eq!(fs::read(&path).unwrap(), b"old");
+        // A missing directory is an error, not a panic.
+        assert!(write_atomic(&dir.join("missing/x.csv"), b"x").is_err());
+    }
+}

@@ -1,0 +1,171 @@
+//! `capacity` (paper Fig. 4). Stage 1, the baseline capacity: for each penetration, a demand
+//! well above capacity (a queue forms at the entrance), no organization, no warm-up;
+//! capacity = the highest 5-min discharge at the measurement detector over the run. Stage 2,
+//! the PD bottleneck capacity (25-100 %; PD does not apply without CAVs): demand = the
+//! stage-1 mean capacity of that penetration (rounded to 1 veh/h/lane), warm-up, then PD in
+//! the control section to the end; capacity = the highest 5-min discharge after the warm-up.
+
+use super::{cell, checks_md, find, point, run_cells, Check, Done, Settings};
+use crate::design::num;
+use crate::runner::{Outcome, Runner};
+use crate::table::{self, fixed, md_table, paper_comparison, pm, signed, SummaryRow};
+use crate::{Cell, Error};
+use platoonsim_scenario::StrategyKind;
+
+pub const PENETRATIONS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
+const CAPACITY: &str = "max_sustained_flow_vphpl";
+
+pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {
+    let mut stage1 = Vec::new();
+    for &p in &PENETRATIONS {
+        let mut pt = point(s, p, s.capacity_demand_vphpl, StrategyKind::None);
+        pt.warmup_s = 0.0;
+        stage1.push(cell(&[("stage", "baseline".into())], pt)?);
+    }
+    let mut outcomes = run_cells(runner, &stage1, seeds, 0)?;
+
+    let mut stage2 = Vec::new();
+    for (i, &p) in PENETRATIONS.iter().enumerate().skip(1) {
+        let cap = table::stats(&outcomes, i, CAPACITY).mean;
+        if !(cap.is_finite() && cap > 0.0) {
+            return Err(Error::Other(format!(
+                "capacity: no baseline capacity at penetration {p} (stage 1 gave {cap})"
+            )));
+        }
+        let pt = point(s, p, cap.round(), StrategyKind::Pd);
+        stage2.push(cell(&[("stage", "pd".into())], pt)?);
+    }
+    outcomes.extend(run_cells(runner, &stage2, seeds, stage1.len())?);
+    let mut cells = stage1;
+    cells.extend(stage2);
+    Ok(Done { cells, outcomes })
+}
+
+pub(super) fn markdown(
+    s: &Settings,
+    cells: &[Cell],
+    _outcomes: &[Outcome],
+    rows: &[SummaryRow],
+) -> (String, Vec<Check>) {
+    let mut md = format!(
+        "Homogeneous road (3 lanes, 5 km approach, 1 km control section). Stage 1 (baseline): \
+         demand {} veh/h/lane, above capacity so that a queue forms at the entrance, no \
+         platoon organization, {} s; capacity = highest 5-min flow at the discharge detector. \
+         Stage 2 (PD): demand = the stage-1 mean capacity at that penetration, {} s warm-up, \
+         then the PD lane in the control section to the end ({} s); capacity = highest 5-min \
+         flow after the warm-up. {} seeds per cell; ours = mean ± half-width of the 95 % \
+         confidence interval (Student t). The paper gives Fig. 4 only as a figure; the values \
+         below are those stated in its text (≈), the others are blank.\n\n",
+        num(s.capacity_demand_vphpl),
+        num(s.duration_s),
+        num(s.warmup_s),
+        num(s.duration_s),
+        s.seeds
+    );
+    let header: Vec<String> = [
+        "CAV penetration",
+        "Baseline capacity (ours)",
+        "paper",
+        "difference",
+        "PD input demand",
+        "PD capacity (ours)",
+        "paper",
+        "difference",
+        "PD vs baseline",
+    ]
+    .iter()
+    .map(|h| h.to_string())
+    .collect();
+    let mut table_rows = Vec::new();
+    let mut checks = Vec::new();
+    let mut below = Vec::new();
+    let row_of = |cell: usize| rows.iter().find(|r| r.cell == cell && r.metric == CAPACITY);
+    let cap0 = find(cells, &[("stage", "baseline"), ("penetration", "0")])
+        .and_then(row_of)
+        .map(|r| r.stats);
+    for &p in &PENETRATIONS {
+        let pen = num(p);
+        let b = find(cells, &[("stage", "baseline"), ("penetration", &pen)]).and_then(row_of);
+        let pd_cell = find(cells, &[("stage", "pd"), ("penetration", &pen)]);
+        let pd = pd_cell.and_then(row_of);
+        let paper = |r: Option<&SummaryRow>| {
+            r.and_then(|r| r.paper)
+                .map_or(String::new(), |v| format!("≈{}", fixed(v.value, 0)))
+        };
+        let diff = |r: Option<&SummaryRow>| {
+            r.filter(|r| r.paper.is_some())
+                .map_or(String::new(), |r| signed(r.difference(), 0))
+        };
+        let input = pd_cell.map_or("– (PD needs CAVs)".to_string(), |c| {
+            format!("{:.0}", cells[c].config.demand.vph_per_lane)
+        });
+        let versus = match (b, pd) {
+            (Some(b), Some(pd)) => {
+                let rel = 100.0 * (pd.stats.mean - b.stats.mean) / b.stats.mean;
+                below.push((p, pd.stats.mean < b.stats.mean, rel));
+                format!("{} %", signed(rel, 1))
+            }
+            _ => String::new(),
+        };
+        table_rows.push(vec![
+            format!("{} %", num(100.0 * p)),
+            b.map_or("–".into(), |r| pm(&r.stats, 0)),
+            paper(b),
+            diff(b),
+            input,
+            pd.map_or("–".into(), |r| pm(&r.stats, 0)),
+            paper(pd),
+            diff(pd),
+            versus,
+        ]);
+    }
+    md.push_str("Capacity in veh/h/lane.\n\n");
+    md.push_str(&md_table(&header, &table_rows));
+
+    if !below.is_empty() {
+        let all = below.iter().all(|(_, b, _)| *b);
+        let list: Vec<String> = below
+            .iter()
+            .map(|(p, _, rel)| format!("{} % at {} % CAV", signed(*rel, 1), num(100.0 * p)))
+            .collect();
+        checks.push(Check {
+            statement: format!(
+                "the PD capacity is below the baseline capacity wherever PD applies ({})",
+                list.join(", ")
+            ),
+            passed: all,
+        });
+    }
+    let pd25 = find(cells, &[("stage", "pd"), ("penetration", "0.25")])
+        .and_then(row_of)
+        .map(|r| r.stats);
+    if let (Some(pd25), Some(cap0)) = (pd25, cap0) {
+        checks.push(Check {
+            statement: format!(
+                "the PD capacity at 25 % CAV ({:.0} veh/h/lane) is below the baseline capacity \
+                 at 0 % ({:.0}); paper ≈1,800 vs ≈2,000",
+                pd25.mean, cap0.mean
+            ),
+            passed: pd25.mean < cap0.mean,
+        });
+    }
+    md.push_str("\n## Against the paper\n\n");
+    md.push_str(&paper_comparison(rows, |r| {
+        let stage = if r.labels.get("stage") == Some("pd") {
+            "PD capacity"
+        } else {
+            "baseline capacity"
+        };
+        format!(
+            "{stage} at {} % CAV",
+            num(100.0
+                * r.labels
+                    .get("penetration")
+                    .and_then(|p| p.parse::<f64>().ok())
+                    .unwrap_or(f64::NAN))
+        )
+    }));
+    md.push_str("\n## Checks (issue 3 targets)\n\n");
+    md.push_str(&checks_md(&checks));
+    (md, checks)
+}

@@ -1,0 +1,403 @@
+//! The experiments: `capacity` (paper Fig. 4), `sensitivity` (paper Table 3) and
+//! `flow-aware` (issue 3's acceptance test of the Flow-Aware strategy).
+//!
+//! [`run_experiment`] runs one into `<out>/<name>/`: the run files in `runs/`, then
+//! `runs.csv`, `summary.csv`, `summary.md` and `run.json`, all written atomically.
+
+mod capacity;
+mod flow_aware;
+mod sensitivity;
+
+use crate::atomic::write_atomic;
+use crate::design::{self, Cell, Labels, Point};
+use crate::runner::{self, Executor, Outcome, Runner};
+use crate::table::{self, SummaryRow};
+use crate::{Error, VERSION};
+use platoonsim_scenario::StrategyKind;
+use platoonsim_sim::Config;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+pub use capacity::PENETRATIONS as CAPACITY_PENETRATIONS;
+pub use sensitivity::DEMANDS as SENSITIVITY_DEMANDS;
+
+/// The experiments that exist.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ExperimentName {
+    Capacity,
+    Sensitivity,
+    FlowAware,
+}
+
+impl ExperimentName {
+    pub const ALL: [ExperimentName; 3] = [
+        ExperimentName::Capacity,
+        ExperimentName::Sensitivity,
+        ExperimentName::FlowAware,
+    ];
+
+    /// The name on the command line and of the output directory.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ExperimentName::Capacity => "capacity",
+            ExperimentName::Sensitivity => "sensitivity",
+            ExperimentName::FlowAware => "flow-aware",
+        }
+    }
+
+    /// A title for reports.
+    pub fn title(self) -> &'static str {
+        match self {
+            ExperimentName::Capacity => "Capacity with and without the PD lane (paper Fig. 4)",
+            ExperimentName::Sensitivity => {
+                "Platoon organization at various demands (paper Table 3)"
+            }
+            ExperimentName::FlowAware => "Flow-Aware strategy on the homogeneous road",
+        }
+    }
+
+    /// How many runs it makes with `seeds` seeds per cell.
+    pub fn total_runs(self, seeds: usize) -> usize {
+        seeds
+            * match self {
+                ExperimentName::Capacity => 2 * capacity::PENETRATIONS.len() - 1,
+                ExperimentName::Sensitivity => 2 * sensitivity::DEMANDS.len(),
+                ExperimentName::FlowAware => 3,
+            }
+    }
+}
+
+impl std::fmt::Display for ExperimentName {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// How to run an experiment.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Settings {
+    /// Output root; the experiment writes to `<out>/<name>/`.
+    pub out: PathBuf,
+    /// Seeds 1..=seeds per cell.
+    pub seeds: u32,
+    /// Worker threads (`None`: one per core).
+    pub jobs: Option<usize>,
+    /// Draw a progress bar (the caller decides: not with --quiet, only on a terminal).
+    pub progress: bool,
+    /// Reuse existing run files (false: recompute every run and overwrite its file).
+    pub reuse: bool,
+    /// Simulated time of every run (paper: 3600 s).
+    pub duration_s: f64,
+    /// Warm-up of the runs that have one (paper: 1200 s); PD acts from then to the end.
+    pub warmup_s: f64,
+    /// Demand of the capacity experiment's first stage, well above capacity (veh/h/lane).
+    pub capacity_demand_vphpl: f64,
+    /// The command line, for the provenance.
+    pub arguments: Vec<String>,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            out: PathBuf::from("out"),
+            seeds: 10,
+            jobs: None,
+            progress: false,
+            reuse: true,
+            duration_s: 3600.0,
+            warmup_s: 1200.0,
+            capacity_demand_vphpl: 4500.0,
+            arguments: Vec::new(),
+        }
+    }
+}
+
+/// A statement about the results, e.g. one of issue 3's targets, and whether it holds.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Check {
+    pub statement: String,
+    pub passed: bool,
+}
+
+/// A figure of an experiment: `<dir>/<stem>.png` and `.svg`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Figure {
+    pub title: String,
+    pub stem: String,
+}
+
+/// Everything an experiment produced.
+#[derive(Clone, Debug)]
+pub struct ExperimentOutput {
+    pub name: ExperimentName,
+    pub dir: PathBuf,
+    pub settings: Settings,
+    pub cells: Vec<Cell>,
+    pub outcomes: Vec<Outcome>,
+    pub rows: Vec<SummaryRow>,
+    /// The body of `summary.md` (tables, comparison with the paper, checks), without its
+    /// title and figures.
+    pub body: String,
+    pub checks: Vec<Check>,
+    pub figures: Vec<Figure>,
+    pub computed: usize,
+    pub reused: usize,
+    pub wall_seconds: f64,
+}
+
+impl ExperimentOutput {
+    /// Markdown image links of the figures, with `prefix` before each file name.
+    pub fn figures_md(&self, prefix: &str) -> String {
+        let mut s = String::new();
+        for f in &self.figures {
+            s.push_str(&format!(
+                "![{}]({prefix}{}.png)\n\n*{}* ([SVG]({prefix}{}.svg))\n\n",
+                f.title, f.stem, f.title, f.stem
+            ));
+        }
+        s
+    }
+
+    /// The whole `summary.md`.
+    pub fn summary_md(&self) -> String {
+        let mut s = format!("# {}\n\n{}", self.name.title(), self.body);
+        if !self.figures.is_empty() {
+            s.push_str("\n## Figures\n\n");
+            s.push_str(&self.figures_md(""));
+        }
+        s
+    }
+}
+
+/// Run an experiment with the engine; see the module documentation.
+pub fn run_experiment(
+    name: ExperimentName,
+    settings: &Settings,
+) -> Result<ExperimentOutput, Error> {
+    run_experiment_with(name, settings, &runner::simulate)
+}
+
+/// The cells and runs an experiment produced, with its derived metrics added.
+pub(crate) struct Done {
+    pub cells: Vec<Cell>,
+    pub outcomes: Vec<Outcome>,
+}
+
+/// [`run_experiment`] with another executor (tests count executions with it).
+pub fn run_experiment_with(
+    name: ExperimentName,
+    settings: &Settings,
+    exec: Executor<'_>,
+) -> Result<ExperimentOutput, Error> {
+    if settings.seeds == 0 {
+        return Err(Error::Other("at least one seed is needed".into()));
+    }
+    let start = Instant::now();
+    let dir = settings.out.join(name.as_str());
+    std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
+    let seeds = design::seeds(settings.seeds);
+    let bar = runner::bar(
+        name.total_runs(seeds.len()),
+        settings.progress,
+        name.as_str(),
+    );
+    let mut runner = Runner::new(dir.join("runs"), settings.jobs, bar.clone(), exec);
+    runner.reuse = settings.reuse;
+    let done = match name {
+        ExperimentName::Capacity => capacity::run(settings, &runner, &seeds),
+        ExperimentName::Sensitivity => sensitivity::run(settings, &runner, &seeds),
+        ExperimentName::FlowAware => flow_aware::run(settings, &runner, &seeds),
+    };
+    bar.finish_and_clear();
+    let Done { cells, outcomes } = done?;
+    let rows = table::summarize(name.as_str(), &cells, &outcomes);
+    let (body, checks) = match name {
+        ExperimentName::Capacity => capacity::markdown(settings, &cells, &outcomes, &rows),
+        ExperimentName::Sensitivity => sensitivity::markdown(settings, &cells, &outcomes, &rows),
+        ExperimentName::FlowAware => flow_aware::markdown(settings, &cells, &outcomes, &rows),
+    };
+    // PLOT: figures come from the plotting crate (platoonsim-plot) once it has landed:
+    // capacity vs penetration with 95 % bands (baseline and PD), and the Table 3 quantities
+    // vs demand (4 panels). Until then no figure is written.
+    let figures: Vec<Figure> = Vec::new();
+
+    let mut out = ExperimentOutput {
+        name,
+        dir: dir.clone(),
+        settings: settings.clone(),
+        cells,
+        outcomes,
+        rows,
+        body,
+        checks,
+        figures,
+        computed: runner.computed(),
+        reused: runner.reused(),
+        wall_seconds: 0.0,
+    };
+    out.body.push_str(&format!(
+        "\n## Runs\n\n{} runs ({} seeds per cell): {} computed, {} reused from earlier run files; \
+         {:.1} s wall time. Every run is in `runs.csv`; statistics per cell and metric in \
+         `summary.csv`; provenance in `run.json`.\n",
+        out.outcomes.len(),
+        settings.seeds,
+        out.computed,
+        out.reused,
+        start.elapsed().as_secs_f64()
+    ));
+    out.wall_seconds = start.elapsed().as_secs_f64();
+    write_outputs(&out)?;
+    Ok(out)
+}
+
+fn write_file(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+    write_atomic(path, bytes).map_err(|e| Error::io(path, e))
+}
+
+#[derive(Serialize)]
+struct CellProvenance<'a> {
+    labels: &'a Labels,
+    /// Run keys (file names in runs/), one per seed.
+    keys: Vec<&'a str>,
+    /// The resolved scenario; `seed` is replaced by each run's.
+    scenario: &'a Config,
+}
+
+#[derive(Serialize)]
+struct Provenance<'a> {
+    experiment: &'a str,
+    version: &'a str,
+    arguments: &'a [String],
+    settings: &'a Settings,
+    seeds: Vec<u64>,
+    runs: usize,
+    computed: usize,
+    reused: usize,
+    wall_seconds: f64,
+    finished_unix_s: u64,
+    cells: Vec<CellProvenance<'a>>,
+}
+
+/// Write `runs.csv`, `summary.csv`, `summary.md` and `run.json`.
+pub fn write_outputs(out: &ExperimentOutput) -> Result<(), Error> {
+    let dir = &out.dir;
+    write_file(
+        &dir.join("runs.csv"),
+        &table::runs_csv(&out.cells, &out.outcomes)?,
+    )?;
+    write_file(
+        &dir.join("summary.csv"),
+        &table::summary_csv(&out.cells, &out.rows)?,
+    )?;
+    write_file(&dir.join("summary.md"), out.summary_md().as_bytes())?;
+    let prov = Provenance {
+        experiment: out.name.as_str(),
+        version: VERSION,
+        arguments: &out.settings.arguments,
+        settings: &out.settings,
+        seeds: design::seeds(out.settings.seeds),
+        runs: out.outcomes.len(),
+        computed: out.computed,
+        reused: out.reused,
+        wall_seconds: out.wall_seconds,
+        finished_unix_s: std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.as_secs()),
+        cells: out
+            .cells
+            .iter()
+            .enumerate()
+            .map(|(i, c)| CellProvenance {
+                labels: &c.labels,
+                keys: out
+                    .outcomes
+                    .iter()
+                    .filter(|o| o.cell == i)
+                    .map(|o| o.key.as_str())
+                    .collect(),
+                scenario: &c.config,
+            })
+            .collect(),
+    };
+    let mut bytes = serde_json::to_vec_pretty(&prov)
+        .map_err(|e| Error::Other(format!("cannot encode run.json: {e}")))?;
+    bytes.push(b'\n');
+    write_file(&dir.join("run.json"), &bytes)
+}
+
+// ---- helpers shared by the experiments ---------------------------------------------------
+
+/// A homogeneous-road cell with the standard labels.
+pub(crate) fn cell(extra: &[(&str, String)], p: Point) -> Result<Cell, Error> {
+    let mut labels = Labels::new();
+    for (k, v) in extra {
+        labels = labels.with(k, v.clone());
+    }
+    labels = labels
+        .with("penetration", design::num(p.penetration))
+        .with("demand_vphpl", design::num(p.demand_vphpl))
+        .with("strategy", p.strategy.as_str());
+    let config = design::homogeneous(&p)?;
+    Ok(Cell { labels, config })
+}
+
+/// A point with the settings' duration and warm-up.
+pub(crate) fn point(s: &Settings, penetration: f64, demand: f64, strategy: StrategyKind) -> Point {
+    Point {
+        penetration,
+        demand_vphpl: demand,
+        strategy,
+        duration_s: s.duration_s,
+        warmup_s: s.warmup_s,
+        set: Vec::new(),
+    }
+}
+
+/// Run cells (indices offset by `offset` in the outcomes).
+pub(crate) fn run_cells(
+    runner: &Runner<'_>,
+    cells: &[Cell],
+    seeds: &[u64],
+    offset: usize,
+) -> Result<Vec<Outcome>, Error> {
+    let mut out = runner.run(&design::runs(cells, seeds))?;
+    for o in &mut out {
+        o.cell += offset;
+    }
+    Ok(out)
+}
+
+/// Index of the cell with these labels.
+pub(crate) fn find(cells: &[Cell], wanted: &[(&str, &str)]) -> Option<usize> {
+    cells.iter().position(|c| c.labels.matches(wanted))
+}
+
+/// Human-readable metric names.
+pub(crate) fn metric_label(metric: &str) -> &str {
+    match metric {
+        "lane_changes_per_vehicle" => "lane changes per vehicle",
+        "lane_changes_per_cav" => "lane changes per CAV",
+        "lane_changes_per_human" => "lane changes per human-driven vehicle",
+        "avg_platoon_length" => "average platoon length L̄",
+        "platooning_probability" => "platooning probability P_P",
+        "discharge_flow_vphpl" => "discharge flow (veh/h/lane)",
+        "max_sustained_flow_vphpl" => "capacity = highest 5-min discharge (veh/h/lane)",
+        "discharge_change_pct" => "discharge change vs baseline (%)",
+        "platoon_length_gain" => "L̄ gain vs baseline",
+        other => other,
+    }
+}
+
+/// A bullet list of checks.
+pub(crate) fn checks_md(checks: &[Check]) -> String {
+    let mut s = String::new();
+    for c in checks {
+        s.push_str(&format!(
+            "- **{}**: {}\n",
+            if c.passed { "holds" } else { "does not hold" },
+            c.statement
+        ));
+    }
+    s
+}

@@ -1,0 +1,219 @@
+//! `sensitivity` (paper Table 3): 50 % CAV, demand 1000/1500/2000/2500 veh/h/lane, baseline
+//! (no organization) vs PD lane, 60 min with the first 20 min as warm-up (PD acts after it,
+//! in the control section). Metrics after the warm-up: lane changes per vehicle (and per CAV
+//! and per human), L̄, P_P, discharge flow, and the relative discharge change
+//! ΔQ = 100 (Q_PO − Q_B) / Q_B per seed pair (`discharge_change_pct`, on the PD cells).
+
+use super::{cell, checks_md, find, metric_label, point, run_cells, Check, Done, Settings};
+use crate::design::num;
+use crate::runner::{Outcome, Runner};
+use crate::table::{self, decimals, fixed, md_table, paper_comparison, pm, signed, SummaryRow};
+use crate::{Cell, Error};
+use platoonsim_scenario::StrategyKind;
+
+pub const DEMANDS: [f64; 4] = [1000.0, 1500.0, 2000.0, 2500.0];
+pub const PENETRATION: f64 = 0.5;
+
+pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {
+    let mut cells = Vec::new();
+    for &d in &DEMANDS {
+        for k in [StrategyKind::None, StrategyKind::Pd] {
+            cells.push(cell(&[], point(s, PENETRATION, d, k))?);
+        }
+    }
+    let mut outcomes = run_cells(runner, &cells, seeds, 0)?;
+    for i in (0..cells.len()).step_by(2) {
+        table::add_paired(
+            &mut outcomes,
+            i,
+            i + 1,
+            "discharge_flow_vphpl",
+            "discharge_change_pct",
+            true,
+        );
+    }
+    Ok(Done { cells, outcomes })
+}
+
+/// (column title, metric, strategy) of the paper's Table 3, in its order.
+const COLUMNS: [(&str, &str, &str); 9] = [
+    ("LC/veh B", "lane_changes_per_vehicle", "none"),
+    ("LC/veh PO", "lane_changes_per_vehicle", "pd"),
+    ("L̄ B", "avg_platoon_length", "none"),
+    ("L̄ PO", "avg_platoon_length", "pd"),
+    ("P_P B", "platooning_probability", "none"),
+    ("P_P PO", "platooning_probability", "pd"),
+    ("Q_B", "discharge_flow_vphpl", "none"),
+    ("Q_PO", "discharge_flow_vphpl", "pd"),
+    ("ΔQ = (Q_PO − Q_B)/Q_B (%)", "discharge_change_pct", "pd"),
+];
+
+pub(super) fn markdown(
+    s: &Settings,
+    cells: &[Cell],
+    _outcomes: &[Outcome],
+    rows: &[SummaryRow],
+) -> (String, Vec<Check>) {
+    let mut md = format!(
+        "Homogeneous road, {} % CAV, {} s with the first {} s as warm-up; B = baseline (no \
+         platoon organization), PO = PD lane in the control section after the warm-up. All \
+         quantities are measured after the warm-up. {} seeds per cell; ours = mean ± \
+         half-width of the 95 % confidence interval (Student t); ΔQ is computed per seed pair \
+         (same seed, B and PO) and then averaged. Paper values from its Table 3; difference = \
+         ours − paper.\n\n",
+        num(100.0 * PENETRATION),
+        num(s.duration_s),
+        num(s.warmup_s),
+        s.seeds
+    );
+    let row_of = |demand: &str, strategy: &str, metric: &str| {
+        find(cells, &[("demand_vphpl", demand), ("strategy", strategy)])
+            .and_then(|c| rows.iter().find(|r| r.cell == c && r.metric == metric))
+    };
+    let mut header = vec!["Demand (veh/h/lane)".to_string(), String::new()];
+    header.extend(COLUMNS.iter().map(|c| c.0.to_string()));
+    let mut trs = Vec::new();
+    for &d in &DEMANDS {
+        let dem = num(d);
+        let mut ours = vec![dem.clone(), "ours".into()];
+        let mut paper = vec![String::new(), "paper".into()];
+        let mut diff = vec![String::new(), "difference".into()];
+        for (_, metric, strategy) in COLUMNS {
+            let dec = decimals(metric);
+            let r = row_of(&dem, strategy, metric);
+            ours.push(r.map_or("–".into(), |r| pm(&r.stats, dec)));
+            let p = r.and_then(|r| r.paper);
+            paper.push(p.map_or("–".into(), |p| fixed(p.value, dec)));
+            diff.push(
+                r.filter(|r| r.paper.is_some())
+                    .map_or("–".into(), |r| signed(r.difference(), dec)),
+            );
+        }
+        trs.push(ours);
+        trs.push(paper);
+        trs.push(diff);
+    }
+    md.push_str(&md_table(&header, &trs));
+
+    md.push_str("\nLane changes by vehicle type (not in the paper; its note says both kinds change lanes more under PO):\n\n");
+    let header2: Vec<String> = [
+        "Demand (veh/h/lane)",
+        "LC/CAV B",
+        "LC/CAV PO",
+        "LC/human B",
+        "LC/human PO",
+    ]
+    .iter()
+    .map(|h| h.to_string())
+    .collect();
+    let mut trs2 = Vec::new();
+    for &d in &DEMANDS {
+        let dem = num(d);
+        let mut r = vec![dem.clone()];
+        for (metric, strategy) in [
+            ("lane_changes_per_cav", "none"),
+            ("lane_changes_per_cav", "pd"),
+            ("lane_changes_per_human", "none"),
+            ("lane_changes_per_human", "pd"),
+        ] {
+            r.push(row_of(&dem, strategy, metric).map_or("–".into(), |x| pm(&x.stats, 3)));
+        }
+        trs2.push(r);
+    }
+    md.push_str(&md_table(&header2, &trs2));
+
+    // Issue 3's targets.
+    let mean =
+        |d: f64, st: &str, m: &str| row_of(&num(d), st, m).map_or(f64::NAN, |r| r.stats.mean);
+    let mut checks = Vec::new();
+    let ratios: Vec<(f64, f64)> = DEMANDS
+        .iter()
+        .map(|&d| {
+            (
+                d,
+                mean(d, "pd", "lane_changes_per_vehicle")
+                    / mean(d, "none", "lane_changes_per_vehicle"),
+            )
+        })
+        .collect();
+    checks.push(Check {
+        statement: format!(
+            "PD multiplies lane changes per vehicle by at least 5 at every demand (paper about \
+             10): {}",
+            ratios
+                .iter()
+                .map(|(d, r)| format!("×{} at {}", fixed(*r, 1), num(*d)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        passed: ratios.iter().all(|(_, r)| *r >= 5.0),
+    });
+    let range_check = |metric: &str, lo: f64, hi: f64, paper: &str| {
+        let v: Vec<(f64, f64)> = DEMANDS
+            .iter()
+            .map(|&d| (d, mean(d, "pd", metric)))
+            .collect();
+        Check {
+            statement: format!(
+                "PD raises {} to {}-{} (paper {}): {}",
+                metric_label(metric),
+                num(lo),
+                num(hi),
+                paper,
+                v.iter()
+                    .map(|(d, x)| format!("{} at {}", fixed(*x, decimals(metric)), num(*d)))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            passed: v.iter().all(|(_, x)| (lo..=hi).contains(x)),
+        }
+    };
+    checks.push(range_check("avg_platoon_length", 4.0, 6.0, "5.0-5.4"));
+    checks.push(range_check(
+        "platooning_probability",
+        0.85,
+        0.95,
+        "0.89-0.91",
+    ));
+    let dq = |d: f64| mean(d, "pd", "discharge_change_pct");
+    checks.push(Check {
+        statement: format!(
+            "the discharge change is within ±1 % at 1,000 and 1,500 veh/h/lane: {} % and {} % \
+             (paper +0.04 % and -0.34 %)",
+            signed(dq(1000.0), 2),
+            signed(dq(1500.0), 2)
+        ),
+        passed: dq(1000.0).abs() <= 1.0 && dq(1500.0).abs() <= 1.0,
+    });
+    checks.push(Check {
+        statement: format!(
+            "the discharge change is negative at 2,000 veh/h/lane: {} % (paper -1.89 %)",
+            signed(dq(2000.0), 2)
+        ),
+        passed: dq(2000.0) < 0.0,
+    });
+    checks.push(Check {
+        statement: format!(
+            "the discharge change is -5 % or lower at 2,500 veh/h/lane: {} % (paper -9.54 %)",
+            signed(dq(2500.0), 2)
+        ),
+        passed: dq(2500.0) <= -5.0,
+    });
+
+    md.push_str("\n## Against the paper\n\n");
+    md.push_str(&paper_comparison(rows, |r| {
+        format!(
+            "{}, {} veh/h/lane, {}",
+            if r.labels.get("strategy") == Some("pd") {
+                "PO"
+            } else {
+                "B"
+            },
+            r.labels.get("demand_vphpl").unwrap_or("?"),
+            metric_label(&r.metric)
+        )
+    }));
+    md.push_str("\n## Checks (issue 3 targets)\n\n");
+    md.push_str(&checks_md(&checks));
+    (md, checks)
+}

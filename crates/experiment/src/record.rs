@@ -1,0 +1,222 @@
+//! The run file `<experiment>/runs/<key>.json`: the run's summary and the hash of the
+//! configuration it ran, written once the run has finished (atomically), read back instead
+//! of rerunning.
+//!
+//! ```json
+//! { "config_hash": "…16 hex…", "seed": 3, "version": "0.1.0", "engine": "…16 hex…",
+//!   "summary": { …Summary… } }
+//! ```
+//!
+//! `engine` identifies the program that computed the run (see [`engine_id`]): a file made
+//! by another build is not reused, so a rebuilt engine never reports stale results.
+
+use platoonsim_sim::Summary;
+use serde::de::{Deserializer, MapAccess, Visitor};
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// Summary fields that echo the configuration (they are cell labels or the seed) or that
+/// differ between identical runs (`wall_seconds`): kept in the run file, not counted as
+/// metrics.
+pub const NOT_METRICS: [&str; 9] = [
+    "scenario",
+    "strategy",
+    "penetration",
+    "demand_vphpl",
+    "seed",
+    "dt_s",
+    "duration_s",
+    "warmup_s",
+    "wall_seconds",
+];
+
+/// Named numbers in a fixed order: a run's metrics (the summary's numeric fields, in the
+/// summary's order, then any derived ones). A JSON `null` (a NaN when written) reads as NaN.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Fields(pub Vec<(String, f64)>);
+
+impl Fields {
+    pub fn get(&self, name: &str) -> Option<f64> {
+        self.0.iter().find(|(k, _)| k == name).map(|(_, v)| *v)
+    }
+
+    /// Set a field, replacing one of the same name or appending.
+    pub fn set(&mut self, name: &str, v: f64) {
+        match self.0.iter_mut().find(|(k, _)| k == name) {
+            Some(slot) => slot.1 = v,
+            None => self.0.push((name.to_string(), v)),
+        }
+    }
+
+    pub fn names(&self) -> impl Iterator<Item = &str> {
+        self.0.iter().map(|(k, _)| k.as_str())
+    }
+}
+
+#[derive(Serialize)]
+struct RunFileOut<'a> {
+    config_hash: &'a str,
+    seed: u64,
+    version: &'a str,
+    engine: &'a str,
+    summary: &'a Summary,
+}
+
+#[derive(Deserialize)]
+struct RunFileIn {
+    config_hash: String,
+    seed: u64,
+    #[serde(default)]
+    engine: String,
+    summary: OrderedObject,
+}
+
+/// The identity of the running program: FNV-1a 64 of its executable file (computed once),
+/// or "unknown" if it cannot be read. Two builds that differ in any way get different ids.
+pub fn engine_id() -> &'static str {
+    static ID: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    ID.get_or_init(|| {
+        std::env::current_exe()
+            .and_then(std::fs::read)
+            .map(|bytes| format!("{:016x}", crate::hash::fnv1a64(&bytes)))
+            .unwrap_or_else(|_| "unknown".into())
+    })
+}
+
+/// A JSON object read with its keys in file order.
+struct OrderedObject(Vec<(String, serde_json::Value)>);
+
+impl<'de> Deserialize<'de> for OrderedObject {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = OrderedObject;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a JSON object")
+            }
+            fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<OrderedObject, A::Error> {
+                let mut out = Vec::new();
+                while let Some((k, v)) = map.next_entry::<String, serde_json::Value>()? {
+                    out.push((k, v));
+                }
+                Ok(OrderedObject(out))
+            }
+        }
+        d.deserialize_map(V)
+    }
+}
+
+/// The bytes of a run file (pretty JSON, final newline).
+pub fn encode(key: &str, seed: u64, engine: &str, summary: &Summary) -> Vec<u8> {
+    let out = RunFileOut {
+        config_hash: key,
+        seed,
+        version: env!("CARGO_PKG_VERSION"),
+        engine,
+        summary,
+    };
+    let mut bytes = serde_json::to_vec_pretty(&out).expect("a Summary always serializes");
+    bytes.push(b'\n');
+    bytes
+}
+
+/// Read a run file's metrics. `Err` says why the file cannot be used (unreadable JSON,
+/// another configuration's hash or seed, another engine when `engine` is given, a missing
+/// summary): the run is then computed again.
+pub fn decode(bytes: &[u8], key: &str, seed: u64, engine: Option<&str>) -> Result<Fields, String> {
+    let f: RunFileIn = serde_json::from_slice(bytes).map_err(|e| e.to_string())?;
+    if let Some(e) = engine {
+        if f.engine != e {
+            return Err(format!(
+                "it was computed by another build ({}, this is {e})",
+                f.engine
+            ));
+        }
+    }
+    if f.config_hash != key {
+        return Err(format!(
+            "it holds the run of configuration {} (expected {key})",
+            f.config_hash
+        ));
+    }
+    if f.seed != seed {
+        return Err(format!("it holds seed {} (expected {seed})", f.seed));
+    }
+    let mut fields = Fields::default();
+    for (k, v) in f.summary.0 {
+        if NOT_METRICS.contains(&k.as_str()) {
+            continue;
+        }
+        match v {
+            serde_json::Value::Number(n) => fields.0.push((k, n.as_f64().unwrap_or(f64::NAN))),
+            serde_json::Value::Null => fields.0.push((k, f64::NAN)),
+            _ => {}
+        }
+    }
+    if fields.get("discharge_flow_vphpl").is_none() {
+        return Err("its summary has no discharge_flow_vphpl".into());
+    }
+    Ok(fields)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use platoonsim_sim::Config;
+
+    fn summary() -> Summary {
+        let cfg = Config::homogeneous(0.5, 600.0, 120.0, 30.0, 4);
+        platoonsim_sim::run(&cfg, None).unwrap().summary
+    }
+
+    #[test]
+    fn round_trip_keeps_the_metrics_in_summary_order() {
+        let s = summary();
+        let bytes = encode("00000000000000ab", 4, "e1", &s);
+        let f = decode(&bytes, "00000000000000ab", 4, Some("e1")).unwrap();
+        let names: Vec<&str> = f.names().collect();
+        assert_eq!(names[0], "vehicles_entered");
+        assert!(names.contains(&"lane_changes_per_cav"));
+        for skipped in NOT_METRICS {
+            assert!(!names.contains(&skipped), "{skipped}");
+        }
+        assert_eq!(f.get("discharge_flow_vphpl"), Some(s.discharge_flow_vphpl));
+        assert_eq!(f.get("vehicles_entered"), Some(s.vehicles_entered as f64));
+        let i = names
+            .iter()
+            .position(|n| *n == "discharge_flow_vphpl")
+            .unwrap();
+        let j = names
+            .iter()
+            .position(|n| *n == "max_sustained_flow_vphpl")
+            .unwrap();
+        assert!(i < j);
+    }
+
+    #[test]
+    fn unusable_files_are_rejected() {
+        let s = summary();
+        let bytes = encode("00000000000000ab", 4, "e1", &s);
+        assert!(decode(&bytes, "00000000000000ac", 4, None).is_err());
+        assert!(decode(&bytes, "00000000000000ab", 4, Some("e2")).is_err());
+        assert!(decode(&bytes, "00000000000000ab", 4, None).is_ok());
+        assert!(decode(&bytes, "00000000000000ab", 5, None).is_err());
+        assert!(decode(&bytes[..bytes.len() / 2], "00000000000000ab", 4, None).is_err());
+        assert!(decode(b"", "00000000000000ab", 4, None).is_err());
+        assert!(decode(
+            br#"{"config_hash":"00000000000000ab","seed":4,"summary":{}}"#,
+            "00000000000000ab",
+            4,
+            None
+        )
+        .is_err());
+    }
+
+    #[test]
+    fn nan_reads_back_as_nan() {
+        let mut s = summary();
+        s.avg_platoon_length = f64::NAN;
+        let f = decode(&encode("k", 4, engine_id(), &s), "k", 4, Some(engine_id())).unwrap();
+        assert!(f.get("avg_platoon_length").unwrap().is_nan());
+    }
+}

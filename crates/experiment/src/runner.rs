@@ -1,0 +1,235 @@
+//! Runs in parallel, resumable.
+//!
+//! Each run is executed single-threaded by the engine; rayon spreads the runs over
+//! `jobs` threads. A finished run is written at once to `<runs_dir>/<key>.json` through
+//! [`write_atomic`] (temporary file, fsync, rename), so the directory only ever holds
+//! complete run files. Before anything is executed, the run files already there are read:
+//! a run whose file is present and valid (same key, same seed) is reused, not recomputed.
+//! Results come back in the order of the specs, whatever the number of threads and the
+//! order in which runs finish.
+
+use crate::atomic::write_atomic;
+use crate::design::RunSpec;
+use crate::record::{self, Fields};
+use crate::Error;
+use indicatif::{ProgressBar, ProgressStyle};
+use platoonsim_sim::{Config, Summary};
+use rayon::prelude::*;
+use std::collections::HashMap;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// What executes one run: the engine ([`simulate`]) or, in tests, a counting wrapper.
+pub type Executor<'a> = &'a (dyn Fn(&Config) -> Result<Summary, String> + Sync);
+
+/// The engine, without a progress callback.
+pub fn simulate(config: &Config) -> Result<Summary, String> {
+    platoonsim_sim::run(config, None).map(|o| o.summary)
+}
+
+/// A run's metrics and whether it was computed (rather than read from its file).
+type RunResult = Result<(Fields, bool), Error>;
+
+/// One finished run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome {
+    pub cell: usize,
+    pub seed: u64,
+    pub key: String,
+    pub fields: Fields,
+    /// False if it was read from an existing run file.
+    pub computed: bool,
+}
+
+/// A progress bar counting runs (done / total, with ETA); hidden unless `show`.
+pub fn bar(total: usize, show: bool, label: &str) -> ProgressBar {
+    if !show {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(total as u64);
+    let style = ProgressStyle::with_template(
+        "{prefix} [{elapsed_precise}] {bar:40.cyan/blue} {pos}/{len} runs (eta {eta})",
+    )
+    .unwrap_or_else(|_| ProgressStyle::default_bar())
+    .progress_chars("=> ");
+    bar.set_style(style);
+    bar.set_prefix(label.to_string());
+    bar
+}
+
+/// Executes run specs; see the module documentation.
+pub struct Runner<'a> {
+    /// Where run files live (created if missing).
+    pub runs_dir: PathBuf,
+    /// Worker threads; `None` = one per core.
+    pub jobs: Option<usize>,
+    /// Read existing run files instead of recomputing (false: recompute and overwrite).
+    pub reuse: bool,
+    /// Reuse only run files computed by this engine build ([`record::engine_id`]); `None`
+    /// accepts any.
+    pub engine: Option<String>,
+    /// Advanced by one per run, reused or computed.
+    pub bar: ProgressBar,
+    pub exec: Executor<'a>,
+    computed: AtomicUsize,
+    reused: AtomicUsize,
+}
+
+impl<'a> Runner<'a> {
+    pub fn new(
+        runs_dir: PathBuf,
+        jobs: Option<usize>,
+        bar: ProgressBar,
+        exec: Executor<'a>,
+    ) -> Self {
+        Runner {
+            runs_dir,
+            jobs,
+            reuse: true,
+            engine: Some(record::engine_id().to_string()),
+            bar,
+            exec,
+            computed: AtomicUsize::new(0),
+            reused: AtomicUsize::new(0),
+        }
+    }
+
+    /// Runs executed so far by this runner.
+    pub fn computed(&self) -> usize {
+        self.computed.load(Ordering::Relaxed)
+    }
+
+    /// Runs read from existing files so far by this runner.
+    pub fn reused(&self) -> usize {
+        self.reused.load(Ordering::Relaxed)
+    }
+
+    pub fn file(&self, key: &str) -> PathBuf {
+        self.runs_dir.join(format!("{key}.json"))
+    }
+
+    /// Execute (or reuse) every spec; results in the order of `specs`. Runs with the same
+    /// key are executed once. If runs fail, the others still finish and are saved; the first
+    /// failure (in spec order) is returned.
+    pub fn run(&self, specs: &[RunSpec]) -> Result<Vec<Outcome>, Error> {
+        fs::create_dir_all(&self.runs_dir).map_err(|e| Error::io(&self.runs_dir, e))?;
+        remove_stale_tmp(&self.runs_dir);
+
+        // Unique runs in first-appearance order, with how many specs share each.
+        let keys: Vec<String> = specs.iter().map(RunSpec::key).collect();
+        let mut index: HashMap<&str, usize> = HashMap::new();
+        let mut unique: Vec<(usize, usize)> = Vec::new(); // (spec index, multiplicity)
+        for (i, k) in keys.iter().enumerate() {
+            match index.get(k.as_str()) {
+                Some(&u) => unique[u].1 += 1,
+                None => {
+                    index.insert(k, unique.len());
+                    unique.push((i, 1));
+                }
+            }
+        }
+
+        let mut results: Vec<Option<RunResult>> = (0..unique.len()).map(|_| None).collect();
+        let mut todo = Vec::new();
+        for (u, &(i, mult)) in unique.iter().enumerate() {
+            let loaded = if self.reuse {
+                self.load(&keys[i], specs[i].seed)
+            } else {
+                None
+            };
+            match loaded {
+                Some(fields) => {
+                    results[u] = Some(Ok((fields, false)));
+                    self.reused.fetch_add(mult, Ordering::Relaxed);
+                    self.bar.inc(mult as u64);
+                }
+                None => todo.push(u),
+            }
+        }
+
+        let work = || -> Vec<(usize, RunResult)> {
+            todo.par_iter()
+                .map(|&u| {
+                    let (i, mult) = unique[u];
+                    let r = self.compute(&specs[i], &keys[i]);
+                    if r.is_ok() {
+                        self.computed.fetch_add(mult, Ordering::Relaxed);
+                    }
+                    self.bar.inc(mult as u64);
+                    (u, r.map(|f| (f, true)))
+                })
+                .collect()
+        };
+        let done = match self.jobs {
+            Some(n) => rayon::ThreadPoolBuilder::new()
+                .num_threads(n.max(1))
+                .build()
+                .map_err(|e| Error::Threads(e.to_string()))?
+                .install(work),
+            None => work(),
+        };
+        for (u, r) in done {
+            results[u] = Some(r);
+        }
+
+        let mut out = Vec::with_capacity(specs.len());
+        let mut first_error = None;
+        for (i, spec) in specs.iter().enumerate() {
+            let u = index[keys[i].as_str()];
+            match results[u].as_ref().expect("every unique run has a result") {
+                Ok((fields, computed)) => out.push(Outcome {
+                    cell: spec.cell,
+                    seed: spec.seed,
+                    key: keys[i].clone(),
+                    fields: fields.clone(),
+                    // Only the first spec of a shared key counts as computed.
+                    computed: *computed && unique[u].0 == i,
+                }),
+                Err(e) => {
+                    if first_error.is_none() {
+                        first_error = Some(e.clone());
+                    }
+                }
+            }
+        }
+        match first_error {
+            Some(e) => Err(e),
+            None => Ok(out),
+        }
+    }
+
+    /// A valid existing run file's metrics, or `None` (missing or unusable: recompute).
+    fn load(&self, key: &str, seed: u64) -> Option<Fields> {
+        let bytes = fs::read(self.file(key)).ok()?;
+        record::decode(&bytes, key, seed, self.engine.as_deref()).ok()
+    }
+
+    fn compute(&self, spec: &RunSpec, key: &str) -> Result<Fields, Error> {
+        let summary = (self.exec)(&spec.config).map_err(|message| Error::Run {
+            key: key.to_string(),
+            seed: spec.seed,
+            message,
+        })?;
+        let bytes = record::encode(key, spec.seed, record::engine_id(), &summary);
+        let path = self.file(key);
+        write_atomic(&path, &bytes).map_err(|e| Error::io(&path, e))?;
+        // Read back what was written, so a fresh result and a reused one are identical.
+        record::decode(&bytes, key, spec.seed, None).map_err(|message| Error::Run {
+            key: key.to_string(),
+            seed: spec.seed,
+            message,
+        })
+    }
+}
+
+/// Temporary files left by an interrupted write are never results; remove them.
+fn remove_stale_tmp(dir: &Path) {
+    if let Ok(entries) = fs::read_dir(dir) {
+        for e in entries.flatten() {
+            if e.file_name().to_string_lossy().ends_with(".tmp") {
+                let _ = fs::remove_file(e.path());
+            }
+        }
+    }
+}

@@ -1,0 +1,452 @@
+//! Result tables: `runs.csv` (one row per run), `summary.csv` (one row per cell and metric)
+//! and the number formatting shared by the Markdown tables.
+//!
+//! `runs.csv` columns: the cell labels (e.g. `stage`, `penetration`, `demand_vphpl`,
+//! `strategy`), `seed`, `key` (the run file name), then every metric: the numeric fields of
+//! the engine's summary in its order (less the configuration echoes and `wall_seconds`, see
+//! [`crate::record::NOT_METRICS`]), then the experiment's derived metrics (e.g.
+//! `discharge_change_pct`, empty where they do not apply).
+//!
+//! `summary.csv` columns: the cell labels, `metric`, `mean`, `sd`, `n`, `ci_low`, `ci_high`,
+//! `paper`, `difference` (mean − paper), `relative_difference` ((mean − paper) / |paper|),
+//! `paper_source`. Cells without a value (no paper value, n < 2 for sd and the interval) are
+//! empty.
+
+use crate::design::{Cell, Labels};
+use crate::paper::{self, PaperValue};
+use crate::runner::Outcome;
+use crate::stats::Stats;
+use crate::Error;
+
+/// One cell and metric of `summary.csv`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SummaryRow {
+    pub cell: usize,
+    pub labels: Labels,
+    pub metric: String,
+    pub stats: Stats,
+    pub paper: Option<PaperValue>,
+}
+
+impl SummaryRow {
+    /// mean − paper (NaN without a paper value).
+    pub fn difference(&self) -> f64 {
+        self.paper.map_or(f64::NAN, |p| self.stats.mean - p.value)
+    }
+
+    /// (mean − paper) / |paper| (NaN without a paper value or if it is 0).
+    pub fn relative_difference(&self) -> f64 {
+        match self.paper {
+            Some(p) if p.value != 0.0 => (self.stats.mean - p.value) / p.value.abs(),
+            _ => f64::NAN,
+        }
+    }
+}
+
+/// Label names over all cells, in first-appearance order.
+pub fn label_columns(cells: &[Cell]) -> Vec<String> {
+    let mut cols: Vec<String> = Vec::new();
+    for c in cells {
+        for (k, _) in &c.labels.0 {
+            if !cols.contains(k) {
+                cols.push(k.clone());
+            }
+        }
+    }
+    cols
+}
+
+/// Metric names over all runs, in first-appearance order.
+pub fn metric_columns(outcomes: &[Outcome]) -> Vec<String> {
+    let mut cols: Vec<String> = Vec::new();
+    for o in outcomes {
+        for k in o.fields.names() {
+            if !cols.iter().any(|c| c == k) {
+                cols.push(k.to_string());
+            }
+        }
+    }
+    cols
+}
+
+/// A number for a CSV cell: shortest round-trip text; empty for NaN or infinite.
+pub fn csv_num(v: f64) -> String {
+    if v.is_finite() {
+        format!("{v}")
+    } else {
+        String::new()
+    }
+}
+
+fn csv_error(e: impl std::fmt::Display) -> Error {
+    Error::Other(format!("cannot encode CSV: {e}"))
+}
+
+/// `runs.csv`; see the module documentation.
+pub fn runs_csv(cells: &[Cell], outcomes: &[Outcome]) -> Result<Vec<u8>, Error> {
+    let labels = label_columns(cells);
+    let metrics = metric_columns(outcomes);
+    let mut w = csv::WriterBuilder::new()
+        .has_headers(false)
+        .from_writer(Vec::new());
+    let mut header: Vec<String> = labels.clone();
+    header.push("seed".into());
+    header.push("key".into());
+    header.extend(metrics.iter().cloned());
+    w.write_record(&header).map_err(csv_error)?;
+    for o in outcomes {
+        let cell = &cells[o.cell];
+        let mut row: Vec<String> = labels
+            .iter()
+            .map(|k| cell.labels.get(k).unwrap_or("").to_string())
+            .collect();
+        row.push(o.seed.to_string());
+        row.push(o.key.clone());
+        row.extend(
+            metrics
+                .iter()
+                .map(|m| o.fields.get(m).map(csv_num).unwrap_or_default()),
+        );
+        w.write_record(&row).map_err(csv_error)?;
+    }
+    w.into_inner().map_err(csv_error)
+}
+
+/// A metric's values over the runs of one cell (runs lacking it are left out).
+pub fn values(outcomes: &[Outcome], cell: usize, metric: &str) -> Vec<f64> {
+    outcomes
+        .iter()
+        .filter(|o| o.cell == cell)
+        .filter_map(|o| o.fields.get(metric))
+        .collect()
+}
+
+/// Statistics of one cell's metric.
+pub fn stats(outcomes: &[Outcome], cell: usize, metric: &str) -> Stats {
+    Stats::of(&values(outcomes, cell, metric))
+}
+
+/// One row per cell and metric (cells in order; metrics in [`metric_columns`] order, each
+/// only for the cells that have it), with the paper's value where it gives one.
+pub fn summarize(experiment: &str, cells: &[Cell], outcomes: &[Outcome]) -> Vec<SummaryRow> {
+    let metrics = metric_columns(outcomes);
+    let mut rows = Vec::new();
+    for (i, cell) in cells.iter().enumerate() {
+        for m in &metrics {
+            let v = values(outcomes, i, m);
+            if v.is_empty() {
+                continue;
+            }
+            rows.push(SummaryRow {
+                cell: i,
+                labels: cell.labels.clone(),
+                metric: m.clone(),
+                stats: Stats::of(&v),
+                paper: paper::lookup(experiment, &cell.labels, m),
+            });
+        }
+    }
+    rows
+}
+
+/// `summary.csv`; see the module documentation.
+pub fn summary_csv(cells: &[Cell], rows: &[SummaryRow]) -> Result<Vec<u8>, Error> {
+    let labels = label_columns(cells);
+    let mut w = csv::WriterBuilder::new()
+        .has_headers(false)
+        .from_writer(Vec::new());
+    let mut header = labels.clone();
+    for h in [
+        "metric",
+        "mean",
+        "sd",
+        "n",
+        "ci_low",
+        "ci_high",
+        "paper",
+        "difference",
+        "relative_difference",
+        "paper_source",
+    ] {
+        header.push(h.into());
+    }
+    w.write_record(&header).map_err(csv_error)?;
+    for r in rows {
+        let mut row: Vec<String> = labels
+            .iter()
+            .map(|k| r.labels.get(k).unwrap_or("").to_string())
+            .collect();
+        row.push(r.metric.clone());
+        row.push(csv_num(r.stats.mean));
+        row.push(csv_num(r.stats.sd));
+        row.push(r.stats.n.to_string());
+        row.push(csv_num(r.stats.ci_low));
+        row.push(csv_num(r.stats.ci_high));
+        row.push(r.paper.map(|p| csv_num(p.value)).unwrap_or_default());
+        row.push(csv_num(r.difference()));
+        row.push(csv_num(r.relative_difference()));
+        row.push(r.paper.map(|p| p.source.to_string()).unwrap_or_default());
+        w.write_record(&row).map_err(csv_error)?;
+    }
+    w.into_inner().map_err(csv_error)
+}
+
+/// Add a paired metric to the runs of `cell`: for each of its runs, the run of `base` with
+/// the same seed gives the reference, and `name` = 100 (x − b) / b (percent change) if
+/// `percent`, otherwise x − b. Runs without a partner (or with b = 0 for a percentage) get
+/// NaN.
+pub fn add_paired(
+    outcomes: &mut [Outcome],
+    base: usize,
+    cell: usize,
+    metric: &str,
+    name: &str,
+    percent: bool,
+) {
+    let reference: Vec<(u64, f64)> = outcomes
+        .iter()
+        .filter(|o| o.cell == base)
+        .filter_map(|o| o.fields.get(metric).map(|v| (o.seed, v)))
+        .collect();
+    for o in outcomes.iter_mut().filter(|o| o.cell == cell) {
+        let b = reference
+            .iter()
+            .find(|(s, _)| *s == o.seed)
+            .map(|(_, v)| *v);
+        let x = o.fields.get(metric);
+        let d = match (x, b) {
+            (Some(x), Some(b)) if percent && b != 0.0 => 100.0 * (x - b) / b,
+            (Some(x), Some(b)) if !percent => x - b,
+            _ => f64::NAN,
+        };
+        o.fields.set(name, d);
+    }
+}
+
+// ---- Markdown number formatting -------------------------------------------------------
+
+/// `v` with `dec` decimals; "–" for NaN.
+pub fn fixed(v: f64, dec: usize) -> String {
+    if v.is_finite() {
+        format!("{v:.dec$}")
+    } else {
+        "–".into()
+    }
+}
+
+/// `v` with a sign and `dec` decimals (`+0.03`, `-1.20`); "–" for NaN.
+pub fn signed(v: f64, dec: usize) -> String {
+    if v.is_finite() {
+        format!("{v:+.dec$}")
+    } else {
+        "–".into()
+    }
+}
+
+/// `mean ± half-width` of the 95 % interval (only the mean if there is no interval).
+pub fn pm(s: &Stats, dec: usize) -> String {
+    let hw = s.half_width();
+    if hw.is_finite() {
+        format!("{} ± {}", fixed(s.mean, dec), fixed(hw, dec))
+    } else {
+        fixed(s.mean, dec)
+    }
+}
+
+/// `[low, high]` of the 95 % interval; "–" if there is none.
+pub fn interval(s: &Stats, dec: usize) -> String {
+    if s.ci_low.is_finite() && s.ci_high.is_finite() {
+        format!("[{}, {}]", fixed(s.ci_low, dec), fixed(s.ci_high, dec))
+    } else {
+        "–".into()
+    }
+}
+
+/// A Markdown table from a header and rows.
+pub fn md_table(header: &[String], rows: &[Vec<String>]) -> String {
+    let mut s = String::new();
+    s.push_str(&format!("| {} |\n", header.join(" | ")));
+    s.push_str(&format!(
+        "|{}\n",
+        header.iter().map(|_| "---|").collect::<String>()
+    ));
+    for r in rows {
+        s.push_str(&format!("| {} |\n", r.join(" | ")));
+    }
+    s
+}
+
+/// Decimals used to show a metric.
+pub fn decimals(metric: &str) -> usize {
+    match metric {
+        m if m.starts_with("lane_changes") => 3,
+        "avg_platoon_length" | "platoon_length_gain" => 2,
+        "platooning_probability" => 3,
+        m if m.ends_with("_pct") => 2,
+        m if m.ends_with("_vphpl") => 1,
+        _ => 2,
+    }
+}
+
+/// A table comparing each of the paper's values with ours, for the rows that have one:
+/// quantity (from `describe`), ours with its 95 % interval, the paper's value and source,
+/// the difference and relative difference, and whether the paper's value lies in our
+/// interval.
+pub fn paper_comparison(rows: &[SummaryRow], describe: impl Fn(&SummaryRow) -> String) -> String {
+    let header: Vec<String> = [
+        "Quantity",
+        "Ours",
+        "95 % CI",
+        "Paper",
+        "Difference",
+        "Relative",
+        "Paper value in our CI",
+        "Source",
+    ]
+    .iter()
+    .map(|h| h.to_string())
+    .collect();
+    let mut out = Vec::new();
+    for r in rows {
+        let Some(p) = r.paper else { continue };
+        let dec = decimals(&r.metric);
+        let inside = if !r.stats.ci_low.is_finite() {
+            "– (n < 2)"
+        } else if r.stats.covers(p.value) {
+            "yes"
+        } else {
+            "no"
+        };
+        let rel = r.relative_difference();
+        out.push(vec![
+            describe(r),
+            fixed(r.stats.mean, dec),
+            interval(&r.stats, dec),
+            fixed(p.value, dec),
+            signed(r.difference(), dec),
+            if rel.is_finite() {
+                format!("{} %", signed(100.0 * rel, 1))
+            } else {
+                "–".into()
+            },
+            inside.into(),
+            p.source.into(),
+        ]);
+    }
+    if out.is_empty() {
+        return "The paper gives no value for these cells.\n".into();
+    }
+    md_table(&header, &out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::record::Fields;
+    use platoonsim_sim::Config;
+
+    fn cells() -> Vec<Cell> {
+        let c = Config::homogeneous(0.5, 1000.0, 300.0, 60.0, 1);
+        vec![
+            Cell {
+                labels: Labels::new()
+                    .with("demand_vphpl", "1000")
+                    .with("strategy", "none"),
+                config: c.clone(),
+            },
+            Cell {
+                labels: Labels::new()
+                    .with("demand_vphpl", "1000")
+                    .with("strategy", "pd"),
+                config: c,
+            },
+        ]
+    }
+
+    fn outcome(cell: usize, seed: u64, q: f64, lbar: f64) -> Outcome {
+        Outcome {
+            cell,
+            seed,
+            key: format!("k{cell}{seed}"),
+            fields: Fields(vec![
+                ("discharge_flow_vphpl".into(), q),
+                ("avg_platoon_length".into(), lbar),
+            ]),
+            computed: true,
+        }
+    }
+
+    #[test]
+    fn csv_shapes() {
+        let cells = cells();
+        let mut outs = vec![
+            outcome(0, 1, 1000.0, 2.5),
+            outcome(0, 2, 1010.0, f64::NAN),
+            outcome(1, 1, 990.0, 5.0),
+            outcome(1, 2, 1010.0, 5.2),
+        ];
+        add_paired(
+            &mut outs,
+            0,
+            1,
+            "discharge_flow_vphpl",
+            "discharge_change_pct",
+            true,
+        );
+        let runs = String::from_utf8(runs_csv(&cells, &outs).unwrap()).unwrap();
+        let lines: Vec<&str> = runs.lines().collect();
+        assert_eq!(
+            lines[0],
+            "demand_vphpl,strategy,seed,key,discharge_flow_vphpl,avg_platoon_length,discharge_change_pct"
+        );
+        assert_eq!(lines.len(), 1 + 4);
+        assert_eq!(lines[2], "1000,none,2,k02,1010,,");
+        assert_eq!(lines[3], "1000,pd,1,k11,990,5,-1");
+        assert_eq!(lines[4], "1000,pd,2,k12,1010,5.2,0");
+        for l in &lines {
+            assert_eq!(l.split(',').count(), 7, "{l}");
+        }
+
+        let rows = summarize("sensitivity", &cells, &outs);
+        // Cell 0: two metrics; cell 1: three.
+        assert_eq!(rows.len(), 5);
+        let q_b = &rows[0];
+        assert_eq!(
+            (q_b.metric.as_str(), q_b.stats.n, q_b.stats.mean),
+            ("discharge_flow_vphpl", 2, 1005.0)
+        );
+        assert_eq!(q_b.paper.unwrap().value, 1006.3);
+        assert!((q_b.difference() - (1005.0 - 1006.3)).abs() < 1e-9);
+        let lbar_b = &rows[1];
+        assert_eq!(lbar_b.stats.n, 1); // the NaN is left out
+        let dq = rows
+            .iter()
+            .find(|r| r.metric == "discharge_change_pct")
+            .unwrap();
+        assert_eq!(dq.stats.mean, -0.5);
+        assert_eq!(dq.paper.unwrap().value, 0.04);
+
+        let summary = String::from_utf8(summary_csv(&cells, &rows).unwrap()).unwrap();
+        let lines: Vec<&str> = summary.lines().collect();
+        assert_eq!(
+            lines[0],
+            "demand_vphpl,strategy,metric,mean,sd,n,ci_low,ci_high,paper,difference,relative_difference,paper_source"
+        );
+        assert_eq!(lines.len(), 1 + 5);
+        let mut r = csv::Reader::from_reader(summary.as_bytes());
+        for rec in r.records() {
+            assert_eq!(rec.unwrap().len(), 12);
+        }
+        assert!(lines[2].starts_with("1000,none,avg_platoon_length,2.5,,1,,,2.6,"));
+    }
+
+    #[test]
+    fn markdown_helpers() {
+        let s = Stats::of(&[1.0, 2.0, 3.0]);
+        assert_eq!(pm(&s, 2), "2.00 ± 2.48");
+        assert_eq!(signed(0.5, 1), "+0.5");
+        assert_eq!(fixed(f64::NAN, 1), "–");
+        let t = md_table(&["a".into(), "b".into()], &[vec!["1".into(), "2".into()]]);
+        assert_eq!(t, "| a | b |\n|---|---|\n| 1 | 2 |\n");
+    }
+}
