@@ -139,6 +139,8 @@ fn reproduce_writes_the_report() {
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     assert!(html.starts_with("<!DOCTYPE html>"));
     assert!(html.contains("<table>") && html.contains("Notes on differences"));
+    assert_eq!(html.matches("src=\"data:image/png;base64,").count(), 2);
+    assert!(out.join("capacity/capacity.svg").is_file());
     for exp in ["capacity", "sensitivity", "flow-aware"] {
         assert!(out.join(exp).join("summary.csv").is_file(), "{exp}");
     }

@@ -95,7 +95,7 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
         ));
         md.push_str(&demote(&o.body));
         if o.figures.is_empty() {
-            md.push_str("\n### Figures\n\nNo figures yet (the plotting crate has not landed).\n\n");
+            md.push('\n');
         } else {
             md.push_str("\n### Figures\n\n");
             md.push_str(&o.figures_md(&format!("{}/", o.name.as_str())));

@@ -198,7 +198,21 @@ fn sensitivity_files_have_the_expected_shape() {
     let dir = out.join("sensitivity");
     let mut names = run_files(&dir);
     names.retain(|n| n != "runs");
-    assert_eq!(names, ["run.json", "runs.csv", "summary.csv", "summary.md"]);
+    assert_eq!(
+        names,
+        [
+            "run.json",
+            "runs.csv",
+            "sensitivity.png",
+            "sensitivity.svg",
+            "summary.csv",
+            "summary.md"
+        ]
+    );
+    assert!(fs::read(dir.join("sensitivity.png"))
+        .unwrap()
+        .starts_with(b"\x89PNG"));
+    assert_eq!(res.figures.len(), 1);
     assert_eq!(run_files(&dir.join("runs")).len(), 16);
 
     // runs.csv: header + 16 rows, every row as wide as the header.

@@ -2,9 +2,11 @@
 //! `flow-aware` (issue 3's acceptance test of the Flow-Aware strategy).
 //!
 //! [`run_experiment`] runs one into `<out>/<name>/`: the run files in `runs/`, then
-//! `runs.csv`, `summary.csv`, `summary.md` and `run.json`, all written atomically.
+//! `runs.csv`, `summary.csv`, `summary.md`, `run.json` and the figures (`capacity.png`/`.svg`,
+//! `sensitivity.png`/`.svg`), all written atomically.
 
 mod capacity;
+mod figures;
 mod flow_aware;
 mod sensitivity;
 
@@ -217,10 +219,11 @@ pub fn run_experiment_with(
         ExperimentName::Sensitivity => sensitivity::markdown(settings, &cells, &outcomes, &rows),
         ExperimentName::FlowAware => flow_aware::markdown(settings, &cells, &outcomes, &rows),
     };
-    // PLOT: figures come from the plotting crate (platoonsim-plot) once it has landed:
-    // capacity vs penetration with 95 % bands (baseline and PD), and the Table 3 quantities
-    // vs demand (4 panels). Until then no figure is written.
-    let figures: Vec<Figure> = Vec::new();
+    let figures = match name {
+        ExperimentName::Capacity => figures::capacity(&dir, &cells, &rows)?,
+        ExperimentName::Sensitivity => figures::sensitivity(&dir, &cells, &rows)?,
+        ExperimentName::FlowAware => Vec::new(),
+    };
 
     let mut out = ExperimentOutput {
         name,

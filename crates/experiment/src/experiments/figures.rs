@@ -1,0 +1,179 @@
+//! The experiments' figures, drawn by `platoonsim-plot` (PNG and SVG, written atomically):
+//! capacity vs penetration with 95 % bands (baseline and PD, the paper's values as markers),
+//! and the Table 3 quantities vs demand (four panels, baseline and PD with 95 % bands, the
+//! paper's values as markers).
+
+use super::{capacity, find, sensitivity, Figure};
+use crate::design::num;
+use crate::table::SummaryRow;
+use crate::{Cell, Error};
+use platoonsim_plot::{line_chart, panels, Chart, Series, Style};
+use std::path::Path;
+
+/// A series' mean, low and high over the given cells (NaN where a cell is missing).
+fn curve(
+    rows: &[SummaryRow],
+    cells: &[Option<usize>],
+    metric: &str,
+) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let mut m = Vec::new();
+    let mut lo = Vec::new();
+    let mut hi = Vec::new();
+    for c in cells {
+        let r = c.and_then(|c| rows.iter().find(|r| r.cell == c && r.metric == metric));
+        m.push(r.map_or(f64::NAN, |r| r.stats.mean));
+        lo.push(r.map_or(f64::NAN, |r| r.stats.ci_low));
+        hi.push(r.map_or(f64::NAN, |r| r.stats.ci_high));
+    }
+    (m, lo, hi)
+}
+
+/// The paper's values of a metric over the given cells (NaN where it gives none).
+fn paper(rows: &[SummaryRow], cells: &[Option<usize>], metric: &str) -> Vec<f64> {
+    cells
+        .iter()
+        .map(|c| {
+            c.and_then(|c| rows.iter().find(|r| r.cell == c && r.metric == metric))
+                .and_then(|r| r.paper)
+                .map_or(f64::NAN, |p| p.value)
+        })
+        .collect()
+}
+
+fn series(
+    name: &str,
+    x: &[f64],
+    (y, lo, hi): (Vec<f64>, Vec<f64>, Vec<f64>),
+    style: Style,
+) -> Series {
+    Series {
+        name: name.into(),
+        x: x.to_vec(),
+        y,
+        band: Some((lo, hi)),
+        style,
+    }
+}
+
+fn markers(name: &str, x: &[f64], y: Vec<f64>) -> Option<Series> {
+    if y.iter().all(|v| !v.is_finite()) {
+        return None;
+    }
+    Some(Series {
+        name: name.into(),
+        x: x.to_vec(),
+        y,
+        band: None,
+        style: Style::Markers,
+    })
+}
+
+fn plot_error(e: platoonsim_plot::PlotError) -> Error {
+    Error::Other(e.to_string())
+}
+
+/// `capacity.png` / `.svg`.
+pub(super) fn capacity(
+    dir: &Path,
+    cells: &[Cell],
+    rows: &[SummaryRow],
+) -> Result<Vec<Figure>, Error> {
+    let x: Vec<f64> = capacity::PENETRATIONS.iter().map(|p| 100.0 * p).collect();
+    let pick = |stage: &str| -> Vec<Option<usize>> {
+        capacity::PENETRATIONS
+            .iter()
+            .map(|&p| find(cells, &[("stage", stage), ("penetration", &num(p))]))
+            .collect()
+    };
+    let (base, pd) = (pick("baseline"), pick("pd"));
+    let m = "max_sustained_flow_vphpl";
+    let mut s = vec![
+        series(
+            "baseline (no organization), 95 % CI",
+            &x,
+            curve(rows, &base, m),
+            Style::Line,
+        ),
+        series("PD lane, 95 % CI", &x, curve(rows, &pd, m), Style::Dashed),
+    ];
+    s.extend(markers("paper, baseline (text)", &x, paper(rows, &base, m)));
+    s.extend(markers("paper, PD lane (text)", &x, paper(rows, &pd, m)));
+    let chart = Chart {
+        title: "Capacity vs CAV penetration (paper Fig. 4)".into(),
+        x_label: "CAV penetration (%)".into(),
+        y_label: "Capacity: highest 5-min discharge (veh/h/lane)".into(),
+        series: s,
+        y_range: None,
+    };
+    line_chart(&chart, &dir.join("capacity")).map_err(plot_error)?;
+    Ok(vec![Figure {
+        title: "Capacity vs CAV penetration: baseline and PD lane, mean and 95 % confidence band; markers: the paper's values stated in its text".into(),
+        stem: "capacity".into(),
+    }])
+}
+
+/// `sensitivity.png` / `.svg`: four panels.
+pub(super) fn sensitivity(
+    dir: &Path,
+    cells: &[Cell],
+    rows: &[SummaryRow],
+) -> Result<Vec<Figure>, Error> {
+    let x: Vec<f64> = sensitivity::DEMANDS.to_vec();
+    let pick = |strategy: &str| -> Vec<Option<usize>> {
+        sensitivity::DEMANDS
+            .iter()
+            .map(|&d| find(cells, &[("demand_vphpl", &num(d)), ("strategy", strategy)]))
+            .collect()
+    };
+    let (b, po) = (pick("none"), pick("pd"));
+    let panel = |metric: &str, title: &str, y_label: &str| {
+        let mut s = vec![
+            series(
+                "baseline (B), 95 % CI",
+                &x,
+                curve(rows, &b, metric),
+                Style::Line,
+            ),
+            series(
+                "PD lane (PO), 95 % CI",
+                &x,
+                curve(rows, &po, metric),
+                Style::Dashed,
+            ),
+        ];
+        s.extend(markers("paper B", &x, paper(rows, &b, metric)));
+        s.extend(markers("paper PO", &x, paper(rows, &po, metric)));
+        Chart {
+            title: title.into(),
+            x_label: "Demand (veh/h/lane)".into(),
+            y_label: y_label.into(),
+            series: s,
+            y_range: None,
+        }
+    };
+    let charts = [
+        panel(
+            "lane_changes_per_vehicle",
+            "Lane changes per vehicle",
+            "Lane changes / vehicle",
+        ),
+        panel("avg_platoon_length", "Average platoon length", "CAVs"),
+        panel(
+            "platooning_probability",
+            "Platooning probability P_P",
+            "Probability",
+        ),
+        panel("discharge_flow_vphpl", "Discharge flow", "veh/h/lane"),
+    ];
+    panels(
+        &charts,
+        2,
+        "Platoon organization at 50 % CAV vs demand (paper Table 3)",
+        &dir.join("sensitivity"),
+    )
+    .map_err(plot_error)?;
+    Ok(vec![Figure {
+        title: "Table 3 quantities vs demand: baseline (B) and PD lane (PO), mean and 95 % confidence band; markers: the paper's Table 3".into(),
+        stem: "sensitivity".into(),
+    }])
+}
