@@ -182,6 +182,10 @@ pub enum ExperimentArg {
     Sensitivity,
     /// Baseline vs Flow-Aware vs PD at 50 % CAV and 2500 veh/h/lane.
     FlowAware,
+    /// Grid search of the Flow-Aware thresholds (rho_q, rho_v) at 25/50/75 % CAV and
+    /// 1000-2500 veh/h/lane: the largest platoon-length gain whose discharge loss stays within
+    /// --tolerance at every demand; writes tradeoff.csv and thresholds.toml.
+    CalibrateFlowAware,
 }
 
 impl From<ExperimentArg> for ExperimentName {
@@ -190,6 +194,7 @@ impl From<ExperimentArg> for ExperimentName {
             ExperimentArg::Capacity => ExperimentName::Capacity,
             ExperimentArg::Sensitivity => ExperimentName::Sensitivity,
             ExperimentArg::FlowAware => ExperimentName::FlowAware,
+            ExperimentArg::CalibrateFlowAware => ExperimentName::CalibrateFlowAware,
         }
     }
 }
@@ -218,8 +223,9 @@ pub struct ExperimentArgs {
     pub name: ExperimentArg,
 
     /// Seeds per cell (seeds 1..=N); the mean and a 95 % confidence interval are reported.
-    #[arg(long, value_name = "N", default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..))]
-    pub seeds: u32,
+    /// Default: 10, or 3 for calibrate-flow-aware.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub seeds: Option<u32>,
 
     #[command(flatten)]
     pub grid: GridArgs,
@@ -231,6 +237,18 @@ pub struct ExperimentArgs {
     /// Warm-up of the runs that have one; PD acts after it (the paper's: 1200 s).
     #[arg(long, value_name = "S", default_value_t = 1200.0)]
     pub warmup: f64,
+
+    /// calibrate-flow-aware: the rho_q values to try (veh/h/lane), comma-separated.
+    #[arg(long, value_name = "LIST", value_delimiter = ',', default_values_t = platoonsim_experiment::experiments::calibrate::FLOW_THRESHOLDS)]
+    pub flow_thresholds: Vec<f64>,
+
+    /// calibrate-flow-aware: the rho_v values to try (km/h), comma-separated.
+    #[arg(long, value_name = "LIST", value_delimiter = ',', default_values_t = platoonsim_experiment::experiments::calibrate::SPEED_THRESHOLDS)]
+    pub speed_thresholds: Vec<f64>,
+
+    /// calibrate-flow-aware: the largest discharge loss accepted at any demand (%).
+    #[arg(long, value_name = "PCT", default_value_t = platoonsim_experiment::experiments::calibrate::TOLERANCE_PCT)]
+    pub tolerance: f64,
 }
 
 #[derive(Debug, Args)]
@@ -310,7 +328,32 @@ mod tests {
             panic!()
         };
         assert_eq!(ExperimentName::from(e.name), ExperimentName::FlowAware);
-        assert_eq!((e.seeds, e.grid.jobs, e.grid.fresh), (10, None, false));
+        assert_eq!((e.seeds, e.grid.jobs, e.grid.fresh), (None, None, false));
+        assert_eq!(e.flow_thresholds.len(), 5);
+        assert_eq!(e.tolerance, 0.5);
+
+        let cli = Cli::try_parse_from([
+            "platoonsim",
+            "experiment",
+            "calibrate-flow-aware",
+            "--flow-thresholds",
+            "1500,2000",
+            "--speed-thresholds",
+            "0",
+            "--tolerance",
+            "1",
+        ])
+        .unwrap();
+        let Command::Experiment(e) = cli.command else {
+            panic!()
+        };
+        assert_eq!(
+            ExperimentName::from(e.name),
+            ExperimentName::CalibrateFlowAware
+        );
+        assert_eq!(e.flow_thresholds, [1500.0, 2000.0]);
+        assert_eq!(e.speed_thresholds, [0.0]);
+        assert_eq!(e.tolerance, 1.0);
         assert_eq!(e.grid.out, PathBuf::from("out"));
         assert_eq!((e.duration, e.warmup), (3600.0, 1200.0));
 

@@ -308,3 +308,40 @@ fn sensitivity_files_have_the_expected_shape() {
     assert_eq!(prov["cells"][7]["keys"].as_array().unwrap().len(), 2);
     assert!(prov["version"].is_string());
 }
+
+#[test]
+fn calibration_writes_the_tradeoff_and_the_thresholds() {
+    let out = scratch("calibrate");
+    let s = Settings {
+        flow_thresholds: vec![1250.0, 2750.0],
+        speed_thresholds: vec![0.0],
+        ..settings(&out, 2, 1)
+    };
+    assert_eq!(ExperimentName::CalibrateFlowAware.total_runs(&s), 3 * 4 * 3);
+    let res = run_experiment_with(ExperimentName::CalibrateFlowAware, &s, &simulate).unwrap();
+    assert_eq!(res.outcomes.len(), 36);
+    let dir = out.join("calibrate-flow-aware");
+    for f in [
+        "runs.csv",
+        "summary.csv",
+        "summary.md",
+        "run.json",
+        "tradeoff.csv",
+        "thresholds.toml",
+        "tradeoff.png",
+        "tradeoff.svg",
+    ] {
+        assert!(dir.join(f).is_file(), "{f} missing");
+    }
+    let tradeoff = fs::read_to_string(dir.join("tradeoff.csv")).unwrap();
+    assert_eq!(tradeoff.lines().count(), 1 + 3 * 2);
+    let toml = fs::read_to_string(dir.join("thresholds.toml")).unwrap();
+    assert_eq!(toml.matches("[[penetration]]").count(), 3);
+    let runs = fs::read_to_string(dir.join("runs.csv")).unwrap();
+    let header = runs.lines().next().unwrap();
+    assert!(header.starts_with(
+        "penetration,demand_vphpl,strategy,flow_threshold_vphpl,speed_threshold_kmh,seed,key,"
+    ));
+    let md = fs::read_to_string(dir.join("summary.md")).unwrap();
+    assert!(md.contains("## Chosen thresholds"), "{md}");
+}

@@ -19,10 +19,18 @@ pub fn settings(grid: &GridArgs, seeds: u32, quiet: bool) -> Settings {
 }
 
 pub fn experiment(args: &ExperimentArgs, quiet: bool) -> Result<()> {
-    let mut s = settings(&args.grid, args.seeds, quiet);
+    let name = ExperimentName::from(args.name);
+    let default_seeds = if name == ExperimentName::CalibrateFlowAware {
+        3
+    } else {
+        10
+    };
+    let mut s = settings(&args.grid, args.seeds.unwrap_or(default_seeds), quiet);
     s.duration_s = args.duration;
     s.warmup_s = args.warmup;
-    let name = ExperimentName::from(args.name);
+    s.flow_thresholds = args.flow_thresholds.clone();
+    s.speed_thresholds = args.speed_thresholds.clone();
+    s.tolerance_pct = args.tolerance;
     let out = run_experiment(name, &s).with_context(|| format!("experiment {name} failed"))?;
     print!("{}", describe(&out));
     Ok(())

@@ -1,10 +1,12 @@
 //! The experiments: `capacity` (paper Fig. 4), `sensitivity` (paper Table 3) and
-//! `flow-aware` (issue 3's acceptance test of the Flow-Aware strategy).
+//! `flow-aware` (issue 3's acceptance test of the Flow-Aware strategy) and
+//! `calibrate-flow-aware` (a grid search for the Flow-Aware thresholds).
 //!
 //! [`run_experiment`] runs one into `<out>/<name>/`: the run files in `runs/`, then
 //! `runs.csv`, `summary.csv`, `summary.md`, `run.json` and the figures (`capacity.png`/`.svg`,
 //! `sensitivity.png`/`.svg`), all written atomically.
 
+pub mod calibrate;
 mod capacity;
 mod figures;
 mod flow_aware;
@@ -30,9 +32,11 @@ pub enum ExperimentName {
     Capacity,
     Sensitivity,
     FlowAware,
+    CalibrateFlowAware,
 }
 
 impl ExperimentName {
+    /// The experiments that `reproduce` runs (the calibration is not one of the paper's).
     pub const ALL: [ExperimentName; 3] = [
         ExperimentName::Capacity,
         ExperimentName::Sensitivity,
@@ -45,6 +49,7 @@ impl ExperimentName {
             ExperimentName::Capacity => "capacity",
             ExperimentName::Sensitivity => "sensitivity",
             ExperimentName::FlowAware => "flow-aware",
+            ExperimentName::CalibrateFlowAware => "calibrate-flow-aware",
         }
     }
 
@@ -56,16 +61,20 @@ impl ExperimentName {
                 "Platoon organization at various demands (paper Table 3)"
             }
             ExperimentName::FlowAware => "Flow-Aware strategy on the homogeneous road",
+            ExperimentName::CalibrateFlowAware => "Calibration of the Flow-Aware thresholds",
         }
     }
 
-    /// How many runs it makes with `seeds` seeds per cell.
-    pub fn total_runs(self, seeds: usize) -> usize {
-        seeds
+    /// How many runs it makes with these settings.
+    pub fn total_runs(self, s: &Settings) -> usize {
+        s.seeds as usize
             * match self {
                 ExperimentName::Capacity => 2 * capacity::PENETRATIONS.len() - 1,
                 ExperimentName::Sensitivity => 2 * sensitivity::DEMANDS.len(),
                 ExperimentName::FlowAware => 3,
+                ExperimentName::CalibrateFlowAware => {
+                    calibrate::PENETRATIONS.len() * calibrate::cells_per_penetration(s)
+                }
             }
     }
 }
@@ -95,6 +104,12 @@ pub struct Settings {
     pub warmup_s: f64,
     /// Demand of the capacity experiment's first stage, well above capacity (veh/h/lane).
     pub capacity_demand_vphpl: f64,
+    /// `calibrate-flow-aware`: the grid of ρ_q (veh/h/lane) …
+    pub flow_thresholds: Vec<f64>,
+    /// … and of ρ_v (km/h).
+    pub speed_thresholds: Vec<f64>,
+    /// `calibrate-flow-aware`: the largest discharge loss accepted at any demand (%).
+    pub tolerance_pct: f64,
     /// The command line, for the provenance.
     pub arguments: Vec<String>,
 }
@@ -110,6 +125,9 @@ impl Default for Settings {
             duration_s: 3600.0,
             warmup_s: 1200.0,
             capacity_demand_vphpl: 4500.0,
+            flow_thresholds: calibrate::FLOW_THRESHOLDS.to_vec(),
+            speed_thresholds: calibrate::SPEED_THRESHOLDS.to_vec(),
+            tolerance_pct: calibrate::TOLERANCE_PCT,
             arguments: Vec::new(),
         }
     }
@@ -199,17 +217,14 @@ pub fn run_experiment_with(
     let dir = settings.out.join(name.as_str());
     std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
     let seeds = design::seeds(settings.seeds);
-    let bar = runner::bar(
-        name.total_runs(seeds.len()),
-        settings.progress,
-        name.as_str(),
-    );
+    let bar = runner::bar(name.total_runs(settings), settings.progress, name.as_str());
     let mut runner = Runner::new(dir.join("runs"), settings.jobs, bar.clone(), exec);
     runner.reuse = settings.reuse;
     let done = match name {
         ExperimentName::Capacity => capacity::run(settings, &runner, &seeds),
         ExperimentName::Sensitivity => sensitivity::run(settings, &runner, &seeds),
         ExperimentName::FlowAware => flow_aware::run(settings, &runner, &seeds),
+        ExperimentName::CalibrateFlowAware => calibrate::run(settings, &runner, &seeds),
     };
     bar.finish_and_clear();
     let Done { cells, outcomes } = done?;
@@ -218,12 +233,21 @@ pub fn run_experiment_with(
         ExperimentName::Capacity => capacity::markdown(settings, &cells, &outcomes, &rows),
         ExperimentName::Sensitivity => sensitivity::markdown(settings, &cells, &outcomes, &rows),
         ExperimentName::FlowAware => flow_aware::markdown(settings, &cells, &outcomes, &rows),
+        ExperimentName::CalibrateFlowAware => {
+            calibrate::markdown(settings, &cells, &outcomes, &rows)
+        }
     };
     let figures = match name {
         ExperimentName::Capacity => figures::capacity(&dir, &cells, &rows)?,
         ExperimentName::Sensitivity => figures::sensitivity(&dir, &cells, &rows)?,
         ExperimentName::FlowAware => Vec::new(),
+        ExperimentName::CalibrateFlowAware => calibrate::figure(settings, &dir, &cells, &rows)?,
     };
+    if name == ExperimentName::CalibrateFlowAware {
+        for (file, bytes) in calibrate::files(settings, &cells, &rows)? {
+            write_file(&dir.join(file), &bytes)?;
+        }
+    }
 
     let mut out = ExperimentOutput {
         name,
