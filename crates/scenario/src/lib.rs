@@ -37,6 +37,7 @@ pub mod error;
 pub mod format;
 pub mod overrides;
 pub mod raw;
+pub mod thresholds;
 pub mod validate;
 
 pub use error::{Problem, ScenarioError};

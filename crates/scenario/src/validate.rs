@@ -437,9 +437,17 @@ pub fn validate(
             format!("must be > strategy.start_s = {}", ts.shown()),
         );
     }
-    let flow = c.opt(s.flow_threshold_vphpl, defaults::FLOW_THRESHOLD_VPHPL);
+    // Unset thresholds come from the calibrated table at this penetration (issue 3 item 4).
+    let (flow_default, speed_default) = crate::thresholds::default_at(
+        penetration.v,
+        (
+            defaults::FLOW_THRESHOLD_VPHPL,
+            defaults::SPEED_THRESHOLD_KMH,
+        ),
+    );
+    let flow = c.opt(s.flow_threshold_vphpl, flow_default);
     c.positive("strategy.flow_threshold_vphpl", flow);
-    let speed = c.opt(s.speed_threshold_kmh, defaults::SPEED_THRESHOLD_KMH);
+    let speed = c.opt(s.speed_threshold_kmh, speed_default);
     c.non_negative("strategy.speed_threshold_kmh", speed);
     let radius = c.opt(s.radius_m, defaults::RADIUS_M);
     c.positive("strategy.radius_m", radius);
