@@ -371,3 +371,30 @@ pub fn relax_at(p: &LaneChangeParams, elapsed_s: f64) -> Relax {
         reaction: recover(p.relax_reaction),
     }
 }
+
+/// Does a driver with cooperativeness ζ agree to yield (spec 4.5)? `u` is the driver's uniform
+/// draw for this request; a discretionary request is granted with probability
+/// ζ · `discretionary_coop_factor`, a mandatory one with probability ζ.
+pub fn agrees_to_yield(p: &LaneChangeParams, mandatory: bool, u: f64) -> bool {
+    let zeta = if mandatory {
+        p.cooperativeness
+    } else {
+        p.cooperativeness * p.discretionary_coop_factor
+    };
+    u < zeta
+}
+
+/// Yielding car following (YCF, spec 4.5): follow both the real leader (normal target
+/// acceleration `a_cf`) and the requester as a virtual leader with the relaxed parameters, take
+/// the more restrictive, but never brake harder than b_c for the sake of the yield.
+pub fn yield_accel(
+    h: &HumanParams,
+    p: &LaneChangeParams,
+    v: f64,
+    v_des: f64,
+    a_cf: f64,
+    requester: crate::Leader,
+) -> f64 {
+    let a_virtual = crate::human::target_accel(h, v, v_des, Some(requester), gap_relax(p));
+    a_cf.min(a_virtual.max(h.comfort_decel))
+}

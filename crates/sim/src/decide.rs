@@ -88,18 +88,12 @@ impl Simulation {
         let mut mode = Mode::Cf;
         if let Some((req, mandatory)) = self.yield_request(v, &nb) {
             let r = &self.vehicles[req as usize];
-            let mut zeta = v.lc.cooperativeness;
-            if !mandatory {
-                zeta *= v.lc.discretionary_coop_factor;
-            }
-            if pair_uniform(self.cfg.seed, v.id, r.id) < zeta {
+            if lcm::agrees_to_yield(&v.lc, mandatory, pair_uniform(self.cfg.seed, v.id, r.id)) {
                 let virt = Leader {
                     gap_m: r.rear() - v.x,
                     v_mps: r.v,
                 };
-                let a_virt =
-                    human::target_accel(&v.human, v.v, v_des, Some(virt), lcm::gap_relax(&v.lc));
-                target = target.min(a_virt.max(v.human.comfort_decel));
+                target = lcm::yield_accel(&v.human, &v.lc, v.v, v_des, target, virt);
                 mode = Mode::Ycf { to: r.id };
             }
         }
