@@ -428,9 +428,9 @@ pub(super) fn figure(
         style: Style::Dashed,
     });
     let chart = Chart {
-        title: "Flow-Aware thresholds: L̄ gain vs worst discharge change".into(),
+        title: "Flow-Aware thresholds: platoon length gain vs worst discharge change".into(),
         x_label: "Worst mean discharge change over the demands (%)".into(),
-        y_label: "L̄ gain averaged over the demands (CAVs)".into(),
+        y_label: "Average platoon length gain, mean over the demands (CAVs)".into(),
         series,
         y_range: None,
     };
