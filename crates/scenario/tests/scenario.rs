@@ -143,9 +143,28 @@ fn homogeneous_strategy_defaults_follow_the_road_and_the_run() {
         panic!()
     };
     assert_eq!((pd.start_s, pd.end_s), (600.0, 1800.0));
-    assert_eq!(thresholds.flow_threshold_vphpl, 1800.0);
-    assert_eq!(thresholds.speed_threshold_kmh, 90.0);
+    // Thresholds: the calibrated table at the run's penetration (50 %).
+    let (q, v) = platoonsim_scenario::thresholds::default_at(0.5, (0.0, 0.0));
+    assert_eq!(thresholds.flow_threshold_vphpl, q);
+    assert_eq!(thresholds.speed_threshold_kmh, v);
     assert_eq!(thresholds.radius_m, 1500.0);
+    // Between calibrated rows the thresholds are interpolated; an explicit value wins.
+    let at = |pen: f64, set: &[&str]| {
+        let mut o = Overrides {
+            strategy: Some(StrategyKind::FlowAware),
+            penetration: Some(pen),
+            ..Overrides::default()
+        };
+        o.set = set.iter().map(|s| s.to_string()).collect();
+        match load_with("homogeneous", &o).unwrap().strategy {
+            Strategy::FlowAware { thresholds, .. } => thresholds.flow_threshold_vphpl,
+            other => panic!("{other:?}"),
+        }
+    };
+    let (q25, q50, q75) = (at(0.25, &[]), at(0.5, &[]), at(0.75, &[]));
+    assert_eq!(at(0.625, &[]), 0.5 * (q50 + q75));
+    assert_eq!(at(0.0, &[]), q25);
+    assert_eq!(at(0.5, &["strategy.flow_threshold_vphpl=1234"]), 1234.0);
 }
 
 // ---------------------------------------------------------------- round trips
