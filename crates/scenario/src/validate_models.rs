@@ -1,0 +1,323 @@
+//! Validation of the model sections `[human]`, `[cav]` and `[lane_change]` (ranges of every
+//! parameter, well-formed distributions), split from `validate.rs` by responsibility.
+
+use super::Checker;
+use crate::raw::num;
+use platoonsim_model::cav::CavParams;
+use platoonsim_model::human::HumanDists;
+use platoonsim_model::lanechange::LaneChangeDists;
+use toml::Value;
+
+/// Report every non-finite number (TOML allows `nan` and `inf`) in a model section; true if
+/// there is none.
+pub(super) fn all_finite<T: serde::Serialize>(c: &mut Checker, section: &str, params: &T) -> bool {
+    fn walk(c: &mut Checker, path: &str, v: &Value, ok: &mut bool) {
+        match v {
+            Value::Float(f) if !f.is_finite() => {
+                c.push(path, num(*f), "must be a finite number");
+                *ok = false;
+            }
+            Value::Table(t) => {
+                for (k, v) in t {
+                    walk(c, &format!("{path}.{k}"), v, ok);
+                }
+            }
+            Value::Array(items) => {
+                for (i, v) in items.iter().enumerate() {
+                    walk(c, &format!("{path}[{i}]"), v, ok);
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut ok = true;
+    match Value::try_from(params) {
+        Ok(v) => walk(c, section, &v, &mut ok),
+        Err(e) => {
+            c.push(section, "-", format!("cannot be represented: {e}"));
+            ok = false;
+        }
+    }
+    ok
+}
+
+pub(super) fn check_human(c: &mut Checker, h: &HumanDists) {
+    c.dist(
+        "human.length_m",
+        &h.length_m,
+        Some((h.length_m.min > 0.0, "min must be > 0 m")),
+    );
+    c.dist(
+        "human.jam_gap_m",
+        &h.jam_gap_m,
+        Some((h.jam_gap_m.min >= 0.0, "min must be >= 0 m")),
+    );
+    c.dist(
+        "human.headway_s",
+        &h.headway_s,
+        Some((h.headway_s.min > 0.0, "min must be > 0 s")),
+    );
+    c.dist(
+        "human.reaction_s",
+        &h.reaction_s,
+        Some((h.reaction_s.min > 0.0, "min must be > 0 s")),
+    );
+    c.dist(
+        "human.max_accel",
+        &h.max_accel,
+        Some((
+            h.max_accel.min > 0.0,
+            "min must be > 0 m/s² (an acceleration)",
+        )),
+    );
+    c.dist(
+        "human.max_decel",
+        &h.max_decel,
+        Some((
+            h.max_decel.max < 0.0,
+            "max must be < 0 m/s² (decelerations are negative)",
+        )),
+    );
+    c.dist(
+        "human.desired_speed_kmh",
+        &h.desired_speed_kmh,
+        Some((
+            h.desired_speed_kmh.min > 0.0 && h.desired_speed_kmh.max <= 300.0,
+            "must lie in (0, 300] km/h",
+        )),
+    );
+    c.value(
+        "human.buffer_s",
+        h.buffer_s,
+        h.buffer_s >= 0.0,
+        "must be >= 0 s",
+    );
+    c.value(
+        "human.leader_brake_factor",
+        h.leader_brake_factor,
+        h.leader_brake_factor > 0.0,
+        "must be > 0",
+    );
+    c.value(
+        "human.free_exponent",
+        h.free_exponent,
+        h.free_exponent > 0.0,
+        "must be > 0",
+    );
+    c.value(
+        "human.smoothing",
+        h.smoothing,
+        h.smoothing >= 1.0,
+        "must be >= 1 (1 = no smoothing)",
+    );
+    c.value(
+        "human.comfort_factor",
+        h.comfort_factor,
+        h.comfort_factor > 0.0 && h.comfort_factor <= 1.0,
+        "must be in (0, 1] (a fraction of max_decel)",
+    );
+}
+
+pub(super) fn check_cav(c: &mut Checker, p: &CavParams) {
+    let pos = |c: &mut Checker, f: &str, v: f64| c.value(f, v, v > 0.0, "must be > 0");
+    let nonneg = |c: &mut Checker, f: &str, v: f64| c.value(f, v, v >= 0.0, "must be >= 0");
+    pos(c, "cav.speed_gain", p.speed_gain);
+    pos(c, "cav.acc_time_gap_s", p.acc_time_gap_s);
+    for (f, g) in [
+        ("cav.acc_reg_gains", p.acc_reg_gains),
+        ("cav.acc_closing_gains", p.acc_closing_gains),
+        ("cav.acc_avoid_gains", p.acc_avoid_gains),
+        ("cav.cacc_reg_gains", p.cacc_reg_gains),
+        ("cav.cacc_closing_gains", p.cacc_closing_gains),
+        ("cav.cacc_avoid_gains", p.cacc_avoid_gains),
+    ] {
+        if !(g[0] >= 0.0 && g[1] >= 0.0) {
+            c.push(f, pair(g), "both gains must be >= 0");
+        }
+    }
+    for (f, b, unit) in [
+        ("cav.acc_range_m", p.acc_range_m, "m"),
+        ("cav.cacc_tg_band_s", p.cacc_tg_band_s, "s"),
+    ] {
+        if !(b[0] > 0.0 && b[0] <= b[1]) {
+            c.push(
+                f,
+                pair(b),
+                format!("must be [low, high] with 0 < low <= high ({unit})"),
+            );
+        }
+    }
+    nonneg(c, "cav.speed_control_min_gap_m", p.speed_control_min_gap_m);
+    nonneg(c, "cav.reg_gap_band_m", p.reg_gap_band_m);
+    nonneg(c, "cav.reg_speed_band_mps", p.reg_speed_band_mps);
+    nonneg(c, "cav.standstill_gap_m", p.standstill_gap_m);
+    nonneg(c, "cav.reaction_s", p.reaction_s);
+    nonneg(c, "cav.time_gap_ramp_per_s", p.time_gap_ramp_per_s);
+    c.value(
+        "cav.max_accel",
+        p.max_accel,
+        p.max_accel > 0.0,
+        "must be > 0 m/s²",
+    );
+    c.value(
+        "cav.max_decel",
+        p.max_decel,
+        p.max_decel < 0.0,
+        "must be < 0 m/s² (decelerations are negative)",
+    );
+    pos(c, "cav.inter_platoon_gap_s", p.inter_platoon_gap_s);
+    if p.max_platoon < 1 {
+        c.push(
+            "cav.max_platoon",
+            p.max_platoon.to_string(),
+            "must be >= 1 vehicle",
+        );
+    }
+    pos(c, "cav.sensor_range_m", p.sensor_range_m);
+
+    let shares = &p.time_gap_shares;
+    let text = || {
+        let items: Vec<String> = shares
+            .iter()
+            .map(|&(g, s)| format!("[{}, {}]", num(g), num(s)))
+            .collect();
+        format!("[{}]", items.join(", "))
+    };
+    if shares.is_empty() {
+        c.push(
+            "cav.time_gap_shares",
+            "[]",
+            "at least one [time_gap_s, share] pair is required",
+        );
+    } else if let Some(i) = shares
+        .iter()
+        .position(|&(g, s)| !(g > 0.0 && (0.0..=1.0).contains(&s)))
+    {
+        c.push(
+            format!("cav.time_gap_shares[{i}]"),
+            format!("[{}, {}]", num(shares[i].0), num(shares[i].1)),
+            "each pair is [time_gap_s > 0, share in [0, 1]]",
+        );
+    } else {
+        let sum: f64 = shares.iter().map(|&(_, s)| s).sum();
+        if (sum - 1.0).abs() > 1e-6 {
+            c.push(
+                "cav.time_gap_shares",
+                text(),
+                format!("the shares must sum to 1 (they sum to {})", num(sum)),
+            );
+        }
+    }
+}
+
+fn pair(g: [f64; 2]) -> String {
+    format!("[{}, {}]", num(g[0]), num(g[1]))
+}
+
+pub(super) fn check_lane_change(c: &mut Checker, l: &LaneChangeDists, road_length: Option<f64>) {
+    c.dist(
+        "lane_change.mandatory_distance_m",
+        &l.mandatory_distance_m,
+        Some((
+            l.mandatory_distance_m.min > l.mandatory_min_distance_m,
+            "min must be > lane_change.mandatory_min_distance_m",
+        )),
+    );
+    c.dist(
+        "lane_change.mandatory_time_s",
+        &l.mandatory_time_s,
+        Some((
+            l.mandatory_time_s.min > l.mandatory_min_time_s,
+            "min must be > lane_change.mandatory_min_time_s",
+        )),
+    );
+    c.dist(
+        "lane_change.threshold",
+        &l.threshold,
+        Some((
+            l.threshold.min >= 0.0 && l.threshold.max <= 1.0,
+            "must lie in [0, 1]",
+        )),
+    );
+    c.dist(
+        "lane_change.cooperativeness",
+        &l.cooperativeness,
+        Some((
+            l.cooperativeness.min >= 0.0 && l.cooperativeness.max <= 1.0,
+            "must lie in [0, 1] (a probability)",
+        )),
+    );
+    let nonneg = |c: &mut Checker, f: &str, v: f64| c.value(f, v, v >= 0.0, "must be >= 0");
+    let unit = |c: &mut Checker, f: &str, v: f64| {
+        c.value(f, v, (0.0..=1.0).contains(&v), "must be in [0, 1]")
+    };
+    let relax =
+        |c: &mut Checker, f: &str, v: f64| c.value(f, v, v > 0.0 && v <= 1.0, "must be in (0, 1]");
+    nonneg(
+        c,
+        "lane_change.mandatory_min_distance_m",
+        l.mandatory_min_distance_m,
+    );
+    nonneg(
+        c,
+        "lane_change.mandatory_min_time_s",
+        l.mandatory_min_time_s,
+    );
+    unit(c, "lane_change.right_discount", l.right_discount);
+    unit(c, "lane_change.mandatory_weight", l.mandatory_weight);
+    unit(
+        c,
+        "lane_change.discretionary_coop_factor",
+        l.discretionary_coop_factor,
+    );
+    unit(c, "lane_change.slow_down_desire", l.slow_down_desire);
+    unit(c, "lane_change.cav_weight_leader", l.cav_weight_leader);
+    unit(c, "lane_change.cav_weight_follower", l.cav_weight_follower);
+    c.value(
+        "lane_change.sigma_forward",
+        l.sigma_forward,
+        l.sigma_forward > 0.0,
+        "must be > 0",
+    );
+    c.value(
+        "lane_change.sigma_backward",
+        l.sigma_backward,
+        l.sigma_backward > 0.0,
+        "must be > 0",
+    );
+    relax(c, "lane_change.relax_headway", l.relax_headway);
+    relax(c, "lane_change.relax_jam", l.relax_jam);
+    relax(c, "lane_change.relax_reaction", l.relax_reaction);
+    c.value(
+        "lane_change.relax_time_s",
+        l.relax_time_s,
+        l.relax_time_s > 0.0,
+        "must be > 0 s",
+    );
+    nonneg(c, "lane_change.scan_distance_m", l.scan_distance_m);
+    if l.scan_vehicles < 1 {
+        c.push(
+            "lane_change.scan_vehicles",
+            l.scan_vehicles.to_string(),
+            "must be >= 1",
+        );
+    }
+    nonneg(c, "lane_change.min_interval_s", l.min_interval_s);
+    nonneg(c, "lane_change.return_factor", l.return_factor);
+    nonneg(c, "lane_change.min_speed_gain_mps", l.min_speed_gain_mps);
+    c.value(
+        "lane_change.min_reference_speed_mps",
+        l.min_reference_speed_mps,
+        l.min_reference_speed_mps > 0.0,
+        "must be > 0 m/s",
+    );
+    match road_length {
+        Some(len) => c.value(
+            "lane_change.forbid_zone_m",
+            l.forbid_zone_m,
+            l.forbid_zone_m >= 0.0 && l.forbid_zone_m < len,
+            &format!("must be >= 0 and < road.length_m = {}", num(len)),
+        ),
+        None => nonneg(c, "lane_change.forbid_zone_m", l.forbid_zone_m),
+    }
+}
