@@ -156,11 +156,7 @@ impl Simulation {
         // A CAV that follows a CAV within sensor range is (or is about to be, "a CAV directly
         // behind another CAV automatically starts to form a platoon" [S]) a platoon follower:
         // no discretionary desire (w_CAV follower, spec 4.7).
-        let follower = self.linked[s as usize]
-            || (is_cav
-                && nb.leader != NONE
-                && self.vehicles[nb.leader as usize].is_cav()
-                && self.vehicles[nb.leader as usize].rear() - v.x <= self.cfg.cav.sensor_range_m);
+        let follower = self.linked[s as usize] || (is_cav && self.cav_ahead[s as usize]);
         let organize = is_cav && self.organization_active(v);
         let (side, gamma) = if organize {
             if v.lane == pd_lane {

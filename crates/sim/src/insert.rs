@@ -128,13 +128,12 @@ impl Simulation {
                 }
             }
             let (lane, speed) = if n_full > 0 {
-                let mut head = self.entrance.queue.pop_front().expect("queue has a head");
+                let head = self.entrance.queue.front_mut().expect("queue has a head");
                 let pick = head.rng.index(n_full);
                 let lane = (0..n_lanes)
                     .filter(|l| full & (1 << l) != 0)
                     .nth(pick)
                     .expect("pick < n_full");
-                self.entrance.queue.push_front(head);
                 (lane, v_des)
             } else if let Some(b) = best {
                 b

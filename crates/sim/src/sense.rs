@@ -44,11 +44,13 @@ impl Simulation {
             self.nb.resize(n, Neighbours::default());
             self.platoon_pos.resize(n, 1);
             self.linked.resize(n, false);
+            self.cav_ahead.resize(n, false);
             self.sub_size.resize(n, 1);
             self.string_pred_next.resize(n, crate::vehicle::NEVER);
             self.changed_this_step.resize(n, u64::MAX);
         }
         let n_lanes = self.lanes.len();
+        let range = self.cfg.cav.sensor_range_m;
         for l in 0..n_lanes {
             let lane = &self.lanes[l];
             for (k, &s) in lane.iter().enumerate() {
@@ -56,6 +58,10 @@ impl Simulation {
                 nb.idx = k as u32;
                 nb.leader = if k > 0 { lane[k - 1] } else { NONE };
                 nb.follower = lane.get(k + 1).copied().unwrap_or(NONE);
+                self.cav_ahead[s as usize] = k > 0 && {
+                    let lv = &self.vehicles[lane[k - 1] as usize];
+                    lv.is_cav() && lv.rear() - self.vehicles[s as usize].x <= range
+                };
             }
             // Adjacent lanes by a merge sweep: the cursor j points at the first vehicle of the
             // other lane that is not strictly ahead.
@@ -110,17 +116,16 @@ impl Simulation {
     fn platoons(&mut self) {
         let p = &self.cfg.cav;
         let max = p.max_platoon.max(1);
-        let range = p.sensor_range_m;
         let t_far = p.cacc_tg_band_s[1];
         let slack = p.standstill_gap_m + p.speed_control_min_gap_m;
         let vehicles = &self.vehicles;
+        let cav_ahead = &self.cav_ahead;
+        // `ld` is always `f`'s same-lane leader.
         let candidate = |f: u32, ld: u32| -> bool {
-            if ld == NONE {
-                return false;
-            }
-            let (fv, lv) = (&vehicles[f as usize], &vehicles[ld as usize]);
-            let gap = lv.rear() - fv.x;
-            fv.automated() && lv.is_cav() && gap <= range && gap <= t_far * fv.v + slack
+            let fv = &vehicles[f as usize];
+            cav_ahead[f as usize]
+                && fv.automated()
+                && vehicles[ld as usize].rear() - fv.x <= t_far * fv.v + slack
         };
         for l in 0..self.lanes.len() {
             let lane = &self.lanes[l];
@@ -170,14 +175,7 @@ impl Simulation {
             let (mut adj_start, mut tg2_start) = (0usize, 0usize);
             for (k, &s) in lane.iter().enumerate() {
                 self.vehicles[s as usize].string_pred = self.string_pred_next[s as usize];
-                let ld = if k > 0 { lane[k - 1] } else { NONE };
-                let adjacent = {
-                    let fv = &self.vehicles[s as usize];
-                    ld != NONE && fv.automated() && {
-                        let lv = &self.vehicles[ld as usize];
-                        lv.is_cav() && lv.rear() - fv.x <= range
-                    }
-                };
+                let adjacent = self.cav_ahead[s as usize] && self.vehicles[s as usize].automated();
                 if !adjacent || k - adj_start >= max as usize {
                     close_run(&mut self.vehicles, &lane[adj_start..k], false);
                     adj_start = k;

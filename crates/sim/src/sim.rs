@@ -42,6 +42,8 @@ pub struct Simulation {
     pub(crate) platoon_pos: Vec<u32>,
     /// Member of its predecessor's CACC string (spec 3.6).
     pub(crate) linked: Vec<bool>,
+    /// The same-lane leader is a CAV within sensor range (sense phase).
+    pub(crate) cav_ahead: Vec<bool>,
     pub(crate) sub_size: Vec<u32>,
     pub(crate) string_pred_next: Vec<u64>,
     pub(crate) decisions: Vec<Decision>,
@@ -82,6 +84,7 @@ impl Simulation {
             nb: Vec::new(),
             platoon_pos: Vec::new(),
             linked: Vec::new(),
+            cav_ahead: Vec::new(),
             sub_size: Vec::new(),
             string_pred_next: Vec::new(),
             decisions: Vec::new(),
