@@ -4,7 +4,7 @@ use plotters::coord::combinators::BindKeyPoints;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::geom::{legend_corner, Rect, P};
+use crate::geom::{legend_corner, legend_size, Rect, P};
 use crate::output::{self, msg, DrawResult};
 use crate::theme::{self, bold, bounded, colour, extent, text, tick_label};
 use crate::Bars;
@@ -174,9 +174,7 @@ impl output::Figure for Figure<'_> {
             .collect();
         if !names.is_empty() {
             let (pw, ph) = ctx.plotting_area().dim_in_pixel();
-            let longest = names.iter().map(|n| n.chars().count()).max().unwrap_or(0);
-            let w = (longest as f64 * 0.6 * sz.legend as f64 + 60.0) / pw.max(1) as f64;
-            let h = (names.len() as f64 * (sz.legend as f64 + 10.0) + 20.0) / ph.max(1) as f64;
+            let (w, h) = legend_size(&names, sz.legend as f64, (pw, ph));
             let rect = Rect { x0, x1, y0, y1 };
             ctx.configure_series_labels()
                 .position(legend_corner(&drawn, &rect, (w, h)))

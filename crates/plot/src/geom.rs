@@ -155,6 +155,15 @@ pub(crate) fn clip_polygon(poly: &[P], r: &Rect) -> Vec<P> {
     out
 }
 
+/// The legend box as fractions of the plotting area `(width, height)` in pixels: about 0.6 em
+/// per character of the longest name plus the colour key, one line per name.
+pub(crate) fn legend_size(names: &[&str], font_px: f64, area_px: (u32, u32)) -> (f64, f64) {
+    let longest = names.iter().map(|n| n.chars().count()).max().unwrap_or(0);
+    let w = (longest as f64 * 0.6 * font_px + 60.0) / area_px.0.max(1) as f64;
+    let h = (names.len() as f64 * (font_px + 10.0) + 20.0) / area_px.1.max(1) as f64;
+    (w, h)
+}
+
 /// The corner of `r` where a legend of `size` (fractions of the plot's width and height)
 /// covers the fewest samples of `lines`. Ties prefer upper right, upper left, lower right,
 /// lower left.

@@ -5,7 +5,7 @@ use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::geom::{clip_polygon, clip_polyline, finite_runs, legend_corner, Rect, P};
+use crate::geom::{clip_polygon, clip_polyline, finite_runs, legend_corner, legend_size, Rect, P};
 use crate::output::{msg, DrawResult, Figure};
 use crate::theme::{self, bold, colour, extent, padded, text, tick_label, valid_range, Sizes};
 use crate::{Chart, Series, Style};
@@ -277,9 +277,7 @@ pub(crate) fn draw_chart<DB: DrawingBackend>(
         .collect();
     if !names.is_empty() {
         let (pw, ph) = ctx.plotting_area().dim_in_pixel();
-        let longest = names.iter().map(|n| n.chars().count()).max().unwrap_or(0);
-        let w = (longest as f64 * 0.6 * sz.legend as f64 + 60.0) / pw.max(1) as f64;
-        let h = (names.len() as f64 * (sz.legend as f64 + 10.0) + 20.0) / ph.max(1) as f64;
+        let (w, h) = legend_size(&names, sz.legend as f64, (pw, ph));
         ctx.configure_series_labels()
             .position(legend_corner(&drawn, &rect, (w, h)))
             .margin(10)
