@@ -14,8 +14,9 @@ use platoonsim_sim::{Config, DetectorRecord, Output, Summary};
 use std::path::{Path, PathBuf};
 
 /// The columns of `detectors.csv`, in order.
-pub const DETECTOR_COLUMNS: [&str; 9] = [
+pub const DETECTOR_COLUMNS: [&str; 10] = [
     "detector",
+    "kind",
     "position_m",
     "lane",
     "interval_start_s",
@@ -63,6 +64,7 @@ pub fn detectors_csv(records: &[DetectorRecord]) -> Result<Vec<u8>> {
     for r in records {
         w.write_record([
             r.detector.clone(),
+            r.kind.clone(),
             number(r.position_m),
             r.lane.clone(),
             number(r.interval_start_s),
@@ -173,6 +175,7 @@ mod tests {
     fn record(speed: Option<f64>) -> DetectorRecord {
         DetectorRecord {
             detector: "discharge".into(),
+            kind: "mainline".into(),
             position_m: 6100.0,
             lane: "all".into(),
             interval_start_s: 1200.0,
@@ -192,9 +195,9 @@ mod tests {
         assert_eq!(
             lines,
             vec![
-                "detector,position_m,lane,interval_start_s,interval_s,count,flow_vph,speed_kmh,occupancy",
-                "discharge,6100,all,1200,300,180,2160,97.25,0.125",
-                "discharge,6100,all,1200,300,180,2160,,0.125",
+                "detector,kind,position_m,lane,interval_start_s,interval_s,count,flow_vph,speed_kmh,occupancy",
+                "discharge,mainline,6100,all,1200,300,180,2160,97.25,0.125",
+                "discharge,mainline,6100,all,1200,300,180,2160,,0.125",
             ]
         );
     }

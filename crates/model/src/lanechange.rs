@@ -107,6 +107,16 @@ pub struct LaneChangeDists {
     pub cav_weight_follower: f64,
     /// No lane changes within this distance of an entrance ("forbid zone", spec 4.1) (m).
     pub forbid_zone_m: f64,
+    /// Anticipation of on-ramps (spec 4.2 "Anticipatory"): range upstream of a ramp's merge
+    /// point within which drivers in the two rightmost lanes react to it (m).
+    pub anticipation_distance_m: f64,
+    /// c_inc, strength of the on-ramp anticipation (spec 4.2, 4.9) (-).
+    pub anticipation_strength: f64,
+    /// E_exit: no discretionary change within this distance of the driver's exit (m).
+    pub exit_no_change_m: f64,
+    /// η_e penalty on a discretionary change away from the exit lane (-), applied within
+    /// `anticipation_distance_m` of the exit.
+    pub exit_lane_penalty: f64,
 }
 
 impl Default for LaneChangeDists {
@@ -140,6 +150,10 @@ impl Default for LaneChangeDists {
             cav_weight_leader: 0.5,
             cav_weight_follower: 0.0,
             forbid_zone_m: 100.0,
+            anticipation_distance_m: 2000.0,
+            anticipation_strength: 1.0,
+            exit_no_change_m: 300.0,
+            exit_lane_penalty: 0.5,
         }
     }
 }

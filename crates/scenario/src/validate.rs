@@ -335,10 +335,7 @@ pub fn validate(
                 format!("must lie inside the road (0, {})", num(l)),
             );
         }
-        detectors.push(DetectorSpec {
-            name,
-            position_m: pos.map_or(f64::NAN, |p| p.v),
-        });
+        detectors.push(DetectorSpec::mainline(&name, pos.map_or(f64::NAN, |p| p.v)));
     }
 
     // --- [measurement]
@@ -494,6 +491,7 @@ pub fn validate(
             length_m: length.unwrap_or(f64::NAN),
             control_start_m: cstart.map_or(f64::NAN, |n| n.v),
             control_end_m: cend.map_or(f64::NAN, |n| n.v),
+            network: None,
         },
         demand: Demand {
             vph_per_lane: raw.demand.vph_per_lane.unwrap_or(f64::NAN),

@@ -305,6 +305,18 @@ pub(super) fn check_lane_change(c: &mut Checker, l: &LaneChangeDists, road_lengt
     nonneg(c, "lane_change.min_interval_s", l.min_interval_s);
     nonneg(c, "lane_change.return_factor", l.return_factor);
     nonneg(c, "lane_change.min_speed_gain_mps", l.min_speed_gain_mps);
+    nonneg(
+        c,
+        "lane_change.anticipation_distance_m",
+        l.anticipation_distance_m,
+    );
+    nonneg(
+        c,
+        "lane_change.anticipation_strength",
+        l.anticipation_strength,
+    );
+    nonneg(c, "lane_change.exit_no_change_m", l.exit_no_change_m);
+    unit(c, "lane_change.exit_lane_penalty", l.exit_lane_penalty);
     c.value(
         "lane_change.min_reference_speed_mps",
         l.min_reference_speed_mps,

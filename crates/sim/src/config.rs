@@ -17,6 +17,169 @@ pub struct Road {
     /// The control section, where platoon organization may act (paper: 5,000-6,000 m).
     pub control_start_m: f64,
     pub control_end_m: f64,
+    /// A freeway network (issue 4): changing lane count, ramps, time-varying demand. `None`
+    /// for the homogeneous road, where every lane is open over [0, length_m).
+    pub network: Option<Network>,
+}
+
+/// A freeway corridor (issue 4). Engine coordinates: x = 0 at the mainline entrance, x =
+/// `length_m` at the end; outputs report x + `origin_m` (e.g. metres downstream of a
+/// reference ramp). Lateral lane indices run from the right: index 0 is the rightmost
+/// position anywhere on the corridor, so that a lane added on the right has a lower index
+/// than the lanes beside it, and an acceleration lane lies at (rightmost through lane − 1).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Network {
+    /// Output coordinate of engine x = 0 (m).
+    pub origin_m: f64,
+    /// Where each through (mainline) lane is open. A lane may have several extents; one that
+    /// ends before the road end is a lane drop (its vehicles must leave it).
+    pub through_lanes: Vec<LaneExtent>,
+    pub on_ramps: Vec<OnRamp>,
+    pub off_ramps: Vec<OffRamp>,
+    /// Length of one demand interval (s), e.g. 900 for 15 min. Interval k covers
+    /// [k·interval_s, (k+1)·interval_s); past the last one the last value holds.
+    pub interval_s: f64,
+    /// Demand at the mainline entrance per interval (veh/h, all lanes), before scaling.
+    pub mainline_vph: Vec<f64>,
+    /// Multiplier on every entrance demand (paper: 100-127 %).
+    pub demand_scale: f64,
+    /// Speed limit of the ramps: vehicles enter the acceleration lane at most at this speed (km/h).
+    pub ramp_speed_kmh: f64,
+}
+
+/// A through lane open on [from_m, to_m) (engine coordinates).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LaneExtent {
+    pub lane: u32,
+    pub from_m: f64,
+    pub to_m: f64,
+}
+
+/// An on-ramp. Its vehicles enter at the merge point `x_m`: into the through lane that starts
+/// there if there is one (a lane add), otherwise into an acceleration lane of length
+/// `accel_lane_m` just right of the rightmost through lane, which they must leave by its end
+/// (mandatory change, spec 4.2); at the end they stop and wait.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct OnRamp {
+    pub name: String,
+    pub x_m: f64,
+    pub accel_lane_m: f64,
+    /// Ramp roadway length upstream of the merge point (m): the ramp density of the
+    /// anticipation rule (spec 4.2) counts its queue over this length plus the acceleration lane.
+    pub ramp_length_m: f64,
+    /// Demand per interval (veh/h), before scaling.
+    pub demand_vph: Vec<f64>,
+}
+
+/// An off-ramp (diverge at `x_m`). A vehicle decides on entry, for each off-ramp downstream in
+/// turn, with the current interval's exit fraction (a Bernoulli trial), and then makes the
+/// mandatory changes to the rightmost through lane at `x_m` (spec 4.2).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct OffRamp {
+    pub name: String,
+    pub x_m: f64,
+    /// Share of the arriving mainline vehicles that take this exit, per interval, in [0, 1].
+    pub exit_fraction: Vec<f64>,
+}
+
+impl Network {
+    /// The invariants the engine relies on (the scenario crate checks the same with file
+    /// context).
+    pub fn check(&self, lanes: u32, length_m: f64) -> Result<(), String> {
+        let series = |name: &str, v: &[f64], hi: f64| -> Result<(), String> {
+            if v.is_empty() {
+                return Err(format!("{name}: must have at least one interval"));
+            }
+            match v
+                .iter()
+                .position(|x| !(x.is_finite() && *x >= 0.0 && *x <= hi))
+            {
+                Some(k) => Err(format!(
+                    "{name}[{k}] = {}: must be a finite number in [0, {hi}]",
+                    v[k]
+                )),
+                None => Ok(()),
+            }
+        };
+        if !(self.interval_s.is_finite() && self.interval_s > 0.0) {
+            return Err(format!(
+                "network.interval_s = {}: must be a finite number > 0",
+                self.interval_s
+            ));
+        }
+        if !(self.demand_scale.is_finite() && self.demand_scale >= 0.0) {
+            return Err(format!(
+                "network.demand_scale = {}: must be a finite number >= 0",
+                self.demand_scale
+            ));
+        }
+        if !(self.ramp_speed_kmh.is_finite() && self.ramp_speed_kmh > 0.0) {
+            return Err(format!(
+                "network.ramp_speed_kmh = {}: must be a finite number > 0",
+                self.ramp_speed_kmh
+            ));
+        }
+        series("network.mainline_vph", &self.mainline_vph, f64::MAX)?;
+        for (i, e) in self.through_lanes.iter().enumerate() {
+            if e.lane >= lanes || !(e.from_m >= 0.0 && e.to_m > e.from_m && e.to_m <= length_m) {
+                return Err(format!(
+                    "network.through_lanes[{i}] = lane {} on [{}, {}): the lane must be < {lanes} and the extent inside [0, {length_m}]",
+                    e.lane, e.from_m, e.to_m
+                ));
+            }
+        }
+        if !self.through_lanes.iter().any(|e| e.from_m == 0.0) {
+            return Err("network.through_lanes: no lane is open at the entrance (x = 0)".into());
+        }
+        for (i, r) in self.on_ramps.iter().enumerate() {
+            if !(r.x_m > 0.0 && r.x_m < length_m) {
+                return Err(format!(
+                    "network.on_ramps[{i}].x_m = {}: must lie inside the road (0, {length_m})",
+                    r.x_m
+                ));
+            }
+            if !(r.accel_lane_m.is_finite() && r.accel_lane_m >= 0.0)
+                || !(r.ramp_length_m.is_finite() && r.ramp_length_m >= 0.0)
+            {
+                return Err(format!(
+                    "network.on_ramps[{i}]: accel_lane_m = {} and ramp_length_m = {} must be finite and >= 0",
+                    r.accel_lane_m, r.ramp_length_m
+                ));
+            }
+            series(
+                &format!("network.on_ramps[{i}].demand_vph"),
+                &r.demand_vph,
+                f64::MAX,
+            )?;
+        }
+        for (i, r) in self.off_ramps.iter().enumerate() {
+            if !(r.x_m > 0.0 && r.x_m < length_m) {
+                return Err(format!(
+                    "network.off_ramps[{i}].x_m = {}: must lie inside the road (0, {length_m})",
+                    r.x_m
+                ));
+            }
+            series(
+                &format!("network.off_ramps[{i}].exit_fraction"),
+                &r.exit_fraction,
+                1.0,
+            )?;
+        }
+        Ok(())
+    }
+
+    /// Value of a per-interval series at time `t_s` (the last value past the end; 0 if empty).
+    pub fn at(&self, series: &[f64], t_s: f64) -> f64 {
+        if series.is_empty() {
+            return 0.0;
+        }
+        let k = if self.interval_s > 0.0 {
+            (t_s / self.interval_s).floor().max(0.0) as usize
+        } else {
+            0
+        };
+        series[k.min(series.len() - 1)]
+    }
 }
 
 /// Traffic demand at the entrance: Poisson arrivals, Bernoulli vehicle type.
@@ -26,11 +189,38 @@ pub struct Demand {
     pub vph_per_lane: f64,
 }
 
-/// A loop detector across all lanes at a position.
+/// A loop detector across all through lanes at a position, or the counter of an off-ramp.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct DetectorSpec {
     pub name: String,
+    /// Engine coordinate (m).
     pub position_m: f64,
+    pub kind: DetectorKind,
+    /// Counts toward the network discharge (off-ramps and the mainline end).
+    pub exit: bool,
+}
+
+/// What a detector covers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Default)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum DetectorKind {
+    /// The through lanes open at its position (acceleration lanes excluded).
+    #[default]
+    Mainline,
+    /// The vehicles leaving by off-ramp `ramp` (index into `Network::off_ramps`).
+    OffRamp { ramp: usize },
+}
+
+impl DetectorSpec {
+    /// A mainline detector that is not an exit.
+    pub fn mainline(name: &str, position_m: f64) -> DetectorSpec {
+        DetectorSpec {
+            name: name.to_string(),
+            position_m,
+            kind: DetectorKind::Mainline,
+            exit: false,
+        }
+    }
 }
 
 /// Platoon organization strategy (issue 3). `None` = no organization (baseline).
@@ -142,6 +332,19 @@ impl Config {
                 ));
             }
         }
+        if let Some(net) = &self.road.network {
+            net.check(self.road.lanes, self.road.length_m)?;
+        }
+        for (i, d) in self.detectors.iter().enumerate() {
+            if let DetectorKind::OffRamp { ramp } = d.kind {
+                let n = self.road.network.as_ref().map_or(0, |n| n.off_ramps.len());
+                if ramp >= n {
+                    return Err(format!(
+                        "detectors[{i}] counts off-ramp {ramp}, but only {n} off-ramps exist"
+                    ));
+                }
+            }
+        }
         if self.measurement_detector >= self.detectors.len() {
             return Err(format!(
                 "measurement.detector index {} names no detector ({} defined)",
@@ -175,23 +378,15 @@ impl Config {
                 length_m: 6500.0,
                 control_start_m: 5000.0,
                 control_end_m: 6000.0,
+                network: None,
             },
             demand: Demand {
                 vph_per_lane: demand_vphpl,
             },
             detectors: vec![
-                DetectorSpec {
-                    name: "upstream".into(),
-                    position_m: 4900.0,
-                },
-                DetectorSpec {
-                    name: "control_mid".into(),
-                    position_m: 5500.0,
-                },
-                DetectorSpec {
-                    name: "discharge".into(),
-                    position_m: 6100.0,
-                },
+                DetectorSpec::mainline("upstream", 4900.0),
+                DetectorSpec::mainline("control_mid", 5500.0),
+                DetectorSpec::mainline("discharge", 6100.0),
             ],
             aggregation_s: 300.0,
             measurement_detector: 2,

@@ -121,6 +121,7 @@ impl Detector {
             let mut push = |lane: String, a: &Acc, n_lanes: usize| {
                 out.push(DetectorRecord {
                     detector: self.name.clone(),
+                    kind: "mainline".into(),
                     position_m: self.position_m,
                     lane,
                     interval_start_s: start,

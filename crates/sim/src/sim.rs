@@ -350,6 +350,8 @@ impl Simulation {
             vehicles_counted: m.vehicles_counted,
             discharge_flow_vphpl: discharge,
             max_sustained_flow_vphpl: max_flow,
+            network_discharge_vph: None,
+            missed_exits: 0,
             collisions: self.collisions,
             vehicle_updates: self.vehicle_updates,
             steps: self.step,

@@ -40,6 +40,12 @@ pub struct Summary {
     pub discharge_flow_vphpl: f64,
     /// Highest aggregation-interval flow at the measurement detector in the window (veh/h/lane).
     pub max_sustained_flow_vphpl: f64,
+    /// Network scenarios: vehicles leaving by the exit detectors (off-ramps and the mainline
+    /// end) per hour, mean over the measurement window (veh/h). Absent for a plain road.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub network_discharge_vph: Option<f64>,
+    /// Vehicles that could not reach the lane of their off-ramp in time and drove on to the end.
+    pub missed_exits: u64,
     /// Steps in which two vehicles overlapped (counted per vehicle pair and step).
     pub collisions: u64,
     pub vehicle_updates: u64,
@@ -52,6 +58,9 @@ pub struct Summary {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct DetectorRecord {
     pub detector: String,
+    /// "mainline" or "off-ramp".
+    pub kind: String,
+    /// Output coordinate (engine x + the network origin).
     pub position_m: f64,
     pub lane: String,
     pub interval_start_s: f64,
