@@ -153,6 +153,14 @@ impl Network {
             )?;
         }
         for (i, r) in self.off_ramps.iter().enumerate() {
+            if i > 0 && r.x_m < self.off_ramps[i - 1].x_m {
+                return Err(format!(
+                    "network.off_ramps[{i}].x_m = {}: off-ramps must be listed in downstream order (off_ramps[{}].x_m = {})",
+                    r.x_m,
+                    i - 1,
+                    self.off_ramps[i - 1].x_m
+                ));
+            }
             if !(r.x_m > 0.0 && r.x_m < length_m) {
                 return Err(format!(
                     "network.off_ramps[{i}].x_m = {}: must lie inside the road (0, {length_m})",

@@ -32,6 +32,19 @@ pub struct Acc {
 pub struct Detector {
     pub name: String,
     pub position_m: f64,
+    /// "mainline" or "off-ramp" (detectors.csv).
+    pub kind: &'static str,
+    /// Counts toward the network discharge.
+    pub exit: bool,
+    /// Lanes it covers: bit per lateral lane index (all lanes of a plain road; the through
+    /// lanes open at its position on a network; lane 0 for an off-ramp counter).
+    pub mask: u32,
+    /// Lowest covered lane index: records number lanes from it (1 = rightmost covered lane).
+    first_lane: usize,
+    /// Number of covered lanes (flow per lane in broadcasts).
+    covered: usize,
+    /// Added to the position in the records (the network origin).
+    origin_m: f64,
     lanes: usize,
     /// Accumulators of the running interval, per lane.
     current: Vec<Acc>,
@@ -50,9 +63,26 @@ pub struct Broadcast {
 
 impl Detector {
     pub fn new(name: &str, position_m: f64, lanes: usize) -> Detector {
+        Detector::covering(name, position_m, lanes, (1u32 << lanes) - 1, 0.0)
+    }
+
+    /// A detector over the lanes in `mask` (bit per lane index, lanes < `lanes`).
+    pub fn covering(
+        name: &str,
+        position_m: f64,
+        lanes: usize,
+        mask: u32,
+        origin_m: f64,
+    ) -> Detector {
         Detector {
             name: name.to_string(),
             position_m,
+            kind: "mainline",
+            exit: false,
+            mask,
+            first_lane: mask.trailing_zeros() as usize,
+            covered: (mask.count_ones() as usize).max(1),
+            origin_m,
             lanes,
             current: vec![Acc::default(); lanes],
             history: Vec::new(),
@@ -88,10 +118,22 @@ impl Detector {
         }
     }
 
+    /// A vehicle leaves through this detector (an off-ramp counter) at speed `v` (m/s).
+    pub fn count_exit(&mut self, v: f64) {
+        let acc = &mut self.current[self.first_lane];
+        acc.count += 1;
+        acc.speed_sum += v;
+    }
+
     /// Close the running interval.
     pub fn close_interval(&mut self) {
         let done = std::mem::replace(&mut self.current, vec![Acc::default(); self.lanes]);
         self.history.push(done);
+    }
+
+    /// Number of lanes it covers.
+    pub fn covered_lanes(&self) -> usize {
+        self.covered
     }
 
     /// Completed intervals so far.
@@ -109,7 +151,7 @@ impl Detector {
         let last = self.history.last()?;
         let total = sum(last);
         Some(Broadcast {
-            flow_vphpl: total.count as f64 * 3600.0 / interval_s / self.lanes as f64,
+            flow_vphpl: total.count as f64 * 3600.0 / interval_s / self.covered as f64,
             speed_kmh: mean_speed_kmh(&total),
         })
     }
@@ -121,8 +163,8 @@ impl Detector {
             let mut push = |lane: String, a: &Acc, n_lanes: usize| {
                 out.push(DetectorRecord {
                     detector: self.name.clone(),
-                    kind: "mainline".into(),
-                    position_m: self.position_m,
+                    kind: self.kind.into(),
+                    position_m: self.position_m + self.origin_m,
                     lane,
                     interval_start_s: start,
                     interval_s,
@@ -133,9 +175,11 @@ impl Detector {
                 });
             };
             for (l, a) in lanes.iter().enumerate() {
-                push((l + 1).to_string(), a, 1);
+                if self.mask & (1 << l) != 0 {
+                    push((l - self.first_lane + 1).to_string(), a, 1);
+                }
             }
-            push("all".to_string(), &sum(lanes), self.lanes);
+            push("all".to_string(), &sum(lanes), self.covered);
         }
     }
 }

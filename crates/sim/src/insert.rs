@@ -16,32 +16,106 @@
 use crate::config::Config;
 use crate::rng::{Purpose, Stream};
 use crate::sim::Simulation;
-use crate::vehicle::{Kind, Mode, Relaxation, Vehicle, NEVER};
+use crate::vehicle::{Kind, Mode, Relaxation, Vehicle, NEVER, NO_EXIT};
 use platoonsim_model::cav::{self, Family};
 use platoonsim_model::human::{self, HUMAN_DRAWS};
 use platoonsim_model::lanechange::LC_DRAWS;
 use platoonsim_model::{Leader, Relax};
 use std::collections::VecDeque;
 
-/// An entrance: its arrival stream and virtual queue.
+/// An entrance: its arrival stream and virtual queue. Entrance 0 is the mainline; entrance
+/// i + 1 is on-ramp i of the network.
 pub struct Entrance {
     rng: Stream,
-    /// Arrival rate (veh/s) for the whole entrance.
-    rate: f64,
+    /// Arrival rate (veh/s) per demand interval for the whole entrance (one value: constant).
+    rates: Vec<f64>,
+    /// Demand interval length (s); ∞ for a constant rate.
+    interval_s: f64,
     next_arrival_s: f64,
-    queue: VecDeque<Vehicle>,
+    pub(crate) queue: VecDeque<Vehicle>,
+    /// On-ramp index (`None` for the mainline).
+    pub(crate) ramp: Option<usize>,
 }
 
 impl Entrance {
-    pub fn new(cfg: &Config, index: u64) -> Entrance {
-        let mut rng = Stream::new(cfg.seed, Purpose::Arrivals, index);
-        let rate = cfg.demand.vph_per_lane * cfg.road.lanes as f64 / 3600.0;
-        let first = rng.exponential(rate);
-        Entrance {
+    /// All entrances of a run: the mainline, then one per on-ramp.
+    pub fn all(cfg: &Config) -> Vec<Entrance> {
+        let Some(net) = &cfg.road.network else {
+            let rate = cfg.demand.vph_per_lane * cfg.road.lanes as f64 / 3600.0;
+            return vec![Entrance::new(cfg, 0, vec![rate], f64::INFINITY, None)];
+        };
+        let per_s =
+            |v: &[f64]| -> Vec<f64> { v.iter().map(|q| q * net.demand_scale / 3600.0).collect() };
+        let mut out = vec![Entrance::new(
+            cfg,
+            0,
+            per_s(&net.mainline_vph),
+            net.interval_s,
+            None,
+        )];
+        for (i, r) in net.on_ramps.iter().enumerate() {
+            out.push(Entrance::new(
+                cfg,
+                i as u64 + 1,
+                per_s(&r.demand_vph),
+                net.interval_s,
+                Some(i),
+            ));
+        }
+        out
+    }
+
+    fn new(
+        cfg: &Config,
+        index: u64,
+        rates: Vec<f64>,
+        interval_s: f64,
+        ramp: Option<usize>,
+    ) -> Entrance {
+        let rng = Stream::new(cfg.seed, Purpose::Arrivals, index);
+        let mut e = Entrance {
             rng,
-            rate,
-            next_arrival_s: first,
+            rates,
+            interval_s,
+            next_arrival_s: 0.0,
             queue: VecDeque::new(),
+            ramp,
+        };
+        e.next_arrival_s = e.draw_after(0.0);
+        e
+    }
+
+    fn rate_at(&self, t: f64) -> f64 {
+        if self.rates.is_empty() {
+            return 0.0;
+        }
+        let k = if self.interval_s.is_finite() {
+            (t / self.interval_s).floor().max(0.0) as usize
+        } else {
+            0
+        };
+        self.rates[k.min(self.rates.len() - 1)]
+    }
+
+    /// The next arrival after `t` of a Poisson process whose rate is constant over each demand
+    /// interval: an exponential headway at the current rate, redrawn from the boundary at the
+    /// next interval's rate if it crosses one (exact, by memorylessness). A constant rate gives
+    /// the same draws as a plain exponential sequence.
+    fn draw_after(&mut self, mut t: f64) -> f64 {
+        loop {
+            let k = (t / self.interval_s).floor();
+            let boundary = if self.interval_s.is_finite() {
+                (k + 1.0) * self.interval_s
+            } else {
+                f64::INFINITY
+            };
+            let rate = self.rate_at(t);
+            let last = !self.interval_s.is_finite() || k as usize + 1 >= self.rates.len();
+            let h = self.rng.exponential(rate);
+            if last || t + h < boundary {
+                return t + h;
+            }
+            t = boundary;
         }
     }
 
@@ -50,8 +124,15 @@ impl Entrance {
     }
 }
 
-/// Draw a new vehicle (type and parameters) from its own stream.
-fn create(cfg: &Config, id: u64) -> Vehicle {
+/// Smallest distance from the entry point to an off-ramp the vehicle may choose (m) [D]: a
+/// ramp vehicle cannot merge and reach an exit just downstream of its merge point.
+pub const MIN_TRIP_TO_EXIT_M: f64 = 200.0;
+
+/// Draw a new vehicle (type and parameters) from its own stream; on a network it also chooses
+/// its exit on entry at `x` and time `t` (issue 4 item 1): for each off-ramp downstream in turn
+/// a Bernoulli trial with that ramp's exit fraction for the current interval; the first success
+/// is its exit, none means the mainline end.
+fn create(cfg: &Config, id: u64, x: f64, t: f64) -> Vehicle {
     let mut rng = Stream::new(cfg.seed, Purpose::Vehicle, id);
     let kind = if rng.uniform() < cfg.penetration {
         Kind::Cav
@@ -64,6 +145,18 @@ fn create(cfg: &Config, id: u64) -> Vehicle {
     let mut zl = [0.0; LC_DRAWS];
     zl.iter_mut().for_each(|z| *z = rng.normal());
     let u_gap = rng.uniform();
+    let mut exit = NO_EXIT;
+    if let Some(net) = &cfg.road.network {
+        for (k, r) in net.off_ramps.iter().enumerate() {
+            if r.x_m < x + MIN_TRIP_TO_EXIT_M {
+                continue;
+            }
+            if rng.uniform() < net.at(&r.exit_fraction, t) {
+                exit = k as u32;
+                break;
+            }
+        }
+    }
     let human = cfg.human.sample(&zh, cfg.human.desired_speed_mps(z_speed));
     let cacc_gap_s = match kind {
         Kind::Cav => cav::draw_time_gap(&cfg.cav, u_gap),
@@ -93,28 +186,45 @@ fn create(cfg: &Config, id: u64) -> Vehicle {
         lane_changes: 0,
         max_platoon: 1,
         max_platoon_tg2: 1,
+        exit,
     }
 }
 
 impl Simulation {
-    /// Phase 5b.
+    /// Phase 5b: arrivals at every entrance, then insertion from each virtual queue.
     pub(crate) fn insert(&mut self) {
         let t_end = (self.step + 1) as f64 * self.dt;
-        while self.entrance.next_arrival_s <= t_end {
-            let v = create(&self.cfg, self.next_id);
-            self.next_id += 1;
-            self.entrance.queue.push_back(v);
-            let h = self.entrance.rng.exponential(self.entrance.rate);
-            self.entrance.next_arrival_s += h;
+        for e in 0..self.entrances.len() {
+            while self.entrances[e].next_arrival_s <= t_end {
+                let t = self.entrances[e].next_arrival_s;
+                let x = match self.entrances[e].ramp {
+                    None => 0.0,
+                    Some(r) => self.geom.on_ramps[r].x,
+                };
+                let v = create(&self.cfg, self.next_id, x, t);
+                self.next_id += 1;
+                let ent = &mut self.entrances[e];
+                ent.queue.push_back(v);
+                ent.next_arrival_s = ent.draw_after(t);
+            }
+            match self.entrances[e].ramp {
+                None => self.insert_mainline(e),
+                Some(r) => self.insert_ramp(e, r),
+            }
         }
-        let n_lanes = self.lanes.len();
+    }
+
+    /// The mainline entrance: any lane open at x = 0, several vehicles per step (one per lane).
+    fn insert_mainline(&mut self, e: usize) {
         let mut used = 0u32; // bit per lane
-        while let Some(head) = self.entrance.queue.front() {
+        let n_entry = self.geom.entry_lanes.len();
+        while let Some(head) = self.entrances[e].queue.front() {
             let v_des = head.human.desired_speed;
             let mut full: u32 = 0;
             let mut n_full = 0usize;
             let mut best: Option<(usize, f64)> = None;
-            for l in 0..n_lanes {
+            for i in 0..n_entry {
+                let l = self.geom.entry_lanes[i] as usize;
                 if used & (1 << l) != 0 {
                     continue;
                 }
@@ -128,9 +238,12 @@ impl Simulation {
                 }
             }
             let (lane, speed) = if n_full > 0 {
-                let head = self.entrance.queue.front_mut().expect("queue has a head");
+                let head = self.entrances[e]
+                    .queue
+                    .front_mut()
+                    .expect("queue has a head");
                 let pick = head.rng.index(n_full);
-                let lane = (0..n_lanes)
+                let lane = (0..32)
                     .filter(|l| full & (1 << l) != 0)
                     .nth(pick)
                     .expect("pick < n_full");
@@ -140,28 +253,92 @@ impl Simulation {
             } else {
                 break;
             };
-            let mut veh = self.entrance.queue.pop_front().expect("queue has a head");
-            veh.lane = lane as u32;
-            veh.x = 0.0;
-            veh.x_prev = 0.0;
-            veh.v = speed;
-            veh.a = 0.0;
-            veh.entered_step = self.step + 1;
-            veh.measured = veh.entered_step >= self.warmup_step;
-            if veh.is_cav() {
-                veh.time_gap_s = veh.cacc_gap_s;
-                if let Some(&ld) = self.lanes[lane].last() {
-                    veh.time_gap_s = self.entry_time_gap(&veh, ld);
-                    if self.vehicles[ld as usize].rear() < 2.0 * speed.max(1.0) {
-                        veh.family = Family::Gap;
-                    }
-                }
-            }
-            self.metrics.entered += 1;
-            let s = self.alloc(veh);
-            self.lanes[lane].push(s);
+            let veh = self.entrances[e]
+                .queue
+                .pop_front()
+                .expect("queue has a head");
+            let at = self.lanes[lane].len();
+            self.place(veh, lane, 0.0, speed, at);
             used |= 1 << lane;
         }
+    }
+
+    /// An on-ramp: at most one vehicle per step enters its lane at the merge point, at most at
+    /// the ramp speed limit, if that is a steady state behind the vehicle (or wall) ahead and
+    /// leaves the vehicle behind (a lane add, or a merged auxiliary lane) a comfortable gap.
+    fn insert_ramp(&mut self, e: usize, r: usize) {
+        let Some(head) = self.entrances[e].queue.front() else {
+            return;
+        };
+        let ramp = &self.geom.on_ramps[r];
+        let (x, lane) = (ramp.x, ramp.lane as usize);
+        let v_max = head.human.desired_speed.min(self.ramp_speed_mps);
+        let list = &self.lanes[lane];
+        let j = list.partition_point(|&o| self.vehicles[o as usize].x > x);
+        let ld = (j > 0).then(|| list[j - 1]);
+        // The follower, if it is in the same open segment (not behind a wall upstream).
+        let seg_from = self
+            .geom
+            .seg(lane as u32, x)
+            .map_or(x, |s| s.from.max(f64::MIN));
+        let fo = list
+            .get(j)
+            .copied()
+            .filter(|&f| self.vehicles[f as usize].x >= seg_from);
+        let wall = self.geom.wall_ahead(lane as u32, x);
+        let Some(speed) = self.insertion_speed_at(head, x, ld, wall, v_max) else {
+            return;
+        };
+        if let Some(f) = fo {
+            let f = &self.vehicles[f as usize];
+            let gap = x - head.human.length_m - f.x;
+            if gap <= 0.0 {
+                return;
+            }
+            let view = Leader {
+                gap_m: gap,
+                v_mps: speed,
+            };
+            let a = human::target_accel(
+                &f.human,
+                f.v,
+                f.human.desired_speed,
+                Some(view),
+                Relax::NONE,
+            );
+            if a < f.human.comfort_decel {
+                return;
+            }
+        }
+        let veh = self.entrances[e]
+            .queue
+            .pop_front()
+            .expect("queue has a head");
+        self.place(veh, lane, x, speed, j);
+    }
+
+    /// Put a vehicle on the road at list index `at` of `lane`.
+    fn place(&mut self, mut veh: Vehicle, lane: usize, x: f64, speed: f64, at: usize) {
+        veh.lane = lane as u32;
+        veh.x = x;
+        veh.x_prev = x;
+        veh.v = speed;
+        veh.a = 0.0;
+        veh.entered_step = self.step + 1;
+        veh.measured = veh.entered_step >= self.warmup_step;
+        if veh.is_cav() {
+            veh.time_gap_s = veh.cacc_gap_s;
+            if at > 0 {
+                let ld = self.lanes[lane][at - 1];
+                veh.time_gap_s = self.entry_time_gap(&veh, ld);
+                if self.vehicles[ld as usize].rear() - x < 2.0 * speed.max(1.0) {
+                    veh.family = Family::Gap;
+                }
+            }
+        }
+        self.metrics.entered += 1;
+        let s = self.alloc(veh);
+        self.lanes[lane].insert(at, s);
     }
 
     /// The time gap a CAV entering behind slot `ld` keeps (spec 3.6): its own t_C behind a CAV
@@ -179,29 +356,57 @@ impl Simulation {
 
     /// The speed at which `veh` may enter `lane` at x = 0 in steady state, if any.
     fn insertion_speed(&self, veh: &Vehicle, lane: usize) -> Option<f64> {
+        let ld = self.lanes[lane].last().copied();
+        self.insertion_speed_at(veh, 0.0, ld, None, veh.human.desired_speed)
+    }
+
+    /// The speed (at most `v_max`) at which `veh` may enter at `x` behind slot `ld` (and a wall
+    /// at `wall`, a standing obstacle) in steady state, if any: `v_max` if it needs no braking
+    /// there, otherwise the leader's speed if that does, otherwise none.
+    fn insertion_speed_at(
+        &self,
+        veh: &Vehicle,
+        x: f64,
+        ld: Option<u32>,
+        wall: Option<f64>,
+        v_max: f64,
+    ) -> Option<f64> {
         let v_des = veh.human.desired_speed;
-        let Some(&ld) = self.lanes[lane].last() else {
-            return Some(v_des);
-        };
-        let l = &self.vehicles[ld as usize];
-        let leader = Leader {
-            gap_m: l.rear(),
-            v_mps: l.v,
+        let mut leader = ld.map(|ld| {
+            let l = &self.vehicles[ld as usize];
+            (
+                Leader {
+                    gap_m: l.rear() - x,
+                    v_mps: l.v,
+                },
+                Some(l),
+            )
+        });
+        if let Some(w) = wall {
+            if leader.is_none_or(|(l, _)| w - x < l.gap_m) {
+                leader = Some((
+                    Leader {
+                        gap_m: w - x,
+                        v_mps: 0.0,
+                    },
+                    None,
+                ));
+            }
+        }
+        let Some((leader, lv)) = leader else {
+            return Some(v_max);
         };
         if leader.gap_m <= 0.0 {
             return None;
         }
         let ok = |v: f64| -> bool {
-            match veh.kind {
-                Kind::Human => {
-                    human::target_accel(&veh.human, v, v_des, Some(leader), Relax::NONE) >= 0.0
-                }
-                Kind::Cav => {
+            match (veh.kind, lv) {
+                (Kind::Cav, Some(l)) => {
                     let p = &self.cfg.cav;
                     if leader.gap_m > p.sensor_range_m {
                         return true;
                     }
-                    let t = self.entry_time_gap(veh, ld);
+                    let t = self.entry_time_gap(veh, ld.expect("a vehicle leader"));
                     let eq = if l.is_cav() {
                         cav::cacc_equilibrium_gap(p, t, v)
                     } else {
@@ -209,12 +414,13 @@ impl Simulation {
                     };
                     leader.gap_m >= eq && cav::safe_speed(p, leader.gap_m, l.v) >= v
                 }
+                _ => human::target_accel(&veh.human, v, v_des, Some(leader), Relax::NONE) >= 0.0,
             }
         };
-        if ok(v_des) {
-            Some(v_des)
+        if ok(v_max) {
+            Some(v_max)
         } else {
-            let v = l.v.min(v_des);
+            let v = leader.v_mps.min(v_max);
             ok(v).then_some(v)
         }
     }

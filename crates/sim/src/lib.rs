@@ -14,6 +14,7 @@ pub mod detector;
 mod execute;
 mod insert;
 pub mod metrics;
+pub mod network;
 pub mod rng;
 mod sense;
 mod sim;
@@ -21,7 +22,10 @@ mod strategy;
 pub mod summary;
 pub mod vehicle;
 
-pub use config::{Config, Demand, DetectorSpec, FlowAwareConfig, PdConfig, Road, Strategy};
+pub use config::{
+    Config, Demand, DetectorKind, DetectorSpec, FlowAwareConfig, LaneExtent, Network, OffRamp,
+    OnRamp, PdConfig, Road, Strategy,
+};
 pub use sim::{strategy_name, Simulation};
 pub use summary::{DetectorRecord, Output, Summary};
 

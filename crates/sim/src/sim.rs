@@ -1,12 +1,13 @@
 //! The simulation state and the step.
 
-use crate::config::{Config, Strategy};
+use crate::config::{Config, DetectorKind, Strategy};
 use crate::detector::{Detector, Passage};
 use crate::insert::Entrance;
 use crate::metrics::Metrics;
+use crate::network::Geometry;
 use crate::sense::{Neighbours, NONE};
 use crate::summary::{Output, Summary};
-use crate::vehicle::{Kind, Relaxation, Vehicle};
+use crate::vehicle::{Kind, Relaxation, Vehicle, NO_EXIT};
 use platoonsim_model::lanechange::Side;
 
 /// Per-vehicle result of the decide phase (indexed by slot).
@@ -49,7 +50,16 @@ pub struct Simulation {
     pub(crate) decisions: Vec<Decision>,
     pub(crate) changed_this_step: Vec<u64>,
     pub(crate) change_list: Vec<(u32, Side)>,
-    pub(crate) entrance: Entrance,
+    /// Mainline entrance first, then one per on-ramp.
+    pub(crate) entrances: Vec<Entrance>,
+    pub(crate) geom: Geometry,
+    /// Ramp speed limit (m/s); ∞ on a plain road.
+    pub(crate) ramp_speed_mps: f64,
+    /// Density on each on-ramp (queue + acceleration lane) at the step start (veh/km).
+    pub(crate) ramp_density: Vec<f64>,
+    pub(crate) missed_exits: u64,
+    /// Per off-ramp, the detector that counts it.
+    pub(crate) exit_detector: Vec<Option<usize>>,
     pub(crate) detectors: Vec<Detector>,
     pub(crate) metrics: Metrics,
     pub(crate) next_id: u64,
@@ -67,11 +77,37 @@ impl Simulation {
         let dt = cfg.dt_s;
         let n_lanes = cfg.road.lanes as usize;
         let steps = |s: f64| (s / dt).round() as u64;
+        let geom = Geometry::new(&cfg)?;
+        let origin = cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m);
         let detectors = cfg
             .detectors
             .iter()
-            .map(|d| Detector::new(&d.name, d.position_m, n_lanes))
+            .map(|d| {
+                let mask = match d.kind {
+                    DetectorKind::OffRamp { .. } => 1,
+                    DetectorKind::Mainline => (0..n_lanes as u32)
+                        .filter(|&l| geom.through(l, d.position_m))
+                        .fold(0u32, |m, l| m | (1 << l)),
+                };
+                let mut det = Detector::covering(&d.name, d.position_m, n_lanes, mask, origin);
+                det.exit = d.exit;
+                if let DetectorKind::OffRamp { .. } = d.kind {
+                    det.kind = "off-ramp";
+                }
+                det
+            })
             .collect::<Vec<_>>();
+        let mut exit_detector = vec![None; geom.off_ramps.len()];
+        for (i, d) in cfg.detectors.iter().enumerate() {
+            if let DetectorKind::OffRamp { ramp } = d.kind {
+                exit_detector[ramp] = Some(i);
+            }
+        }
+        let ramp_speed_mps = cfg
+            .road
+            .network
+            .as_ref()
+            .map_or(f64::INFINITY, |n| n.ramp_speed_kmh / 3.6);
         Ok(Simulation {
             dt,
             step: 0,
@@ -90,7 +126,12 @@ impl Simulation {
             decisions: Vec::new(),
             changed_this_step: Vec::new(),
             change_list: Vec::new(),
-            entrance: Entrance::new(&cfg, 0),
+            entrances: Entrance::all(&cfg),
+            ramp_density: vec![0.0; geom.on_ramps.len()],
+            geom,
+            ramp_speed_mps,
+            missed_exits: 0,
+            exit_detector,
             detectors,
             metrics: Metrics::default(),
             next_id: 0,
@@ -130,7 +171,7 @@ impl Simulation {
 
     /// Vehicles waiting in the virtual entry queue.
     pub fn vehicles_waiting(&self) -> usize {
-        self.entrance.waiting()
+        self.entrances.iter().map(Entrance::waiting).sum()
     }
 
     /// Collisions counted so far (vehicle pairs overlapping, per step).
@@ -207,7 +248,9 @@ impl Simulation {
         }
     }
 
-    /// Phase 5a: vehicles whose front passed the road end leave.
+    /// Phase 5a: vehicles whose front passed the road end leave; on a network, vehicles that
+    /// reach their off-ramp in its lane leave by it, and those that reach it in another lane
+    /// miss it and drive on to the end [D].
     fn exits(&mut self) {
         let end = self.cfg.road.length_m;
         for l in 0..self.lanes.len() {
@@ -220,6 +263,38 @@ impl Simulation {
                 self.free.push(s);
             }
         }
+        if self.geom.off_ramps.is_empty() {
+            return;
+        }
+        for l in 0..self.lanes.len() {
+            let mut k = 0;
+            while k < self.lanes[l].len() {
+                let s = self.lanes[l][k];
+                let v = &mut self.vehicles[s as usize];
+                if v.exit == NO_EXIT {
+                    k += 1;
+                    continue;
+                }
+                let ramp = &self.geom.off_ramps[v.exit as usize];
+                if v.x < ramp.x {
+                    k += 1;
+                    continue;
+                }
+                if v.lane != ramp.lane {
+                    v.exit = NO_EXIT;
+                    self.missed_exits += 1;
+                    k += 1;
+                    continue;
+                }
+                let (exit, speed) = (v.exit as usize, v.v);
+                self.lanes[l].remove(k);
+                if let Some(d) = self.exit_detector[exit] {
+                    self.detectors[d].count_exit(speed);
+                }
+                self.metrics.on_exit(&self.vehicles[s as usize]);
+                self.free.push(s);
+            }
+        }
     }
 
     /// Phase 6: detectors, per lane by a search on the sorted lane list.
@@ -227,7 +302,13 @@ impl Simulation {
         let dt = self.dt;
         for det in &mut self.detectors {
             let p = det.position_m;
+            if det.kind == "off-ramp" {
+                continue;
+            }
             for (l, lane) in self.lanes.iter().enumerate() {
+                if det.mask & (1 << l) == 0 {
+                    continue;
+                }
                 // Candidates: front now in [p, p + L + travel]; lane is sorted descending.
                 let hi = p + 60.0;
                 let start = lane.partition_point(|&s| self.vehicles[s as usize].x > hi);
@@ -306,8 +387,8 @@ impl Simulation {
             }
         }
         let cfg = &self.cfg;
-        let lanes = cfg.road.lanes as f64;
         let det = &self.detectors[cfg.measurement_detector];
+        let lanes = det.covered_lanes() as f64;
         let interval = cfg.aggregation_s;
         let first = (cfg.warmup_s / interval).ceil() as usize;
         let mut window_count = 0u64;
@@ -320,6 +401,23 @@ impl Simulation {
             max_flow = max_flow.max(c as f64 * 3600.0 / interval / lanes);
         }
         let window_h = window_intervals as f64 * interval / 3600.0;
+        let network_discharge = cfg.road.network.as_ref().map(|_| {
+            let n: u64 = self
+                .detectors
+                .iter()
+                .filter(|d| d.exit)
+                .map(|d| {
+                    (first..d.intervals())
+                        .map(|k| d.total_count(k))
+                        .sum::<u64>()
+                })
+                .sum();
+            if window_h > 0.0 {
+                n as f64 / window_h
+            } else {
+                0.0
+            }
+        });
         let discharge = if window_h > 0.0 {
             window_count as f64 / window_h / lanes
         } else {
@@ -338,7 +436,7 @@ impl Simulation {
             vehicles_entered: m.entered,
             vehicles_exited: m.exited,
             vehicles_in_network: self.vehicles_in_network() as u64,
-            vehicles_waiting: self.entrance.waiting() as u64,
+            vehicles_waiting: self.vehicles_waiting() as u64,
             lane_changes_per_vehicle: m.lane_changes_per_vehicle(),
             lane_changes_per_cav: m.lane_changes_by_type().0,
             lane_changes_per_human: m.lane_changes_by_type().1,
@@ -350,8 +448,8 @@ impl Simulation {
             vehicles_counted: m.vehicles_counted,
             discharge_flow_vphpl: discharge,
             max_sustained_flow_vphpl: max_flow,
-            network_discharge_vph: None,
-            missed_exits: 0,
+            network_discharge_vph: network_discharge,
+            missed_exits: self.missed_exits,
             collisions: self.collisions,
             vehicle_updates: self.vehicle_updates,
             steps: self.step,

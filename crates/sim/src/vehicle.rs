@@ -34,6 +34,9 @@ pub enum Relaxation {
 /// Step index meaning "never".
 pub const NEVER: u64 = u64::MAX;
 
+/// `Vehicle::exit` of a vehicle that leaves at the mainline end.
+pub const NO_EXIT: u32 = u32::MAX;
+
 /// One vehicle.
 #[derive(Clone, Debug)]
 pub struct Vehicle {
@@ -77,6 +80,8 @@ pub struct Vehicle {
     pub max_platoon: u32,
     /// The same with the spec 6.15 link criterion (follower not in speed regulation, tg ≤ 2 s).
     pub max_platoon_tg2: u32,
+    /// Index of the off-ramp it leaves by (`NO_EXIT`: the mainline end).
+    pub exit: u32,
 }
 
 impl Vehicle {
