@@ -138,9 +138,8 @@ impl Network {
                     r.x_m
                 ));
             }
-            if !(r.accel_lane_m.is_finite() && r.accel_lane_m >= 0.0)
-                || !(r.ramp_length_m.is_finite() && r.ramp_length_m >= 0.0)
-            {
+            let ok = |v: f64| v.is_finite() && v >= 0.0;
+            if !(ok(r.accel_lane_m) && ok(r.ramp_length_m)) {
                 return Err(format!(
                     "network.on_ramps[{i}]: accel_lane_m = {} and ramp_length_m = {} must be finite and >= 0",
                     r.accel_lane_m, r.ramp_length_m

@@ -5,7 +5,7 @@
 
 use crate::sense::{Neighbours, NONE};
 use crate::sim::{Decision, Simulation};
-use crate::vehicle::{Mode, Relaxation, Vehicle, NEVER};
+use crate::vehicle::{Mode, Relaxation, Vehicle, NEVER, NO_EXIT};
 use platoonsim_model::cav::{self, Family};
 use platoonsim_model::human;
 use platoonsim_model::lanechange::{self as lcm, Side};
@@ -36,6 +36,7 @@ impl Simulation {
                 },
             );
         }
+        self.update_ramp_density();
         for l in 0..self.lanes.len() {
             for k in 0..self.lanes[l].len() {
                 let s = self.lanes[l][k];
@@ -57,6 +58,44 @@ impl Simulation {
         })
     }
 
+    /// The nearer of the same-lane leader `ld` and the wall ending the vehicle's lane segment
+    /// (a standing obstacle, issue 4: vehicles wait at the end of an acceleration lane or a
+    /// dropped lane). The flag is true if the wall is the nearer one.
+    #[inline]
+    fn leader_or_wall(&self, v: &Vehicle, ld: u32) -> (Option<Leader>, bool) {
+        let leader = self.view(v, ld);
+        if self.geom.plain {
+            return (leader, false);
+        }
+        match self.geom.wall_ahead(v.lane, v.x) {
+            Some(w) if leader.is_none_or(|l| w - v.x < l.gap_m) => (
+                Some(Leader {
+                    gap_m: w - v.x,
+                    v_mps: 0.0,
+                }),
+                true,
+            ),
+            _ => (leader, false),
+        }
+    }
+
+    /// Density on each on-ramp (its queue plus its acceleration lane) (veh/km), for the
+    /// anticipation rule (spec 4.2).
+    fn update_ramp_density(&mut self) {
+        for (i, r) in self.geom.on_ramps.iter().enumerate() {
+            let queued = self.entrances[i + 1].waiting();
+            let lane = &self.lanes[r.lane as usize];
+            let on_accel = if r.adds_lane {
+                0
+            } else {
+                let hi = lane.partition_point(|&o| self.vehicles[o as usize].x >= r.accel_end);
+                let lo = lane.partition_point(|&o| self.vehicles[o as usize].x >= r.x);
+                lo.saturating_sub(hi)
+            };
+            self.ramp_density[i] = (queued + on_accel) as f64 / (r.density_length_m / 1000.0);
+        }
+    }
+
     /// Current relaxation factors of a vehicle (spec 4.6).
     #[inline]
     fn relax_now(&self, v: &Vehicle) -> Relax {
@@ -70,7 +109,7 @@ impl Simulation {
         let v = &self.vehicles[s as usize];
         let nb = self.nb[s as usize];
         let v_des = v.human.desired_speed;
-        let leader = self.view(v, nb.leader);
+        let (leader, wall) = self.leader_or_wall(v, nb.leader);
 
         // 1. Lane-change desire (takes priority over yielding).
         if let Some(d) = self.desire(s, v, &nb) {
@@ -79,7 +118,7 @@ impl Simulation {
 
         // 2. Automated CAV: ACC / CACC / speed regulation (spec 3).
         if v.automated() {
-            return self.cav_control(s, v, leader);
+            return self.cav_control(s, v, leader, wall);
         }
 
         // 3. Human model (humans and CAVs driving manually), possibly yielding.
@@ -89,8 +128,11 @@ impl Simulation {
         if let Some((req, mandatory)) = self.yield_request(v, &nb) {
             let r = &self.vehicles[req as usize];
             if lcm::agrees_to_yield(&v.lc, mandatory, pair_uniform(self.cfg.seed, v.id, r.id)) {
+                // The virtual leader stands the requester's own (relaxed) jam gap further
+                // back: the yielder leaves the room the requester's gap acceptance needs
+                // (spec 4.3: g0 > d_jam'), otherwise two standing vehicles wait for each other.
                 let virt = Leader {
-                    gap_m: r.rear() - v.x,
+                    gap_m: r.rear() - v.x - r.lc.relax_jam * r.human.jam_gap_m,
                     v_mps: r.v,
                 };
                 target = lcm::yield_accel(&v.human, &v.lc, v.v, v_des, target, virt);
@@ -108,7 +150,7 @@ impl Simulation {
     }
 
     /// Automated CAV control (spec 3.9).
-    fn cav_control(&self, s: u32, v: &Vehicle, leader: Option<Leader>) -> Decision {
+    fn cav_control(&self, s: u32, v: &Vehicle, leader: Option<Leader>, wall: bool) -> Decision {
         let p = &self.cfg.cav;
         let v_des = v.human.desired_speed;
         let ld = self.nb[s as usize].leader;
@@ -120,7 +162,7 @@ impl Simulation {
                 mode: cav::CavMode::SpeedRegulation,
                 family: Family::Speed,
             },
-            Some(l) if self.is_cav(ld) => {
+            Some(l) if !wall && self.is_cav(ld) => {
                 let target = if !self.linked[s as usize] {
                     p.inter_platoon_gap_s
                 } else {
@@ -150,54 +192,53 @@ impl Simulation {
         if v.x < lcd.forbid_zone_m {
             return None;
         }
-        let n_lanes = self.lanes.len() as u32;
-        let pd_lane = n_lanes - 1;
+        let mandatory = if self.geom.plain {
+            None
+        } else {
+            self.mandatory(v)
+        };
         let is_cav = v.is_cav();
         // A CAV that follows a CAV within sensor range is (or is about to be, "a CAV directly
         // behind another CAV automatically starts to form a platoon" [S]) a platoon follower:
         // no discretionary desire (w_CAV follower, spec 4.7).
         let follower = self.linked[s as usize] || (is_cav && self.cav_ahead[s as usize]);
-        let organize = is_cav && self.organization_active(v);
+        // Platoon organization yields to a mandatory need and does not start within the
+        // anticipation range of the CAV's own exit [D].
+        let organize = mandatory.is_none()
+            && is_cav
+            && self.organization_active(v)
+            && !self.exit_within(v, lcd.anticipation_distance_m);
         let (side, gamma) = if organize {
-            if v.lane == pd_lane {
+            let pd_lane = if self.geom.plain {
+                self.lanes.len() as u32 - 1
+            } else {
+                self.geom.leftmost_through(v.x)?
+            };
+            if v.lane >= pd_lane {
                 return None; // γ_d = 0 in the PD lane (spec 4.7)
             }
             (Side::Left, 1.0)
         } else {
-            let w = if !is_cav {
-                1.0
-            } else if follower {
-                lcd.cav_weight_follower
-            } else {
-                lcd.cav_weight_leader
-            };
-            if w <= 0.0 {
-                return None;
-            }
-            // Speeds are what the driver could achieve: capped at its desired speed.
-            let v_cur = self
-                .avg_speed_ahead(v.lane as usize, nb.idx as usize, v.x, v_des_of(v))
-                .min(v_des_of(v));
-            // v_ant ≤ v_des, so no side can beat the absolute gain gate: nothing to scan.
-            if v_des_of(v) - v_cur < v.lc.min_speed_gain_mps {
-                return None;
-            }
-            let mut best: Option<(Side, f64)> = None;
-            for (side, ld) in [(Side::Left, nb.left_leader), (Side::Right, nb.right_leader)] {
-                let exists = match side {
-                    Side::Left => v.lane + 1 < n_lanes,
-                    Side::Right => v.lane > 0,
-                };
-                if !exists {
-                    continue;
+            let [left, right] = self.discretionary(v, nb, follower);
+            match mandatory {
+                // γ = γ_m + κ γ_d (same side); the other side's discretionary desire is 0.
+                Some((side, gm)) => {
+                    let gd = if side == Side::Left { left } else { right }.unwrap_or(0.0);
+                    (side, gm + v.lc.mandatory_weight * gd)
                 }
-                let v_ant = self.anticipated_speed(v, ld);
-                let g = w * lcm::discretionary_desire(&v.lc, v_ant, v_cur, side);
-                if best.is_none_or(|(_, b)| g > b) {
-                    best = Some((side, g));
-                }
+                None => match (left, right) {
+                    (None, None) => return None,
+                    (Some(l), None) => (Side::Left, l),
+                    (None, Some(r)) => (Side::Right, r),
+                    (Some(l), Some(r)) => {
+                        if r > l {
+                            (Side::Right, r)
+                        } else {
+                            (Side::Left, l)
+                        }
+                    }
+                },
             }
-            best?
         };
         // Anti-oscillation (spec 4.2).
         if v.last_lc_step != NEVER {
@@ -215,8 +256,123 @@ impl Simulation {
         (gamma > v.lc.threshold).then_some(Desire {
             side,
             gamma,
-            mandatory: false,
+            mandatory: mandatory.is_some(),
         })
+    }
+
+    /// Is the vehicle's off-ramp within `range` ahead?
+    fn exit_within(&self, v: &Vehicle, range: f64) -> bool {
+        v.exit != NO_EXIT && self.geom.off_ramps[v.exit as usize].x - v.x < range
+    }
+
+    /// Mandatory desire (spec 4.2), if any is positive: leaving a lane that ends (an
+    /// acceleration lane or a dropped lane; one change toward the side where a lane goes on),
+    /// or reaching the rightmost through lane at the driver's off-ramp (N = lanes to cross).
+    /// The larger one wins.
+    fn mandatory(&self, v: &Vehicle) -> Option<(Side, f64)> {
+        let mut best: Option<(Side, f64)> = None;
+        if let Some(w) = self.geom.wall_ahead(v.lane, v.x) {
+            let probe = (w - 1.0).max(v.x);
+            let side = if self.geom.through(v.lane + 1, probe) || v.lane == 0 {
+                Side::Left
+            } else {
+                Side::Right
+            };
+            let g = lcm::mandatory_desire(&v.lc, w - v.x, v.v, 1);
+            if g > 0.0 {
+                best = Some((side, g));
+            }
+        }
+        if v.exit != NO_EXIT {
+            let r = &self.geom.off_ramps[v.exit as usize];
+            if v.x < r.x && v.lane > r.lane {
+                let g = lcm::mandatory_desire(&v.lc, r.x - v.x, v.v, v.lane - r.lane);
+                if g > 0.0 && best.is_none_or(|(_, b)| g > b) {
+                    best = Some((Side::Right, g));
+                }
+            }
+        }
+        best
+    }
+
+    /// Discretionary desires [left, right] (spec 4.2), `None` for a side that cannot be taken
+    /// (no lane, an acceleration lane) or when there is nothing to gain. Includes w_CAV (spec
+    /// 4.7), the exit constraint η_e and the on-ramp anticipation.
+    fn discretionary(&self, v: &Vehicle, nb: &Neighbours, follower: bool) -> [Option<f64>; 2] {
+        let lcd = &self.cfg.lane_change;
+        let w = if !v.is_cav() {
+            1.0
+        } else if follower {
+            lcd.cav_weight_follower
+        } else {
+            lcd.cav_weight_leader
+        };
+        if w <= 0.0 {
+            return [None, None];
+        }
+        // η_e: no discretionary change within E_exit of the exit; a penalty on moving away from
+        // the exit lane within the anticipation range (spec 4.2, 4.9).
+        let mut eta_left = 1.0;
+        if v.exit != NO_EXIT {
+            let d = self.geom.off_ramps[v.exit as usize].x - v.x;
+            if d < lcd.exit_no_change_m {
+                return [None, None];
+            }
+            if d < lcd.anticipation_distance_m {
+                eta_left = lcd.exit_lane_penalty;
+            }
+        }
+        // Speeds are what the driver could achieve: capped at its desired speed.
+        let v_des = v_des_of(v);
+        let mut v_cur = self
+            .avg_speed_ahead(v.lane as usize, nb.idx as usize, v.x, v_des)
+            .min(v_des);
+        if !self.geom.plain {
+            v_cur /= self.anticipation_factor(v);
+        }
+        // v_ant ≤ v_des, so no side can beat the absolute gain gate: nothing to scan.
+        if v_des - v_cur < v.lc.min_speed_gain_mps {
+            return [None, None];
+        }
+        let mut out = [None, None];
+        for (i, side, ld, eta) in [
+            (0, Side::Left, nb.left_leader, eta_left),
+            (1, Side::Right, nb.right_leader, 1.0),
+        ] {
+            let target = match side {
+                Side::Left => v.lane + 1,
+                Side::Right => match v.lane.checked_sub(1) {
+                    Some(l) => l,
+                    None => continue,
+                },
+            };
+            if !self.geom.can_enter(target, v.x) {
+                continue;
+            }
+            let v_ant = self.anticipated_speed(v, ld);
+            out[i] = Some(w * eta * lcm::discretionary_desire(&v.lc, v_ant, v_cur, side));
+        }
+        out
+    }
+
+    /// Spec 4.2 "Anticipatory": in the two rightmost through lanes within the anticipation
+    /// range of an on-ramp, the current-lane speed is divided by 1 + c_inc (ρ_ramp/ρ_jam)/j.
+    fn anticipation_factor(&self, v: &Vehicle) -> f64 {
+        let lcd = &self.cfg.lane_change;
+        let Some((ramp, _)) = self.geom.next_on_ramp(v.x, lcd.anticipation_distance_m) else {
+            return 1.0;
+        };
+        let Some(right) = self.geom.rightmost_through(v.x) else {
+            return 1.0;
+        };
+        if v.lane < right {
+            return 1.0;
+        }
+        let j = v.lane - right + 1;
+        if j > 2 {
+            return 1.0;
+        }
+        1.0 + lcd.anticipation_strength * (self.ramp_density[ramp] / RHO_JAM_PER_KM) / f64::from(j)
     }
 
     /// Average speed of the next `n_scan` vehicles within `d_scan` ahead of `x` in `lane`,
@@ -308,8 +464,9 @@ impl Simulation {
         } else if d.mandatory {
             if lag_ok {
                 a_cur.min(a_ant.max(h.comfort_decel)) // BLC-Sync
-            } else if d.gamma > v.lc.slow_down_desire {
-                a_cur.min(h.comfort_decel) // BLC-Slow
+            } else if d.gamma > v.lc.slow_down_desire && !self.keeps_pace(v, tf) {
+                // BLC-Slow: drop back to the next gap.
+                a_cur.min(h.comfort_decel)
             } else {
                 a_cur
             }
@@ -329,6 +486,22 @@ impl Simulation {
             change: change.then_some(d.side),
             takeover,
         }
+    }
+
+    /// Exceptions to BLC-Slow [D]: the target-lane follower is yielding to this vehicle (it is
+    /// dropping back to make room; slowing down as well would leave both waiting for the other,
+    /// a deadlock seen at standstill), or this vehicle is in an acceleration lane and the
+    /// follower is faster (it passes by itself, and slowing would only widen the speed
+    /// difference the next gap must absorb).
+    fn keeps_pace(&self, v: &Vehicle, tf: u32) -> bool {
+        if tf == NONE {
+            return false;
+        }
+        let f = &self.vehicles[tf as usize];
+        if f.mode == (Mode::Ycf { to: v.id }) {
+            return true;
+        }
+        !self.geom.plain && f.v > v.v && self.geom.seg(v.lane, v.x).is_some_and(|s| s.accel)
     }
 
     /// Spec 4.5: the nearer adjacent-lane leader in BLC toward this lane, if any (slot,
@@ -363,6 +536,9 @@ impl Simulation {
         best.map(|(s, m, _)| (s, m))
     }
 }
+
+/// ρ_jam of the anticipation rule (spec 4.2): 1000/6 veh/km.
+const RHO_JAM_PER_KM: f64 = 1000.0 / 6.0;
 
 #[inline]
 fn v_des_of(v: &Vehicle) -> f64 {

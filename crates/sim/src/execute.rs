@@ -34,7 +34,7 @@ impl Simulation {
             Side::Left => from + 1,
             Side::Right => from.wrapping_sub(1),
         };
-        if to >= self.lanes.len() {
+        if to >= self.lanes.len() || !self.geom.can_enter(to as u32, v.x) {
             return;
         }
         // Position in the target lane: first vehicle not strictly ahead.

@@ -231,6 +231,16 @@ impl Simulation {
                     veh.a = -veh.v / dt;
                     veh.v = 0.0;
                 }
+                if !self.geom.plain {
+                    // A wall is a standing obstacle (network.rs): passing it is a collision.
+                    if let Some(w) = self.geom.wall_ahead(veh.lane, veh.x_prev) {
+                        if veh.x > w {
+                            self.collisions += 1;
+                            veh.x = (w - 0.01).max(veh.x_prev);
+                            veh.v = 0.0;
+                        }
+                    }
+                }
                 veh.mode = d.mode;
                 veh.family = d.family;
                 veh.time_gap_s = d.time_gap;

@@ -1,0 +1,226 @@
+//! Freeway networks (issue 4 item 1): acceleration lanes, lane adds, off-ramps, time-varying
+//! demand. A toy corridor small enough for a test, with every network element once.
+
+use platoonsim_sim::{
+    run, Config, DetectorKind, DetectorSpec, LaneExtent, Network, OffRamp, OnRamp, Output,
+    Simulation,
+};
+
+/// 4 km; three through lanes (indices 2-4) everywhere, a fourth (index 1) added at 2,000 m by
+/// on-ramp B; on-ramp A (800 m) and C (3,000 m) merge through 250 m acceleration lanes;
+/// off-ramps F (1,500 m, 10 %) and G (3,500 m, 15 %).
+pub fn toy(penetration: f64, mainline_vph: Vec<f64>, seed: u64) -> Config {
+    let mut cfg = Config::homogeneous(penetration, 0.0, 1800.0, 0.0, seed);
+    cfg.name = "toy-corridor".into();
+    let mut through: Vec<LaneExtent> = (2..=4)
+        .map(|lane| LaneExtent {
+            lane,
+            from_m: 0.0,
+            to_m: 4000.0,
+        })
+        .collect();
+    through.push(LaneExtent {
+        lane: 1,
+        from_m: 2000.0,
+        to_m: 4000.0,
+    });
+    let ramp = |name: &str, x: f64, vph: f64| OnRamp {
+        name: name.into(),
+        x_m: x,
+        accel_lane_m: 250.0,
+        ramp_length_m: 300.0,
+        demand_vph: vec![vph],
+    };
+    cfg.road.lanes = 5;
+    cfg.road.length_m = 4000.0;
+    cfg.road.control_start_m = 0.0;
+    cfg.road.control_end_m = 4000.0;
+    cfg.road.network = Some(Network {
+        origin_m: -500.0,
+        through_lanes: through,
+        on_ramps: vec![
+            ramp("A", 800.0, 600.0),
+            ramp("B", 2000.0, 400.0),
+            ramp("C", 3000.0, 500.0),
+        ],
+        off_ramps: vec![
+            OffRamp {
+                name: "F".into(),
+                x_m: 1500.0,
+                exit_fraction: vec![0.10],
+            },
+            OffRamp {
+                name: "G".into(),
+                x_m: 3500.0,
+                exit_fraction: vec![0.15],
+            },
+        ],
+        interval_s: 900.0,
+        mainline_vph,
+        demand_scale: 1.0,
+        ramp_speed_kmh: 90.0,
+    });
+    let m = |name: &str, x: f64| DetectorSpec::mainline(name, x);
+    cfg.detectors = vec![
+        m("A-up", 750.0),
+        m("A-down", 850.0),
+        m("F-up", 1450.0),
+        m("B-down", 2050.0),
+        m("G-up", 3450.0),
+        DetectorSpec {
+            name: "end".into(),
+            position_m: 3990.0,
+            kind: DetectorKind::Mainline,
+            exit: true,
+        },
+        DetectorSpec {
+            name: "F-off".into(),
+            position_m: 1500.0,
+            kind: DetectorKind::OffRamp { ramp: 0 },
+            exit: true,
+        },
+        DetectorSpec {
+            name: "G-off".into(),
+            position_m: 3500.0,
+            kind: DetectorKind::OffRamp { ramp: 1 },
+            exit: true,
+        },
+    ];
+    cfg.measurement_detector = 5;
+    cfg
+}
+
+fn count(out: &Output, detector: &str) -> u64 {
+    out.detectors
+        .iter()
+        .filter(|r| r.detector == detector && r.lane == "all")
+        .map(|r| r.count)
+        .sum()
+}
+
+#[test]
+fn toy_corridor_conserves_vehicles_without_collisions() {
+    for pen in [0.0, 0.5] {
+        let out = run(&toy(pen, vec![3000.0], 1), None).unwrap();
+        let s = &out.summary;
+        assert_eq!(s.collisions, 0, "penetration {pen}");
+        assert_eq!(
+            s.vehicles_entered,
+            s.vehicles_exited + s.vehicles_in_network,
+            "penetration {pen}"
+        );
+        // Every vehicle that left was counted by exactly one exit detector (the end detector
+        // sits 10 m before the end, so a few vehicles between it and the end are not yet out).
+        let exits = count(&out, "end") + count(&out, "F-off") + count(&out, "G-off");
+        assert!(exits >= s.vehicles_exited && exits <= s.vehicles_exited + 5);
+        // Demand below capacity: the ramps are not queueing.
+        assert!(s.vehicles_waiting < 10, "waiting {}", s.vehicles_waiting);
+        let q = s.network_discharge_vph.unwrap();
+        // 3000 + 1500 veh/h enter; after the first ~5 minutes of filling, ~4,500 leave.
+        assert!(q > 3500.0 && q < 4700.0, "network discharge {q}");
+    }
+}
+
+#[test]
+fn exits_take_their_fraction_of_the_arriving_mainline_flow() {
+    let out = run(&toy(0.0, vec![3000.0], 2), None).unwrap();
+    let up = count(&out, "F-up") as f64;
+    let off = count(&out, "F-off") as f64;
+    let share = off / up;
+    assert!((0.08..=0.12).contains(&share), "F takes {share:.3}");
+    let up = count(&out, "G-up") as f64;
+    let off = count(&out, "G-off") as f64;
+    let share = off / up;
+    assert!((0.12..=0.18).contains(&share), "G takes {share:.3}");
+    assert!(out.summary.missed_exits * 20 < (count(&out, "F-off") + count(&out, "G-off")));
+}
+
+#[test]
+fn ramp_vehicles_merge_and_the_acceleration_lane_empties() {
+    let cfg = toy(0.5, vec![3000.0], 3);
+    let mut sim = Simulation::new(cfg).unwrap();
+    let mut max_on_accel = 0;
+    while !sim.finished() {
+        sim.step().unwrap();
+        // Acceleration lane of A: lane index 1 on [800, 1050).
+        let n = sim
+            .lane_vehicles(1)
+            .filter(|v| v.x >= 800.0 && v.x < 1050.0)
+            .count();
+        max_on_accel = max_on_accel.max(n);
+        // Nobody is ever past the end of A's acceleration lane and short of the added lane.
+        assert!(sim
+            .lane_vehicles(1)
+            .all(|v| !(v.x >= 1050.0 && v.x < 2000.0)));
+    }
+    assert!(max_on_accel >= 1, "ramp A never used");
+    assert!(
+        max_on_accel <= 8,
+        "acceleration lane jammed: {max_on_accel}"
+    );
+}
+
+#[test]
+fn demand_follows_its_intervals() {
+    // 1,000 veh/h for 15 min, then 3,000: the entrance counts follow (Poisson, ±5 sd).
+    let mut cfg = toy(0.0, vec![1000.0, 3000.0], 4);
+    for r in &mut cfg.road.network.as_mut().unwrap().on_ramps {
+        r.demand_vph = vec![0.0];
+    }
+    let out = run(&cfg, None).unwrap();
+    let first: u64 = out
+        .detectors
+        .iter()
+        .filter(|r| r.detector == "A-up" && r.lane == "all" && r.interval_start_s < 900.0)
+        .map(|r| r.count)
+        .sum();
+    let second: u64 = out
+        .detectors
+        .iter()
+        .filter(|r| r.detector == "A-up" && r.lane == "all" && r.interval_start_s >= 900.0)
+        .map(|r| r.count)
+        .sum();
+    // Expected ~250 (minus the first half-minute of travel) and ~750.
+    assert!((180..=320).contains(&first), "first interval {first}");
+    assert!((640..=860).contains(&second), "second interval {second}");
+}
+
+#[test]
+fn network_runs_are_deterministic() {
+    let a = run(&toy(0.4, vec![3200.0], 7), None).unwrap();
+    let b = run(&toy(0.4, vec![3200.0], 7), None).unwrap();
+    let mut sa = a.summary.clone();
+    let mut sb = b.summary.clone();
+    sa.wall_seconds = 0.0;
+    sb.wall_seconds = 0.0;
+    assert_eq!(sa, sb);
+    assert_eq!(a.detectors, b.detectors);
+}
+
+#[test]
+fn detectors_cover_the_through_lanes_at_their_position() {
+    let out = run(&toy(0.0, vec![2000.0], 5), None).unwrap();
+    let lanes = |d: &str| {
+        let mut l: Vec<String> = out
+            .detectors
+            .iter()
+            .filter(|r| r.detector == d && r.interval_start_s == 0.0)
+            .map(|r| r.lane.clone())
+            .collect();
+        l.sort();
+        l
+    };
+    // Upstream of the lane add: 3 through lanes (the acceleration lane at 850 is not counted).
+    assert_eq!(lanes("A-down"), vec!["1", "2", "3", "all"]);
+    assert_eq!(lanes("B-down"), vec!["1", "2", "3", "4", "all"]);
+    // Positions are reported in the output coordinate (origin −500 m).
+    let r = out.detectors.iter().find(|r| r.detector == "A-up").unwrap();
+    assert_eq!(r.position_m, 250.0);
+    assert_eq!(r.kind, "mainline");
+    let r = out
+        .detectors
+        .iter()
+        .find(|r| r.detector == "F-off")
+        .unwrap();
+    assert_eq!(r.kind, "off-ramp");
+}
