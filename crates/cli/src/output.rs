@@ -14,7 +14,7 @@ use platoonsim_sim::{Config, DetectorRecord, Output, Summary};
 use std::path::{Path, PathBuf};
 
 /// The columns of `detectors.csv`, in order.
-pub const DETECTOR_COLUMNS: [&str; 10] = [
+pub const DETECTOR_COLUMNS: [&str; 11] = [
     "detector",
     "kind",
     "position_m",
@@ -22,6 +22,7 @@ pub const DETECTOR_COLUMNS: [&str; 10] = [
     "interval_start_s",
     "interval_s",
     "count",
+    "cav_count",
     "flow_vph",
     "speed_kmh",
     "occupancy",
@@ -70,6 +71,7 @@ pub fn detectors_csv(records: &[DetectorRecord]) -> Result<Vec<u8>> {
             number(r.interval_start_s),
             number(r.interval_s),
             r.count.to_string(),
+            r.cav_count.to_string(),
             number(r.flow_vph),
             r.speed_kmh.map(number).unwrap_or_default(),
             number(r.occupancy),
@@ -181,6 +183,7 @@ mod tests {
             interval_start_s: 1200.0,
             interval_s: 300.0,
             count: 180,
+            cav_count: 90,
             flow_vph: 2160.0,
             speed_kmh: speed,
             occupancy: 0.125,
@@ -195,9 +198,9 @@ mod tests {
         assert_eq!(
             lines,
             vec![
-                "detector,kind,position_m,lane,interval_start_s,interval_s,count,flow_vph,speed_kmh,occupancy",
-                "discharge,mainline,6100,all,1200,300,180,2160,97.25,0.125",
-                "discharge,mainline,6100,all,1200,300,180,2160,,0.125",
+                "detector,kind,position_m,lane,interval_start_s,interval_s,count,cav_count,flow_vph,speed_kmh,occupancy",
+                "discharge,mainline,6100,all,1200,300,180,90,2160,97.25,0.125",
+                "discharge,mainline,6100,all,1200,300,180,90,2160,,0.125",
             ]
         );
     }

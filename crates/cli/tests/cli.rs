@@ -309,13 +309,13 @@ fn run_writes_summary_detectors_and_scenario() {
     let mut lines = csv.lines();
     assert_eq!(
         lines.next(),
-        Some("detector,kind,position_m,lane,interval_start_s,interval_s,count,flow_vph,speed_kmh,occupancy")
+        Some("detector,kind,position_m,lane,interval_start_s,interval_s,count,cav_count,flow_vph,speed_kmh,occupancy")
     );
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     // 3 detectors x (3 lanes + "all") per five-minute interval.
     assert!(!rows.is_empty(), "{csv}");
     assert_eq!(rows.len() % (3 * 4), 0, "{csv}");
-    assert!(rows.iter().all(|r| r.len() == 10));
+    assert!(rows.iter().all(|r| r.len() == 11));
     assert!(rows
         .iter()
         .any(|r| r[0] == "discharge" && r[1] == "mainline" && r[3] == "all"));

@@ -17,12 +17,16 @@ pub struct Passage {
     pub v0: f64,
     pub v1: f64,
     pub len: f64,
+    /// The vehicle is a CAV.
+    pub cav: bool,
 }
 
 /// Accumulators for one lane (or the cross-section) in one interval.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Acc {
     pub count: u64,
+    /// Of which CAVs.
+    pub cav_count: u64,
     pub speed_sum: f64,
     pub occupied_s: f64,
 }
@@ -98,12 +102,14 @@ impl Detector {
             v0,
             v1,
             len,
+            cav,
         } = m;
         let p = self.position_m;
         let acc = &mut self.current[lane];
         if x0 < p && p <= x1 {
             let frac = if x1 > x0 { (p - x0) / (x1 - x0) } else { 1.0 };
             acc.count += 1;
+            acc.cav_count += u64::from(cav);
             acc.speed_sum += v0 + (v1 - v0) * frac;
         }
         // Occupied while p ∈ [x − len, x), i.e. x ∈ (p, p + len].
@@ -119,9 +125,10 @@ impl Detector {
     }
 
     /// A vehicle leaves through this detector (an off-ramp counter) at speed `v` (m/s).
-    pub fn count_exit(&mut self, v: f64) {
+    pub fn count_exit(&mut self, v: f64, cav: bool) {
         let acc = &mut self.current[self.first_lane];
         acc.count += 1;
+        acc.cav_count += u64::from(cav);
         acc.speed_sum += v;
     }
 
@@ -169,6 +176,7 @@ impl Detector {
                     interval_start_s: start,
                     interval_s,
                     count: a.count,
+                    cav_count: a.cav_count,
                     flow_vph: a.count as f64 * 3600.0 / interval_s,
                     speed_kmh: mean_speed_kmh(a),
                     occupancy: (a.occupied_s / (interval_s * n_lanes as f64)).clamp(0.0, 1.0),
@@ -187,6 +195,7 @@ impl Detector {
 fn sum(lanes: &[Acc]) -> Acc {
     lanes.iter().fold(Acc::default(), |s, a| Acc {
         count: s.count + a.count,
+        cav_count: s.cav_count + a.cav_count,
         speed_sum: s.speed_sum + a.speed_sum,
         occupied_s: s.occupied_s + a.occupied_s,
     })
@@ -212,6 +221,7 @@ mod tests {
                 v0: 20.0,
                 v1: 20.0,
                 len: 4.0,
+                cav: false,
             };
             d.observe(1, m, 0.1);
             x += 2.0;
@@ -240,6 +250,7 @@ mod tests {
                 v0: 0.0,
                 v1: 0.0,
                 len: 4.0,
+                cav: false,
             };
             d.observe(0, m, 0.1);
         }

@@ -296,10 +296,10 @@ impl Simulation {
                     k += 1;
                     continue;
                 }
-                let (exit, speed) = (v.exit as usize, v.v);
+                let (exit, speed, cav) = (v.exit as usize, v.v, v.is_cav());
                 self.lanes[l].remove(k);
                 if let Some(d) = self.exit_detector[exit] {
-                    self.detectors[d].count_exit(speed);
+                    self.detectors[d].count_exit(speed, cav);
                 }
                 self.metrics.on_exit(&self.vehicles[s as usize]);
                 self.free.push(s);
@@ -334,6 +334,7 @@ impl Simulation {
                         v0,
                         v1: v.v,
                         len: v.human.length_m,
+                        cav: v.is_cav(),
                     };
                     det.observe(l, m, dt);
                 }

@@ -66,6 +66,8 @@ pub struct DetectorRecord {
     pub interval_start_s: f64,
     pub interval_s: f64,
     pub count: u64,
+    /// Of which CAVs.
+    pub cav_count: u64,
     pub flow_vph: f64,
     /// Time-mean speed of the vehicles that crossed (km/h); empty (NaN-free: `None`) if none.
     pub speed_kmh: Option<f64>,

@@ -224,3 +224,22 @@ fn detectors_cover_the_through_lanes_at_their_position() {
         .unwrap();
     assert_eq!(r.kind, "off-ramp");
 }
+
+#[test]
+fn detectors_count_cavs() {
+    let all = run(&toy(1.0, vec![2000.0], 6), None).unwrap();
+    assert!(all.detectors.iter().all(|r| r.cav_count == r.count));
+    let none = run(&toy(0.0, vec![2000.0], 6), None).unwrap();
+    assert!(none.detectors.iter().all(|r| r.cav_count == 0));
+    let half = run(&toy(0.5, vec![2000.0], 6), None).unwrap();
+    let (c, n) = half
+        .detectors
+        .iter()
+        .filter(|r| r.detector == "G-up" && r.lane == "all")
+        .fold((0, 0), |(c, n), r| (c + r.cav_count, n + r.count));
+    let share = c as f64 / n as f64;
+    assert!(
+        (0.44..=0.56).contains(&share),
+        "CAV share {share:.3} of {n}"
+    );
+}
