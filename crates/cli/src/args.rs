@@ -1,9 +1,9 @@
 //! Command-line arguments (clap derive). The doc comments are the `--help` text.
 
-use anyhow::Result;
+use anyhow::{bail, Result};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use platoonsim_experiment::ExperimentName;
-use platoonsim_scenario::{Overrides, StrategyKind};
+use platoonsim_scenario::{demand_scale_set, Overrides, ScenarioError, StrategyKind};
 use platoonsim_sim::Config;
 use std::path::PathBuf;
 
@@ -76,6 +76,12 @@ pub struct ScenarioArgs {
     #[arg(long, value_enum, value_name = "STRATEGY")]
     pub strategy: Option<StrategyArg>,
 
+    /// Network scenarios (e.g. sr99): multiplier on every entrance demand, on top of the
+    /// corridor's base multiplier (sets network.demand_scale; default: the calibrated scale
+    /// for the run's penetration).
+    #[arg(long, value_name = "F")]
+    pub demand_scale: Option<f64>,
+
     /// Set any scenario key, e.g. --set human.buffer_s=0.2 --set run.seed=3
     /// --set cav.time_gap_shares=[[0.6,1.0]] --set detectors[0].position_m=4800. The value is
     /// read as TOML (number, array, inline table, quoted string), otherwise as a plain string.
@@ -85,7 +91,11 @@ pub struct ScenarioArgs {
 }
 
 impl ScenarioArgs {
+    /// The overrides; `--demand-scale` travels as the last `--set` (of network.demand_scale),
+    /// so that it wins over a --set of the same key like the other typed flags.
     pub fn overrides(&self) -> Overrides {
+        let mut set = self.set.clone();
+        set.extend(self.demand_scale.map(demand_scale_set));
         Overrides {
             penetration: self.penetration,
             demand_vphpl: self.demand,
@@ -93,16 +103,26 @@ impl ScenarioArgs {
             warmup_s: self.warmup,
             seed: self.seed,
             strategy: self.strategy.map(StrategyKind::from),
-            set: self.set.clone(),
+            set,
         }
     }
 
     /// Load and validate the scenario with the overrides.
     pub fn load(&self) -> Result<Config> {
-        Ok(platoonsim_scenario::load_with(
-            &self.scenario,
-            &self.overrides(),
-        )?)
+        match platoonsim_scenario::load_with(&self.scenario, &self.overrides()) {
+            Ok(config) => Ok(config),
+            // Name the flag rather than the key it sets.
+            Err(ScenarioError::Override { arg, reason })
+                if self.demand_scale.map(demand_scale_set).as_ref() == Some(&arg) =>
+            {
+                bail!(
+                    "invalid --demand-scale {}: {reason} (--demand-scale scales a network's \
+                     demand; on a homogeneous road use --demand)",
+                    self.demand_scale.unwrap_or_default()
+                )
+            }
+            Err(e) => Err(e.into()),
+        }
     }
 }
 
@@ -305,6 +325,8 @@ mod tests {
             "human.buffer_s=0.2",
             "--set",
             "run.dt_s=0.05",
+            "--demand-scale",
+            "1.1",
         ])
         .unwrap();
         let Command::Run(run) = cli.command else {
@@ -317,7 +339,14 @@ mod tests {
         assert_eq!(o.warmup_s, Some(120.0));
         assert_eq!(o.seed, Some(7));
         assert_eq!(o.strategy, Some(StrategyKind::FlowAware));
-        assert_eq!(o.set, vec!["human.buffer_s=0.2", "run.dt_s=0.05"]);
+        assert_eq!(
+            o.set,
+            vec![
+                "human.buffer_s=0.2",
+                "run.dt_s=0.05",
+                "network.demand_scale=1.1"
+            ]
+        );
         assert_eq!(run.out, PathBuf::from("out/run"));
     }
 

@@ -58,6 +58,7 @@ fn run_help_explains_every_flag() {
         "--strategy <STRATEGY>",
         "flow-aware",
         "--set <KEY=VALUE>",
+        "--demand-scale <F>",
         "--out <DIR>",
         "out/run",
     ] {
@@ -91,6 +92,7 @@ fn scenarios_lists_the_builtins() {
     let o = platoonsim(&["scenarios"]);
     assert!(o.status.success());
     assert!(stdout(&o).starts_with("homogeneous "), "{}", stdout(&o));
+    assert!(stdout(&o).contains("\nsr99 "), "{}", stdout(&o));
 }
 
 // ---------------------------------------------------------------- show
@@ -128,6 +130,54 @@ fn show_prints_a_scenario_file_that_loads_back() {
     assert_eq!(json["human"]["buffer_s"], 0.2);
     assert_eq!(json["road"]["lanes"], 3);
     assert_eq!(json["strategy"]["kind"], "none");
+}
+
+#[test]
+fn show_sr99_prints_the_network_and_takes_the_run_flags() {
+    let dir = scratch("show-sr99");
+    let flags = [
+        "--penetration",
+        "0.6",
+        "--strategy",
+        "pd",
+        "--seed",
+        "4",
+        "--demand-scale",
+        "1.2",
+    ];
+    let mut args = vec!["show", "sr99"];
+    args.extend_from_slice(&flags);
+    let o = platoonsim(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    for part in [
+        "[network]",
+        "[[network.on_ramps]]",
+        "name = \"Elk Grove Blvd\"",
+    ] {
+        assert!(text.contains(part), "{part} missing:\n{text}");
+    }
+    let file = dir.join("sr99.toml");
+    std::fs::write(&file, &text).unwrap();
+    let from_file = platoonsim(&["show", s(&file), "--format", "json"]);
+    assert!(from_file.status.success(), "{}", stderr(&from_file));
+    args.extend_from_slice(&["--format", "json"]);
+    let direct = platoonsim(&args);
+    assert_eq!(stdout(&from_file), stdout(&direct));
+    let json: serde_json::Value = serde_json::from_str(&stdout(&direct)).unwrap();
+    assert_eq!(json["penetration"], 0.6);
+    assert_eq!(json["seed"], 4);
+    assert_eq!(json["strategy"]["kind"], "pd");
+    assert_eq!(json["road"]["lanes"], 6);
+    assert_eq!(json["road"]["network"]["demand_scale"], 1.2);
+    assert_eq!(json["road"]["network"]["origin_m"], -500.0);
+    assert_eq!(
+        json["road"]["network"]["on_ramps"]
+            .as_array()
+            .unwrap()
+            .len(),
+        16
+    );
 }
 
 // ---------------------------------------------------------------- argument errors (no engine)
@@ -181,6 +231,25 @@ fn run_rejects_bad_set_arguments() {
         "bad-set-detector",
         &["homogeneous", "--set", "detectors[2].position_m=7000"],
         "detectors[2].position_m = 7000: must lie inside the road (0, 6500)",
+    );
+}
+
+#[test]
+fn demand_scale_needs_a_network_and_demand_a_homogeneous_road() {
+    assert_run_fails(
+        "demand-scale-homogeneous",
+        &["homogeneous", "--demand-scale", "1.1"],
+        "invalid --demand-scale 1.1: the scenario has no [network] section",
+    );
+    assert_run_fails(
+        "demand-on-sr99",
+        &["sr99", "--demand", "2000"],
+        "demand.vph_per_lane = 2000: must be left out with [network]",
+    );
+    assert_run_fails(
+        "negative-demand-scale",
+        &["sr99", "--demand-scale=-1"],
+        "network.demand_scale = -1: must be a finite number >= 0",
     );
 }
 

@@ -1,14 +1,22 @@
 //! The way back: a resolved [`Config`] as a complete scenario file (every key written out),
 //! which loads again to the same `Config`.
 
+use crate::network::{detectors, split_name, stretches, Spacing, END_DETECTOR};
 use crate::raw::{
-    RawDemand, RawDetector, RawMeasurement, RawRoad, RawRun, RawScenario, RawStrategy,
+    RawDemand, RawDetector, RawLaneStretch, RawMeasurement, RawNetwork, RawNetworkDetectors,
+    RawOffRamp, RawOnRamp, RawRoad, RawRun, RawScenario, RawStrategy,
 };
+use platoonsim_sim::config::{DetectorKind, Network};
 use platoonsim_sim::{Config, Strategy};
 use toml::{Table, Value};
 
-/// A [`RawScenario`] with every key set to the config's value.
+/// A [`RawScenario`] with every key set to the config's value. With a network, positions are
+/// written in the corridor coordinate, the generated detectors are left to the generator (its
+/// spacing is read back from their positions), and `demand_scale` is the total scale (with
+/// `base_demand_multiplier = 1`).
 pub fn to_raw(config: &Config, description: Option<String>) -> RawScenario {
+    let origin = config.road.network.as_ref().map_or(0.0, |n| n.origin_m);
+    let file = |x: f64| x + origin;
     let mut strategy = RawStrategy::default();
     let (kind, pd, thresholds) = match &config.strategy {
         Strategy::None => ("none", None, None),
@@ -17,8 +25,8 @@ pub fn to_raw(config: &Config, description: Option<String>) -> RawScenario {
     };
     strategy.kind = Some(kind.to_string());
     if let Some(pd) = pd {
-        strategy.zone_start_m = Some(pd.zone_start_m);
-        strategy.zone_end_m = Some(pd.zone_end_m);
+        strategy.zone_start_m = Some(file(pd.zone_start_m));
+        strategy.zone_end_m = Some(file(pd.zone_end_m));
         strategy.start_s = Some(pd.start_s);
         strategy.end_s = Some(pd.end_s);
     }
@@ -27,6 +35,14 @@ pub fn to_raw(config: &Config, description: Option<String>) -> RawScenario {
         strategy.speed_threshold_kmh = Some(t.speed_threshold_kmh);
         strategy.radius_m = Some(t.radius_m);
     }
+    let (network, generated) = match &config.road.network {
+        Some(n) => {
+            let (raw, generated) = raw_network(n, config);
+            (Some(raw), generated)
+        }
+        None => (None, Vec::new()),
+    };
+    let is_network = network.is_some();
     RawScenario {
         name: Some(config.name.clone()),
         description,
@@ -38,20 +54,22 @@ pub fn to_raw(config: &Config, description: Option<String>) -> RawScenario {
             penetration: Some(config.penetration),
         },
         road: RawRoad {
-            lanes: Some(config.road.lanes),
-            length_m: Some(config.road.length_m),
-            control_start_m: Some(config.road.control_start_m),
-            control_end_m: Some(config.road.control_end_m),
+            lanes: (!is_network).then_some(config.road.lanes),
+            length_m: (!is_network).then_some(config.road.length_m),
+            control_start_m: Some(file(config.road.control_start_m)),
+            control_end_m: Some(file(config.road.control_end_m)),
         },
+        network,
         demand: RawDemand {
-            vph_per_lane: Some(config.demand.vph_per_lane),
+            vph_per_lane: (!is_network).then_some(config.demand.vph_per_lane),
         },
         detectors: config
             .detectors
             .iter()
+            .filter(|d| !generated.contains(&d.name))
             .map(|d| RawDetector {
                 name: Some(d.name.clone()),
-                position_m: Some(d.position_m),
+                position_m: Some(file(d.position_m)),
             })
             .collect(),
         measurement: RawMeasurement {
@@ -68,6 +86,100 @@ pub fn to_raw(config: &Config, description: Option<String>) -> RawScenario {
     }
 }
 
+/// The `[network]` section of a config, and the names of the detectors it generates.
+fn raw_network(n: &Network, config: &Config) -> (RawNetwork, Vec<String>) {
+    let o = n.origin_m;
+    let length = config.road.length_m;
+    let position = |name: &str| {
+        config
+            .detectors
+            .iter()
+            .find(|d| d.name == name && d.kind == DetectorKind::Mainline)
+            .map(|d| d.position_m)
+    };
+    let on: Vec<(String, String)> = n.on_ramps.iter().map(|r| split_name(&r.name)).collect();
+    let off: Vec<(String, String)> = n.off_ramps.iter().map(|r| split_name(&r.name)).collect();
+    // The spacing of the generated detectors, from any of them that was kept.
+    let mut spacing = Spacing::default();
+    let ups = n
+        .on_ramps
+        .iter()
+        .zip(&on)
+        .map(|(r, (id, _))| (r.x_m, id))
+        .chain(n.off_ramps.iter().zip(&off).map(|(r, (id, _))| (r.x_m, id)));
+    if let Some(d) = ups
+        .filter_map(|(x, id)| position(&format!("{id}-up")).map(|p| x - p))
+        .next()
+    {
+        spacing.upstream_of_ramps_m = d;
+    }
+    if let Some(d) = n
+        .on_ramps
+        .iter()
+        .zip(&on)
+        .find_map(|(r, (id, _))| position(&format!("{id}-down")).map(|p| p - r.x_m))
+    {
+        spacing.downstream_of_onramps_m = d;
+    }
+    if let Some(p) = position(END_DETECTOR) {
+        spacing.before_end_m = length - p;
+    }
+    let on_ids: Vec<String> = on.iter().map(|(id, _)| id.clone()).collect();
+    let off_ids: Vec<String> = off.iter().map(|(id, _)| id.clone()).collect();
+    let generated = detectors(n, length, &on_ids, &off_ids, &spacing)
+        .into_iter()
+        .map(|d| d.name)
+        .collect();
+    let named = |id: &str, name: &str| (name != id).then(|| name.to_string());
+    let raw = RawNetwork {
+        start_m: Some(o),
+        end_m: Some(o + length),
+        interval_s: Some(n.interval_s),
+        mainline_vph: Some(n.mainline_vph.clone()),
+        base_demand_multiplier: Some(1.0),
+        demand_scale: Some(n.demand_scale),
+        ramp_speed_kmh: Some(n.ramp_speed_kmh),
+        detectors: RawNetworkDetectors {
+            upstream_of_ramps_m: Some(spacing.upstream_of_ramps_m),
+            downstream_of_onramps_m: Some(spacing.downstream_of_onramps_m),
+            before_end_m: Some(spacing.before_end_m),
+        },
+        lanes: stretches(&n.through_lanes)
+            .into_iter()
+            .map(|s| RawLaneStretch {
+                from_m: Some(s.from_m + o),
+                to_m: Some(s.to_m + o),
+                count: Some(s.count),
+            })
+            .collect(),
+        on_ramps: n
+            .on_ramps
+            .iter()
+            .zip(&on)
+            .map(|(r, (id, name))| RawOnRamp {
+                id: Some(id.clone()),
+                name: named(id, name),
+                x_m: Some(r.x_m + o),
+                accel_lane_m: Some(r.accel_lane_m),
+                ramp_length_m: Some(r.ramp_length_m),
+                demand_vph: Some(r.demand_vph.clone()),
+            })
+            .collect(),
+        off_ramps: n
+            .off_ramps
+            .iter()
+            .zip(&off)
+            .map(|(r, (id, name))| RawOffRamp {
+                id: Some(id.clone()),
+                name: named(id, name),
+                x_m: Some(r.x_m + o),
+                exit_fraction: Some(r.exit_fraction.clone()),
+            })
+            .collect(),
+    };
+    (raw, generated)
+}
+
 /// A resolved scenario as TOML text: one `[section]` per table, distributions as inline tables.
 pub fn to_toml(config: &Config, description: Option<String>) -> String {
     let raw = to_raw(config, description);
@@ -79,7 +191,8 @@ pub fn to_toml(config: &Config, description: Option<String>) -> String {
 }
 
 /// Lay out a document: top-level plain values, then each table as a section with inline
-/// values, then arrays of tables as `[[name]]` blocks, in the document's key order.
+/// values (followed by its own arrays of tables as `[[section.name]]` blocks), then arrays of
+/// tables as `[[name]]` blocks, in the document's key order.
 pub fn pretty(doc: &Table) -> String {
     let mut out = String::new();
     let is_table_array =
@@ -94,7 +207,24 @@ pub fn pretty(doc: &Table) -> String {
             Value::Table(t) => {
                 out.push_str(&format!("\n[{k}]\n"));
                 for (kk, vv) in t {
-                    out.push_str(&format!("{kk} = {vv}\n"));
+                    if !is_table_array(vv) {
+                        out.push_str(&format!("{kk} = {vv}\n"));
+                    }
+                }
+                // Arrays of tables inside a section ([[network.on_ramps]]) as blocks.
+                for (kk, vv) in t {
+                    if let Value::Array(items) = vv {
+                        if is_table_array(vv) {
+                            for item in items {
+                                out.push_str(&format!("\n[[{k}.{kk}]]\n"));
+                                if let Value::Table(it) = item {
+                                    for (x, y) in it {
+                                        out.push_str(&format!("{x} = {y}\n"));
+                                    }
+                                }
+                            }
+                        }
+                    }
                 }
             }
             Value::Array(items) if is_table_array(v) => {

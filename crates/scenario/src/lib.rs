@@ -7,6 +7,10 @@
 //! Errors ([`ScenarioError`]) name the key path, the value and what is allowed; nothing here
 //! panics on user input.
 //!
+//! A `[network]` section makes the scenario a freeway corridor with ramps and time-varying
+//! demand (issue 4; format in `docs/network-scenarios.md`, helpers in [`network`], default
+//! demand scales in [`demand_scales`]); the built-in `sr99` is one.
+//!
 //! Principal entry points: [`load`] / [`load_with`] (a built-in name or a file path),
 //! [`from_toml`] (text), [`BUILTINS`], and [`to_toml`] (a resolved config back to a complete
 //! scenario file).
@@ -33,15 +37,17 @@
 //! buffer_s = 0.2
 //! ```
 
+pub mod demand_scales;
 pub mod error;
 pub mod format;
+pub mod network;
 pub mod overrides;
 pub mod raw;
 pub mod thresholds;
 pub mod validate;
 
 pub use error::{Problem, ScenarioError};
-pub use overrides::{Overrides, StrategyKind};
+pub use overrides::{demand_scale_set, Overrides, StrategyKind};
 pub use raw::RawScenario;
 
 use platoonsim_sim::Config;
@@ -57,13 +63,23 @@ pub struct Builtin {
 }
 
 /// The built-in scenarios.
-pub const BUILTINS: &[Builtin] = &[Builtin {
-    name: "homogeneous",
-    description: "the paper's 3-lane homogeneous freeway: 5 km approach, 1 km control section \
+pub const BUILTINS: &[Builtin] = &[
+    Builtin {
+        name: "homogeneous",
+        description: "the paper's 3-lane homogeneous freeway: 5 km approach, 1 km control section \
                   (5000-6000 m), detectors at 4900/5500/6100 m, 60 min with a 20 min warm-up, \
                   50 % CAV, 2500 veh/h/lane",
-    toml: include_str!("../scenarios/homogeneous.toml"),
-}];
+        toml: include_str!("../scenarios/homogeneous.toml"),
+    },
+    Builtin {
+        name: "sr99",
+        description:
+            "SR-99 northbound, Sacramento, Elk Grove Blvd to 12th Ave (the paper's freeway \
+                  experiment): 17.7 km, 3-5 lanes (HOV lane open to all), 16 on-ramps, 11 \
+                  off-ramps, 15-min demand 05:00-09:00, detectors around every ramp, 0 % CAV",
+        toml: include_str!("../scenarios/sr99.toml"),
+    },
+];
 
 /// The built-in scenario of that name.
 pub fn builtin(name: &str) -> Option<&'static Builtin> {

@@ -1,7 +1,8 @@
 //! Overrides applied to the parsed TOML document before it is read: `--set KEY=VALUE` with
 //! dotted keys (`human.buffer_s=0.2`, `detectors[1].position_m=4800`), and the typed command-line
-//! flags (penetration, demand, duration, warm-up, seed, strategy). Because they act on the
-//! document, an override is checked exactly like the same value written in the file.
+//! flags (penetration, demand, duration, warm-up, seed, strategy; a network's demand scale
+//! travels as a `--set` of `network.demand_scale`, see [`demand_scale_set`]). Because they act
+//! on the document, an override is checked exactly like the same value written in the file.
 
 use crate::error::ScenarioError;
 use std::fmt;
@@ -84,6 +85,14 @@ impl Overrides {
     pub fn apply(&self, doc: &mut Table) -> Result<(), ScenarioError> {
         for arg in &self.set {
             let (path, value) = parse_set(arg)?;
+            if path[0].key == "network" && !doc.contains_key("network") {
+                return Err(ScenarioError::Override {
+                    arg: arg.clone(),
+                    reason: "the scenario has no [network] section (it is not a freeway network), \
+                             so network keys do not apply"
+                        .into(),
+                });
+            }
             set_path(doc, &path, value).map_err(|reason| ScenarioError::Override {
                 arg: arg.clone(),
                 reason,
@@ -134,6 +143,14 @@ impl Overrides {
         }
         Ok(())
     }
+}
+
+/// The `--set` argument of a network demand scale (`platoonsim run --demand-scale F`): sets
+/// `network.demand_scale`, the run's multiplier on the network's entrance demands (on top of
+/// `network.base_demand_multiplier`). On a scenario without a `[network]` it is an
+/// [`ScenarioError::Override`] error with this argument.
+pub fn demand_scale_set(scale: f64) -> String {
+    format!("network.demand_scale={}", Value::Float(scale))
 }
 
 /// One step of a key path: a table key, optionally indexing into an array (`detectors[1]`).

@@ -28,7 +28,12 @@ pub struct RawScenario {
     pub description: Option<String>,
     pub run: RawRun,
     pub road: RawRoad,
+    /// A freeway corridor with ramps (issue 4); without it the road is homogeneous.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub network: Option<RawNetwork>,
+    #[serde(skip_serializing_if = "RawDemand::is_empty")]
     pub demand: RawDemand,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
     pub detectors: Vec<RawDetector>,
     pub measurement: RawMeasurement,
     pub strategy: RawStrategy,
@@ -53,7 +58,8 @@ pub struct RawRun {
     pub penetration: Option<f64>,
 }
 
-/// `[road]`: all keys required.
+/// `[road]`: all keys required, except with a `[network]`, which gives the lanes and the length
+/// (and where the control section defaults to the whole corridor).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct RawRoad {
@@ -73,6 +79,103 @@ pub struct RawRoad {
 pub struct RawDemand {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub vph_per_lane: Option<f64>,
+}
+
+impl RawDemand {
+    pub fn is_empty(&self) -> bool {
+        self.vph_per_lane.is_none()
+    }
+}
+
+/// `[network]`: a freeway corridor. Every position is in the corridor's own coordinate (e.g.
+/// metres downstream of a reference ramp); the mainline entrance is at `start_m`.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RawNetwork {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub start_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub end_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interval_s: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mainline_vph: Option<Vec<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub base_demand_multiplier: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub demand_scale: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ramp_speed_kmh: Option<f64>,
+    #[serde(skip_serializing_if = "RawNetworkDetectors::is_empty")]
+    pub detectors: RawNetworkDetectors,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub lanes: Vec<RawLaneStretch>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub on_ramps: Vec<RawOnRamp>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub off_ramps: Vec<RawOffRamp>,
+}
+
+/// One `[[network.lanes]]` stretch: `count` through lanes on `[from_m, to_m)`.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RawLaneStretch {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub from_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub to_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub count: Option<u32>,
+}
+
+/// One `[[network.on_ramps]]` entry.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RawOnRamp {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub id: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub x_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub accel_lane_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ramp_length_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub demand_vph: Option<Vec<f64>>,
+}
+
+/// One `[[network.off_ramps]]` entry.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RawOffRamp {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub id: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub x_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub exit_fraction: Option<Vec<f64>>,
+}
+
+/// `[network.detectors]`: where the generated detectors go.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RawNetworkDetectors {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub upstream_of_ramps_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub downstream_of_onramps_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub before_end_m: Option<f64>,
+}
+
+impl RawNetworkDetectors {
+    pub fn is_empty(&self) -> bool {
+        *self == RawNetworkDetectors::default()
+    }
 }
 
 /// One `[[detectors]]` entry.
@@ -189,25 +292,12 @@ fn diagnose(doc: &Table) -> (String, String) {
             "demand" => narrow::<RawDemand>("demand", value),
             "measurement" => narrow::<RawMeasurement>("measurement", value),
             "strategy" => narrow::<RawStrategy>("strategy", value),
+            "network" => narrow_network(value),
             "human" => narrow::<HumanDists>("human", value),
             "cav" => narrow::<CavParams>("cav", value),
             "lane_change" => narrow::<LaneChangeDists>("lane_change", value),
-            "detectors" => match value {
-                Value::Array(items) => items
-                    .iter()
-                    .enumerate()
-                    .map(|(i, item)| (i, item, RawDetector::deserialize(item.clone())))
-                    .find(|(_, _, r)| r.is_err())
-                    .map(|(i, item, _)| narrow::<RawDetector>(&format!("detectors[{i}]"), item))
-                    .unwrap_or_else(|| ("detectors".into(), single_message(key, value))),
-                _ => (
-                    "detectors".into(),
-                    format!(
-                        "must be an array of tables ([[detectors]] entries), found {}",
-                        value.type_str()
-                    ),
-                ),
-            },
+            "detectors" => narrow_array::<RawDetector>("detectors", value)
+                .unwrap_or_else(|| ("detectors".into(), single_message(key, value))),
             _ => (key.clone(), rewrite(&single_message(key, value), None)),
         };
     }
@@ -217,6 +307,52 @@ fn diagnose(doc: &Table) -> (String, String) {
         Ok(_) => "cannot be read".to_string(),
     };
     ("(document)".into(), message)
+}
+
+/// The failing entry of an array of tables `path` whose entries should read as `T`; `None` if
+/// every entry reads.
+fn narrow_array<T: DeserializeOwned>(path: &str, value: &Value) -> Option<(String, String)> {
+    match value {
+        Value::Array(items) => items
+            .iter()
+            .enumerate()
+            .find(|(_, item)| T::deserialize((*item).clone()).is_err())
+            .map(|(i, item)| narrow::<T>(&format!("{path}[{i}]"), item)),
+        _ => Some((
+            path.into(),
+            format!(
+                "must be an array of tables ([[{path}]] entries), found {}",
+                value.type_str()
+            ),
+        )),
+    }
+}
+
+/// The failing key of `[network]`, down into its arrays of tables and `[network.detectors]`.
+fn narrow_network(value: &Value) -> (String, String) {
+    if let Value::Table(t) = value {
+        let nested = [
+            (
+                "lanes",
+                narrow_array::<RawLaneStretch> as fn(&str, &Value) -> _,
+            ),
+            ("on_ramps", narrow_array::<RawOnRamp>),
+            ("off_ramps", narrow_array::<RawOffRamp>),
+        ];
+        for (key, f) in nested {
+            if let Some(v) = t.get(key) {
+                if let Some(found) = f(&format!("network.{key}"), v) {
+                    return found;
+                }
+            }
+        }
+        if let Some(v) = t.get("detectors") {
+            if RawNetworkDetectors::deserialize(v.clone()).is_err() {
+                return narrow::<RawNetworkDetectors>("network.detectors", v);
+            }
+        }
+    }
+    narrow::<RawNetwork>("network", value)
 }
 
 fn try_single<T: DeserializeOwned>(key: &str, value: &Value) -> Result<T, toml::de::Error> {

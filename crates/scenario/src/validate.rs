@@ -6,12 +6,17 @@ use crate::error::{Problem, ScenarioError};
 use crate::overrides::StrategyKind;
 use crate::raw::{num, render, RawScenario};
 use platoonsim_model::dist::Dist;
+use platoonsim_sim::config::DetectorKind;
 use platoonsim_sim::{Config, Demand, DetectorSpec, FlowAwareConfig, PdConfig, Road, Strategy};
 use toml::Value;
 
 #[path = "validate_models.rs"]
 mod models;
 use models::{all_finite, check_cav, check_human, check_lane_change};
+
+#[path = "validate_network.rs"]
+mod network;
+pub use network::defaults as network_defaults;
 
 /// Defaults of the optional keys.
 pub mod defaults {
@@ -158,6 +163,42 @@ fn quoted(s: &str) -> String {
     render(&Value::String(s.to_string()))
 }
 
+/// The coordinate of the file's positions: the road's own (0 at the entrance, up to
+/// `road.length_m`) or, with a `[network]`, the corridor's (from `network.start_m` to
+/// `network.end_m`). Engine position = file position − `origin`.
+struct Frame {
+    network: bool,
+    origin: f64,
+    /// File coordinate of the road end, if known.
+    hi: Option<f64>,
+}
+
+impl Frame {
+    fn lo_text(&self) -> String {
+        if self.network {
+            format!("network.start_m = {}", num(self.origin))
+        } else {
+            "0".into()
+        }
+    }
+
+    fn hi_text(&self, hi: f64) -> String {
+        if self.network {
+            format!("network.end_m = {}", num(hi))
+        } else {
+            format!("road.length_m = {}", num(hi))
+        }
+    }
+
+    fn inside_text(&self, hi: f64) -> String {
+        if self.network {
+            format!("the corridor ({}, {})", num(self.origin), num(hi))
+        } else {
+            format!("the road (0, {})", num(hi))
+        }
+    }
+}
+
 /// Validate a raw scenario into a [`Config`]. `default_name` is used when the file has no
 /// `name` (the file stem); `origin` names the source in the error.
 pub fn validate(
@@ -207,66 +248,91 @@ pub fn validate(
     let penetration = c.opt(raw.run.penetration, defaults::PENETRATION);
     c.unit("run.penetration", penetration);
 
-    // --- [road]
-    let lanes = match raw.road.lanes {
-        None => {
-            c.missing(
-                "road.lanes",
-                &format!("an integer from 1 to {}", defaults::MAX_LANES),
-            );
-            0
-        }
-        Some(n) => {
-            if !(1..=defaults::MAX_LANES).contains(&n) {
-                c.push(
-                    "road.lanes",
-                    n.to_string(),
-                    format!("must be an integer from 1 to {}", defaults::MAX_LANES),
-                );
+    // --- [road] (with a [network], the lanes and the length follow from it)
+    let net = raw
+        .network
+        .as_ref()
+        .map(|n| network::check_network(&mut c, n, penetration.v));
+    let (lanes, length) = match &net {
+        Some(v) => {
+            let given = [
+                ("road.lanes", raw.road.lanes.map(|n| n.to_string())),
+                ("road.length_m", raw.road.length_m.map(num)),
+            ];
+            for (field, value) in given {
+                if let Some(value) = value {
+                    c.push(
+                        field,
+                        value,
+                        "must be left out with [network]: the lanes and the length follow from \
+                         network.lanes, network.start_m and network.end_m",
+                    );
+                }
             }
-            n
+            (v.lanes, v.length)
         }
+        None => road_size(&mut c, raw),
     };
-    let length = c.req(
-        "road.length_m",
-        raw.road.length_m,
-        "the road length in metres, > 0",
-    );
-    let length = length
-        .filter(|&l| c.positive("road.length_m", l))
-        .map(|n| n.v);
-    let cstart = c.req(
-        "road.control_start_m",
-        raw.road.control_start_m,
-        "start of the control section (m from the entrance)",
-    );
-    let cend = c.req(
-        "road.control_end_m",
-        raw.road.control_end_m,
-        "end of the control section (m from the entrance)",
-    );
+    let frame = match &net {
+        Some(v) => Frame {
+            network: true,
+            origin: v.origin,
+            hi: v.end,
+        },
+        None => Frame {
+            network: false,
+            origin: 0.0,
+            hi: length,
+        },
+    };
+    let (cstart, cend) = if frame.network {
+        // Optional: the whole corridor by default.
+        (
+            Some(c.opt(raw.road.control_start_m, frame.origin)),
+            Some(c.opt(raw.road.control_end_m, frame.hi.unwrap_or(f64::NAN))),
+        )
+    } else {
+        (
+            c.req(
+                "road.control_start_m",
+                raw.road.control_start_m,
+                "start of the control section (m from the entrance)",
+            ),
+            c.req(
+                "road.control_end_m",
+                raw.road.control_end_m,
+                "end of the control section (m from the entrance)",
+            ),
+        )
+    };
     if let (Some(s), Some(e)) = (cstart, cend) {
-        match length {
-            Some(l) => {
+        match frame.hi {
+            _ if s.defaulted && e.defaulted => {}
+            Some(hi) => {
                 let s_ok = c.check(
                     "road.control_start_m",
                     s,
-                    s.v >= 0.0 && s.v < l,
-                    format!("must lie in [0, road.length_m = {}) (the control section must be on the road)", num(l)),
+                    s.v >= frame.origin && s.v < hi,
+                    format!(
+                        "must lie in [{}, {}) (the control section must be on the road)",
+                        frame.lo_text(),
+                        frame.hi_text(hi)
+                    ),
                 );
                 if s_ok {
                     c.check(
                         "road.control_end_m",
                         e,
-                        e.v > s.v && e.v <= l,
+                        e.v > s.v && e.v <= hi,
                         format!(
-                            "must be > road.control_start_m = {} and <= road.length_m = {}",
-                            num(s.v),
-                            num(l)
+                            "must be > road.control_start_m = {} and <= {}",
+                            s.shown(),
+                            frame.hi_text(hi)
                         ),
                     );
                 }
             }
+            None if frame.network => {}
             None => {
                 c.non_negative("road.control_start_m", s);
                 c.non_negative("road.control_end_m", e);
@@ -274,8 +340,17 @@ pub fn validate(
         }
     }
 
-    // --- [demand]
-    if let Some(q) = c.req(
+    // --- [demand] (with a [network]: its series instead)
+    if frame.network {
+        if let Some(q) = raw.demand.vph_per_lane {
+            c.push(
+                "demand.vph_per_lane",
+                num(q),
+                "must be left out with [network]: the demand is network.mainline_vph and \
+                 network.on_ramps[].demand_vph (scale it with network.demand_scale or --demand-scale)",
+            );
+        }
+    } else if let Some(q) = c.req(
         "demand.vph_per_lane",
         raw.demand.vph_per_lane,
         "arrival rate per lane (veh/h/lane)",
@@ -291,8 +366,18 @@ pub fn validate(
         );
     }
 
-    // --- [[detectors]]
-    if raw.detectors.is_empty() {
+    // --- [[detectors]] (with a [network], generated ones first; these are added)
+    let generated = match &net {
+        Some(v) => crate::network::detectors(
+            &v.network,
+            length.unwrap_or(f64::NAN),
+            &v.on_ids,
+            &v.off_ids,
+            &v.spacing,
+        ),
+        None => Vec::new(),
+    };
+    if raw.detectors.is_empty() && !frame.network {
         c.push(
             "detectors",
             "[]",
@@ -321,44 +406,71 @@ pub fn validate(
                         quoted(n),
                         format!("duplicates detectors[{j}].name; names must be unique"),
                     );
+                } else if generated.iter().any(|g| &g.name == n) {
+                    c.push(
+                        &field,
+                        quoted(n),
+                        "duplicates a detector generated for the network (\"end\", \
+                         \"{id}-up\", \"{id}-down\", \"{id}-off\"); names must be unique",
+                    );
                 }
                 n.clone()
             }
         };
         let field = format!("detectors[{i}].position_m");
-        let pos = c.req(&field, d.position_m, "position in metres from the entrance");
-        if let (Some(p), Some(l)) = (pos, length) {
+        let what = if frame.network {
+            "position in metres (corridor coordinate)"
+        } else {
+            "position in metres from the entrance"
+        };
+        let pos = c.req(&field, d.position_m, what);
+        if let (Some(p), Some(hi)) = (pos, frame.hi) {
             c.check(
                 &field,
                 p,
-                p.v > 0.0 && p.v < l,
-                format!("must lie inside the road (0, {})", num(l)),
+                p.v > frame.origin && p.v < hi,
+                format!("must lie inside {}", frame.inside_text(hi)),
             );
         }
-        detectors.push(DetectorSpec::mainline(&name, pos.map_or(f64::NAN, |p| p.v)));
+        detectors.push(DetectorSpec::mainline(
+            &name,
+            pos.map_or(f64::NAN, |p| p.v - frame.origin),
+        ));
+    }
+    if frame.network {
+        // Mainline detectors by position (the generated ones first at a tie), then the
+        // off-ramp detectors.
+        let (mut all, off): (Vec<_>, Vec<_>) = generated
+            .into_iter()
+            .partition(|d| d.kind == DetectorKind::Mainline);
+        all.append(&mut detectors);
+        all.sort_by(|a, b| a.position_m.total_cmp(&b.position_m));
+        all.extend(off);
+        detectors = all;
     }
 
     // --- [measurement]
-    let measurement_detector = match &raw.measurement.detector {
-        None if raw.detectors.len() == 1 => 0,
-        None => {
+    let find = |n: &str| detectors.iter().position(|d| d.name == n);
+    let measurement_detector = match (&raw.measurement.detector, frame.network) {
+        (None, true) => find(crate::network::END_DETECTOR).unwrap_or(0),
+        (None, false) if detectors.len() == 1 => 0,
+        (None, false) => {
             c.missing(
                 "measurement.detector",
-                &format!("the name of one of the detectors ({})", detector_names(raw)),
+                &format!(
+                    "the name of one of the detectors ({})",
+                    detector_names(&detectors)
+                ),
             );
             0
         }
-        Some(n) => match raw
-            .detectors
-            .iter()
-            .position(|d| d.name.as_deref() == Some(n.as_str()))
-        {
+        (Some(n), _) => match find(n) {
             Some(i) => i,
             None => {
                 c.push(
                     "measurement.detector",
                     quoted(n),
-                    format!("names no detector; defined: {}", detector_names(raw)),
+                    format!("names no detector; defined: {}", detector_names(&detectors)),
                 );
                 0
             }
@@ -398,33 +510,37 @@ pub fn validate(
     };
     let zs = c.opt(s.zone_start_m, cstart.map_or(0.0, |n| n.v));
     let ze = c.opt(s.zone_end_m, cend.map_or(0.0, |n| n.v));
+    // (Both in the file's coordinate.)
     // Zone and window default to the control section and the measurement window, which are
     // checked above; only values the file gives are checked again.
     let zone_given = !(zs.defaulted && ze.defaulted);
-    if let (Some(l), true) = (length, zone_given) {
+    if let (Some(hi), true) = (frame.hi, zone_given) {
         let ok = c.check(
             "strategy.zone_start_m",
             zs,
-            zs.v >= 0.0 && zs.v < l,
+            zs.v >= frame.origin && zs.v < hi,
             format!(
-                "must lie in [0, road.length_m = {}) (the zone must be on the road)",
-                num(l)
+                "must lie in [{}, {}) (the zone must be on the road)",
+                frame.lo_text(),
+                frame.hi_text(hi)
             ),
         );
         if ok {
             c.check(
                 "strategy.zone_end_m",
                 ze,
-                ze.v > zs.v && ze.v <= l,
+                ze.v > zs.v && ze.v <= hi,
                 format!(
-                    "must be > strategy.zone_start_m = {} and <= road.length_m = {}",
+                    "must be > strategy.zone_start_m = {} and <= {}",
                     zs.shown(),
-                    num(l)
+                    frame.hi_text(hi)
                 ),
             );
         }
     }
-    let ts = c.opt(s.start_s, warmup.v);
+    // The PD window defaults to the measurement window on the homogeneous road and to the
+    // whole run on a network.
+    let ts = c.opt(s.start_s, if frame.network { 0.0 } else { warmup.v });
     let te = c.opt(s.end_s, duration.v);
     let window_given = !(ts.defaulted && te.defaulted);
     if window_given && c.non_negative("strategy.start_s", ts) {
@@ -450,8 +566,8 @@ pub fn validate(
     let radius = c.opt(s.radius_m, defaults::RADIUS_M);
     c.positive("strategy.radius_m", radius);
     let pd = PdConfig {
-        zone_start_m: zs.v,
-        zone_end_m: ze.v,
+        zone_start_m: zs.v - frame.origin,
+        zone_end_m: ze.v - frame.origin,
         start_s: ts.v,
         end_s: te.v,
     };
@@ -489,12 +605,17 @@ pub fn validate(
         road: Road {
             lanes,
             length_m: length.unwrap_or(f64::NAN),
-            control_start_m: cstart.map_or(f64::NAN, |n| n.v),
-            control_end_m: cend.map_or(f64::NAN, |n| n.v),
-            network: None,
+            control_start_m: cstart.map_or(f64::NAN, |n| n.v - frame.origin),
+            control_end_m: cend.map_or(f64::NAN, |n| n.v - frame.origin),
+            network: net.map(|v| v.network),
         },
         demand: Demand {
-            vph_per_lane: raw.demand.vph_per_lane.unwrap_or(f64::NAN),
+            // Unused on a network (its demand is in the series).
+            vph_per_lane: if frame.network {
+                0.0
+            } else {
+                raw.demand.vph_per_lane.unwrap_or(f64::NAN)
+            },
         },
         detectors,
         aggregation_s: aggregation.v,
@@ -520,15 +641,52 @@ pub fn validate(
     }
 }
 
-fn detector_names(raw: &RawScenario) -> String {
-    let names: Vec<String> = raw
-        .detectors
+/// The detector names for a message (the first 12 if there are more).
+fn detector_names(detectors: &[DetectorSpec]) -> String {
+    const SHOWN: usize = 12;
+    let names: Vec<String> = detectors
         .iter()
-        .filter_map(|d| d.name.as_deref().map(quoted))
+        .filter(|d| !d.name.is_empty())
+        .map(|d| quoted(&d.name))
         .collect();
-    if names.is_empty() {
-        "none".into()
-    } else {
-        names.join(", ")
+    match names.len() {
+        0 => "none".into(),
+        n if n > SHOWN => format!(
+            "{}, … ({n} in all; `platoonsim show` lists them)",
+            names[..SHOWN].join(", ")
+        ),
+        _ => names.join(", "),
     }
+}
+
+/// `road.lanes` and `road.length_m` of a road without a network (both required).
+fn road_size(c: &mut Checker, raw: &RawScenario) -> (u32, Option<f64>) {
+    let lanes = match raw.road.lanes {
+        None => {
+            c.missing(
+                "road.lanes",
+                &format!("an integer from 1 to {}", defaults::MAX_LANES),
+            );
+            0
+        }
+        Some(n) => {
+            if !(1..=defaults::MAX_LANES).contains(&n) {
+                c.push(
+                    "road.lanes",
+                    n.to_string(),
+                    format!("must be an integer from 1 to {}", defaults::MAX_LANES),
+                );
+            }
+            n
+        }
+    };
+    let length = c.req(
+        "road.length_m",
+        raw.road.length_m,
+        "the road length in metres, > 0",
+    );
+    let length = length
+        .filter(|&l| c.positive("road.length_m", l))
+        .map(|n| n.v);
+    (lanes, length)
 }

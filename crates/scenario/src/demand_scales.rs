@@ -1,0 +1,169 @@
+//! Default demand scale of the network scenarios by CAV penetration (issue 4), read from the
+//! embedded `scenarios/sr99_demand_scales.toml` (the paper's values for SR-99 until a
+//! calibration replaces them). Mirrors [`crate::thresholds`]: [`parse`] reads a table,
+//! [`to_toml`] writes one in the same format (for a calibration experiment), [`at`]
+//! interpolates.
+
+use toml::Value;
+
+/// The embedded table's text.
+pub const TABLE: &str = include_str!("../scenarios/sr99_demand_scales.toml");
+
+/// The embedded table's path in the repository (where a calibrated table is copied).
+pub const TABLE_PATH: &str = "crates/scenario/scenarios/sr99_demand_scales.toml";
+
+/// Used when no row is available.
+pub const FALLBACK: f64 = 1.0;
+
+/// One calibrated row.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Row {
+    pub penetration: f64,
+    /// Multiplier on the network's entrance demands (on top of the base multiplier).
+    pub demand_scale: f64,
+}
+
+/// The feasible rows of a demand-scale file, sorted by penetration. Rows missing a number,
+/// with a non-finite one, or with `feasible = false`, are skipped.
+pub fn parse(text: &str) -> Result<Vec<Row>, String> {
+    let doc: toml::Table = text.parse().map_err(|e| format!("{e}"))?;
+    let mut rows = Vec::new();
+    let Some(list) = doc.get("penetration").and_then(Value::as_array) else {
+        return Ok(rows);
+    };
+    let num = |t: &toml::Table, k: &str| {
+        t.get(k)
+            .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
+            .filter(|x| x.is_finite())
+    };
+    for t in list.iter().filter_map(Value::as_table) {
+        if t.get("feasible").and_then(Value::as_bool) == Some(false) {
+            continue;
+        }
+        if let (Some(p), Some(s)) = (num(t, "penetration"), num(t, "demand_scale")) {
+            rows.push(Row {
+                penetration: p,
+                demand_scale: s,
+            });
+        }
+    }
+    rows.sort_by(|a, b| a.penetration.total_cmp(&b.penetration));
+    Ok(rows)
+}
+
+/// A table in the embedded file's format: `header` (each line prefixed with `# `), then one
+/// `[[penetration]]` block per row. [`parse`] reads it back.
+pub fn to_toml(header: &str, rows: &[Row]) -> String {
+    let mut t = String::new();
+    for line in header.lines() {
+        if line.is_empty() {
+            t.push_str("#\n");
+        } else {
+            t.push_str(&format!("# {line}\n"));
+        }
+    }
+    for r in rows {
+        t.push_str(&format!(
+            "\n[[penetration]]\npenetration = {}\ndemand_scale = {}\n",
+            Value::Float(r.penetration),
+            Value::Float(r.demand_scale)
+        ));
+    }
+    t
+}
+
+/// The scale at a penetration from rows: linear interpolation, nearest row outside;
+/// `fallback` if there is no row.
+pub fn at(rows: &[Row], penetration: f64, fallback: f64) -> f64 {
+    let (Some(first), Some(last)) = (rows.first(), rows.last()) else {
+        return fallback;
+    };
+    if penetration <= first.penetration {
+        return first.demand_scale;
+    }
+    if penetration >= last.penetration {
+        return last.demand_scale;
+    }
+    for w in rows.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        if penetration <= b.penetration {
+            let f = (penetration - a.penetration) / (b.penetration - a.penetration);
+            return a.demand_scale + f * (b.demand_scale - a.demand_scale);
+        }
+    }
+    last.demand_scale
+}
+
+/// The embedded table's rows.
+pub fn embedded() -> Vec<Row> {
+    // The embedded table is checked by a test, so a parse error cannot reach users.
+    parse(TABLE).unwrap_or_default()
+}
+
+/// The built-in default at a penetration.
+pub fn default_at(penetration: f64) -> f64 {
+    at(&embedded(), penetration, FALLBACK)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn embedded_table_has_the_papers_scales() {
+        let rows = parse(TABLE).unwrap();
+        let got: Vec<(f64, f64)> = rows
+            .iter()
+            .map(|r| (r.penetration, r.demand_scale))
+            .collect();
+        assert_eq!(
+            got,
+            vec![
+                (0.0, 1.0),
+                (0.2, 1.0),
+                (0.4, 1.1),
+                (0.6, 1.17),
+                (0.8, 1.25),
+                (1.0, 1.27)
+            ]
+        );
+        assert_eq!(default_at(0.0), 1.0);
+        assert_eq!(default_at(1.0), 1.27);
+        assert!((default_at(0.5) - 1.135).abs() < 1e-12);
+        assert!((default_at(0.3) - 1.05).abs() < 1e-12);
+    }
+
+    #[test]
+    fn written_tables_read_back_and_interpolate() {
+        let rows = vec![
+            Row {
+                penetration: 0.0,
+                demand_scale: 1.0,
+            },
+            Row {
+                penetration: 0.5,
+                demand_scale: 1.2,
+            },
+        ];
+        let text = to_toml("Calibrated by a test.\n\nSecond paragraph.", &rows);
+        assert!(text.starts_with("# Calibrated by a test.\n#\n# Second paragraph.\n"));
+        assert_eq!(parse(&text).unwrap(), rows);
+        assert!((at(&rows, 0.25, 9.0) - 1.1).abs() < 1e-12);
+        assert_eq!(at(&rows, -1.0, 9.0), 1.0);
+        assert_eq!(at(&rows, 0.9, 9.0), 1.2);
+        assert_eq!(at(&[], 0.3, 9.0), 9.0);
+        let skipped = parse(
+            "[[penetration]]\npenetration = 0.5\nfeasible = false\ndemand_scale = 3\n\
+             [[penetration]]\npenetration = 1\ndemand_scale = 2\n",
+        )
+        .unwrap();
+        assert_eq!(
+            skipped,
+            vec![Row {
+                penetration: 1.0,
+                demand_scale: 2.0
+            }]
+        );
+        assert!(parse("not toml [").is_err());
+    }
+}

@@ -1,0 +1,427 @@
+//! Validation of the `[network]` section (issue 4): corridor bounds, lane stretches, ramps,
+//! demand series and detector spacing, split from `validate.rs` by responsibility. Positions
+//! are checked in the file's corridor coordinate and converted to engine coordinates
+//! (x_engine = x_file − network.start_m).
+
+use super::{quoted, Checker, Num};
+use crate::network::{
+    default_off_id, default_on_id, engine_name, through_lanes, valid_id, Spacing, Stretch,
+    MAX_LANE_COUNT,
+};
+use crate::raw::{num, RawNetwork};
+use platoonsim_sim::config::{Network, OffRamp, OnRamp};
+
+/// Defaults of the optional `[network]` keys.
+pub mod defaults {
+    pub const INTERVAL_S: f64 = 900.0;
+    pub const BASE_DEMAND_MULTIPLIER: f64 = 1.0;
+    pub const RAMP_SPEED_KMH: f64 = 90.0;
+    pub const ACCEL_LANE_M: f64 = 250.0;
+}
+
+/// What the rest of validation needs from a checked `[network]`. Values are only meaningful
+/// if no problem was reported.
+pub(super) struct Checked {
+    /// Lateral lane positions (largest lane count + 1 for the acceleration lanes).
+    pub lanes: u32,
+    /// Corridor coordinate of the entrance (`network.start_m`).
+    pub origin: f64,
+    /// Corridor end coordinate (`network.end_m`), if the bounds are valid.
+    pub end: Option<f64>,
+    /// Road length (engine), if the bounds are valid.
+    pub length: Option<f64>,
+    pub network: Network,
+    pub on_ids: Vec<String>,
+    pub off_ids: Vec<String>,
+    pub spacing: Spacing,
+}
+
+/// A per-interval series: present, non-empty, every value finite and in [0, `hi`], and (if
+/// `intervals` is given) as long as `network.mainline_vph`. Returns the values (empty if
+/// missing).
+fn series(
+    c: &mut Checker,
+    field: &str,
+    v: &Option<Vec<f64>>,
+    hi: Option<f64>,
+    intervals: Option<usize>,
+    what: &str,
+) -> Vec<f64> {
+    let Some(v) = v else {
+        c.missing(field, what);
+        return Vec::new();
+    };
+    if v.is_empty() {
+        c.push(field, "[]", "must have at least one interval");
+        return Vec::new();
+    }
+    for (k, &x) in v.iter().enumerate() {
+        let ok = x.is_finite() && x >= 0.0 && hi.is_none_or(|h| x <= h);
+        if !ok {
+            let allowed = match hi {
+                Some(h) => format!("must be in [0, {}]", num(h)),
+                None => "must be a finite number >= 0".to_string(),
+            };
+            c.push(format!("{field}[{k}]"), num(x), allowed);
+        }
+    }
+    if let Some(n) = intervals.filter(|&n| n != v.len()) {
+        c.push(
+            field,
+            format!("({} values)", v.len()),
+            format!(
+                "must have {n} intervals, as many as network.mainline_vph (one per network.interval_s)"
+            ),
+        );
+    }
+    v.clone()
+}
+
+/// A required finite position; `None` (after reporting) if missing or not finite.
+fn position(c: &mut Checker, field: &str, v: Option<f64>, what: &str) -> Option<f64> {
+    let n = c.req(field, v, what)?;
+    c.check(field, n, true, "must be a finite number")
+        .then_some(n.v)
+}
+
+pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -> Checked {
+    // --- bounds
+    let start = position(
+        c,
+        "network.start_m",
+        n.start_m,
+        "the corridor coordinate of the mainline entrance (m)",
+    );
+    let end = position(
+        c,
+        "network.end_m",
+        n.end_m,
+        "the corridor coordinate of the road end (m), > network.start_m",
+    );
+    let bounds = match (start, end) {
+        (Some(s), Some(e)) if e > s => Some((s, e)),
+        (Some(s), Some(e)) => {
+            c.value(
+                "network.end_m",
+                e,
+                false,
+                &format!("must be > network.start_m = {}", num(s)),
+            );
+            None
+        }
+        _ => None,
+    };
+    let origin = start.unwrap_or(f64::NAN);
+    let length = bounds.map(|(s, e)| e - s);
+    let inside = |c: &mut Checker, field: &str, x: f64| {
+        if let Some((s, e)) = bounds {
+            c.value(
+                field,
+                x,
+                x > s && x < e,
+                &format!(
+                    "must lie inside the corridor (network.start_m, network.end_m) = ({}, {})",
+                    num(s),
+                    num(e)
+                ),
+            );
+        }
+    };
+
+    // --- demand
+    let interval = c.opt(n.interval_s, defaults::INTERVAL_S);
+    c.positive("network.interval_s", interval);
+    let mainline = series(
+        c,
+        "network.mainline_vph",
+        &n.mainline_vph,
+        None,
+        None,
+        "the demand at the mainline entrance per interval (veh/h, all lanes)",
+    );
+    let intervals = (!mainline.is_empty()).then_some(mainline.len());
+    let base = c.opt(n.base_demand_multiplier, defaults::BASE_DEMAND_MULTIPLIER);
+    c.non_negative("network.base_demand_multiplier", base);
+    let scale = c.opt(
+        n.demand_scale,
+        crate::demand_scales::default_at(penetration),
+    );
+    c.non_negative("network.demand_scale", scale);
+    let ramp_speed = c.opt(n.ramp_speed_kmh, defaults::RAMP_SPEED_KMH);
+    c.positive("network.ramp_speed_kmh", ramp_speed);
+
+    // --- lane stretches: they tile [start_m, end_m) in order
+    if n.lanes.is_empty() {
+        c.push(
+            "network.lanes",
+            "[]",
+            "at least one [[network.lanes]] stretch (from_m, to_m, count) is required",
+        );
+    }
+    let tile = "the stretches must tile [network.start_m, network.end_m) in order, without gaps or overlaps";
+    let mut prev: Option<(f64, String)> =
+        start.map(|s| (s, format!("network.start_m = {}", num(s))));
+    let mut stretches = Vec::with_capacity(n.lanes.len());
+    for (i, l) in n.lanes.iter().enumerate() {
+        let f_field = format!("network.lanes[{i}].from_m");
+        let t_field = format!("network.lanes[{i}].to_m");
+        let from = position(c, &f_field, l.from_m, "start of the stretch (m)");
+        let to = position(c, &t_field, l.to_m, "end of the stretch (m)");
+        let count = match l.count {
+            None => {
+                c.missing(
+                    &format!("network.lanes[{i}].count"),
+                    &format!("the number of through lanes, 1 to {MAX_LANE_COUNT}"),
+                );
+                None
+            }
+            Some(k) if !(1..=MAX_LANE_COUNT).contains(&k) => {
+                c.push(
+                    format!("network.lanes[{i}].count"),
+                    k.to_string(),
+                    format!("must be an integer from 1 to {MAX_LANE_COUNT}"),
+                );
+                None
+            }
+            Some(k) => Some(k),
+        };
+        if let (Some(f), Some((p, what))) = (from, &prev) {
+            if f != *p {
+                let kind = if f > *p { "a gap" } else { "an overlap" };
+                c.value(
+                    &f_field,
+                    f,
+                    false,
+                    &format!("must equal {what} ({kind}; {tile})"),
+                );
+            }
+        }
+        if let (Some(f), Some(t)) = (from, to) {
+            c.value(
+                &t_field,
+                t,
+                t > f,
+                &format!("must be > network.lanes[{i}].from_m = {}", num(f)),
+            );
+        }
+        prev = to.map(|t| (t, format!("network.lanes[{i}].to_m = {}", num(t))));
+        if let (Some(f), Some(t), Some(k)) = (from, to, count) {
+            stretches.push(Stretch {
+                from_m: f - origin,
+                to_m: t - origin,
+                count: k,
+            });
+        }
+    }
+    if let (Some((p, _)), Some(e), Some(last)) = (&prev, end, n.lanes.len().checked_sub(1)) {
+        if *p != e {
+            c.value(
+                &format!("network.lanes[{last}].to_m"),
+                *p,
+                false,
+                &format!("must equal network.end_m = {} ({tile})", num(e)),
+            );
+        }
+    }
+    let (lanes, through) = through_lanes(&stretches);
+
+    // --- ramp ids: unique across on- and off-ramps (they name the detectors)
+    let mut ids: Vec<(String, String, bool)> = Vec::new(); // (field, id, defaulted)
+    for (i, r) in n.on_ramps.iter().enumerate() {
+        ids.push(match &r.id {
+            Some(id) => (format!("network.on_ramps[{i}].id"), id.clone(), false),
+            None => (format!("network.on_ramps[{i}].id"), default_on_id(i), true),
+        });
+    }
+    for (i, r) in n.off_ramps.iter().enumerate() {
+        ids.push(match &r.id {
+            Some(id) => (format!("network.off_ramps[{i}].id"), id.clone(), false),
+            None => (
+                format!("network.off_ramps[{i}].id"),
+                default_off_id(i),
+                true,
+            ),
+        });
+    }
+    for (k, (field, id, defaulted)) in ids.iter().enumerate() {
+        let shown = if *defaulted {
+            format!("{} (default)", quoted(id))
+        } else {
+            quoted(id)
+        };
+        if !valid_id(id) {
+            c.push(
+                field,
+                shown,
+                "must be a non-empty id of letters, digits, '_', '-' and '.' (it names the ramp's detectors)",
+            );
+        } else if let Some((other, _, _)) = ids[..k].iter().find(|(_, o, _)| o == id) {
+            c.push(
+                field,
+                shown,
+                format!("duplicates {other}; ramp ids must be unique (they name the detectors)"),
+            );
+        }
+    }
+    let name_of = |c: &mut Checker, field: String, name: &Option<String>, id: &str| match name {
+        Some(s) if s.trim().is_empty() => {
+            c.push(field, quoted(s), "must be a non-empty string");
+            s.clone()
+        }
+        Some(s) => s.clone(),
+        None => id.to_string(),
+    };
+
+    // --- on-ramps
+    let mut on_ramps = Vec::with_capacity(n.on_ramps.len());
+    let mut prev_x: Option<f64> = None;
+    for (i, r) in n.on_ramps.iter().enumerate() {
+        let at = |k: &str| format!("network.on_ramps[{i}].{k}");
+        let id = &ids[i].1;
+        let name = name_of(c, at("name"), &r.name, id);
+        let x = position(
+            c,
+            &at("x_m"),
+            r.x_m,
+            "the merge point (m, corridor coordinate)",
+        );
+        if let Some(x) = x {
+            inside(c, &at("x_m"), x);
+            if let Some(p) = prev_x {
+                c.value(
+                    &at("x_m"),
+                    x,
+                    x > p,
+                    &format!(
+                        "must be > network.on_ramps[{}].x_m = {} (on-ramps are listed in downstream order)",
+                        i - 1,
+                        num(p)
+                    ),
+                );
+            }
+            prev_x = Some(x);
+        }
+        let accel = c.opt(r.accel_lane_m, defaults::ACCEL_LANE_M);
+        c.non_negative(&at("accel_lane_m"), accel);
+        let ramp_len = c.req(
+            &at("ramp_length_m"),
+            r.ramp_length_m,
+            "the ramp roadway length upstream of the merge point (m)",
+        );
+        if let Some(l) = ramp_len {
+            c.non_negative(&at("ramp_length_m"), l);
+        }
+        let demand = series(
+            c,
+            &at("demand_vph"),
+            &r.demand_vph,
+            None,
+            intervals,
+            "the ramp demand per interval (veh/h)",
+        );
+        on_ramps.push(OnRamp {
+            name: engine_name(id, &name),
+            x_m: x.map_or(f64::NAN, |x| x - origin),
+            accel_lane_m: accel.v,
+            ramp_length_m: ramp_len.map_or(f64::NAN, |n: Num| n.v),
+            demand_vph: demand,
+        });
+    }
+
+    // --- off-ramps
+    let mut off_ramps = Vec::with_capacity(n.off_ramps.len());
+    let mut prev_x: Option<f64> = None;
+    let n_on = n.on_ramps.len();
+    for (i, r) in n.off_ramps.iter().enumerate() {
+        let at = |k: &str| format!("network.off_ramps[{i}].{k}");
+        let id = &ids[n_on + i].1;
+        let name = name_of(c, at("name"), &r.name, id);
+        let x = position(
+            c,
+            &at("x_m"),
+            r.x_m,
+            "the diverge point (m, corridor coordinate)",
+        );
+        if let Some(x) = x {
+            inside(c, &at("x_m"), x);
+            if let Some(p) = prev_x {
+                c.value(
+                    &at("x_m"),
+                    x,
+                    x > p,
+                    &format!(
+                        "must be > network.off_ramps[{}].x_m = {} (off-ramps are listed in downstream order)",
+                        i - 1,
+                        num(p)
+                    ),
+                );
+            }
+            prev_x = Some(x);
+        }
+        let fraction = series(
+            c,
+            &at("exit_fraction"),
+            &r.exit_fraction,
+            Some(1.0),
+            intervals,
+            "the share of arriving mainline vehicles that exit here, per interval, in [0, 1]",
+        );
+        off_ramps.push(OffRamp {
+            name: engine_name(id, &name),
+            x_m: x.map_or(f64::NAN, |x| x - origin),
+            exit_fraction: fraction,
+        });
+    }
+
+    // --- detector spacing
+    let d = &n.detectors;
+    let spacing_default = Spacing::default();
+    let up = c.opt(d.upstream_of_ramps_m, spacing_default.upstream_of_ramps_m);
+    c.non_negative("network.detectors.upstream_of_ramps_m", up);
+    let down = c.opt(
+        d.downstream_of_onramps_m,
+        spacing_default.downstream_of_onramps_m,
+    );
+    c.non_negative("network.detectors.downstream_of_onramps_m", down);
+    let before_end = c.opt(d.before_end_m, spacing_default.before_end_m);
+    match length {
+        Some(l) => {
+            c.check(
+                "network.detectors.before_end_m",
+                before_end,
+                before_end.v > 0.0 && before_end.v < l,
+                format!(
+                    "must be > 0 and < the corridor length network.end_m − network.start_m = {}",
+                    num(l)
+                ),
+            );
+        }
+        None => {
+            c.positive("network.detectors.before_end_m", before_end);
+        }
+    }
+
+    Checked {
+        lanes,
+        origin,
+        end: bounds.map(|(_, e)| e),
+        length,
+        network: Network {
+            origin_m: origin,
+            through_lanes: through,
+            on_ramps,
+            off_ramps,
+            interval_s: interval.v,
+            mainline_vph: mainline,
+            demand_scale: base.v * scale.v,
+            ramp_speed_kmh: ramp_speed.v,
+        },
+        on_ids: ids[..n_on].iter().map(|(_, id, _)| id.clone()).collect(),
+        off_ids: ids[n_on..].iter().map(|(_, id, _)| id.clone()).collect(),
+        spacing: Spacing {
+            upstream_of_ramps_m: up.v,
+            downstream_of_onramps_m: down.v,
+            before_end_m: before_end.v,
+        },
+    }
+}
