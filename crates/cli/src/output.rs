@@ -99,12 +99,29 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
     } else {
         String::new()
     };
+    // A network's demand is its series times a scale; it also reports the discharge through
+    // every exit.
+    let (demand, network) = match &config.road.network {
+        Some(n) => (
+            format!("the network's demand x {}", n.demand_scale),
+            format!(
+                " Network discharge (off-ramps and the end): {} veh/h; {} missed exits.",
+                s.network_discharge_vph
+                    .map_or("-".to_string(), |q| format!("{q:.0}")),
+                s.missed_exits
+            ),
+        ),
+        None => (
+            format!("{} veh/h/lane demand", s.demand_vphpl),
+            String::new(),
+        ),
+    };
     let text = format!(
         "{name}: {dur} s simulated in steps of {dt} s (measured after the {warm} s warm-up) with \
-         {pen} % CAV, {demand} veh/h/lane demand, strategy {strategy}, seed {seed}. \
+         {pen} % CAV, {demand}, strategy {strategy}, seed {seed}. \
          Vehicles: {entered} entered, {exited} exited, {inside} still on the road, {waiting} \
          waiting at the entrance. Discharge at detector '{detector}': {q:.1} veh/h/lane over \
-         the measurement window; highest {agg} s flow {qmax:.1} veh/h/lane. Lane changes per \
+         the measurement window; highest {agg} s flow {qmax:.1} veh/h/lane.{network} Lane changes per \
          vehicle {lc:.3} ({counted} vehicles; per CAV {lc_cav:.3}, per human {lc_human:.3}); \
          average platoon length {lbar:.2} and platooning probability {pp:.3} ({cavs} CAVs). \
          Collisions: {collisions}. {updates} vehicle updates in {wall:.2} s{rate}. \
@@ -114,7 +131,6 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
         dt = s.dt_s,
         warm = s.warmup_s,
         pen = s.penetration * 100.0,
-        demand = s.demand_vphpl,
         strategy = s.strategy,
         seed = s.seed,
         entered = s.vehicles_entered,
@@ -271,6 +287,27 @@ mod tests {
             assert!(flat.contains(part), "{part} missing in:\n{p}");
         }
         assert!(p.lines().all(|l| l.len() <= 96), "{p}");
+    }
+
+    #[test]
+    fn paragraph_of_a_network_run_gives_its_demand_scale_and_exits() {
+        let o = platoonsim_scenario::Overrides {
+            duration_s: Some(60.0),
+            penetration: Some(0.4),
+            ..Default::default()
+        };
+        let config = platoonsim_scenario::load_with("sr99", &o).unwrap();
+        let out = platoonsim_sim::run(&config, None).unwrap();
+        let p = paragraph(&config, &out.summary, Path::new("out/run")).replace('\n', " ");
+        for part in [
+            "sr99:",
+            "40 % CAV, the network's demand x 1.1,",
+            "Network discharge (off-ramps and the end):",
+            "missed exits",
+        ] {
+            assert!(p.contains(part), "{part} missing in:\n{p}");
+        }
+        assert!(!p.contains("veh/h/lane demand"), "{p}");
     }
 
     #[test]
