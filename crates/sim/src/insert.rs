@@ -276,15 +276,12 @@ impl Simulation {
         let list = &self.lanes[lane];
         let j = list.partition_point(|&o| self.vehicles[o as usize].x > x);
         let ld = (j > 0).then(|| list[j - 1]);
-        // The follower, if it is in the same open segment (not behind a wall upstream).
-        let seg_from = self
-            .geom
-            .seg(lane as u32, x)
-            .map_or(x, |s| s.from.max(f64::MIN));
-        let fo = list
-            .get(j)
-            .copied()
-            .filter(|&f| self.vehicles[f as usize].x >= seg_from);
+        // The follower, unless a wall stops it before the merge point (the end of an
+        // upstream acceleration lane of the same index).
+        let fo = list.get(j).copied().filter(|&f| {
+            let fx = self.vehicles[f as usize].x;
+            self.geom.wall_ahead(lane as u32, fx).is_none_or(|w| w >= x)
+        });
         let wall = self.geom.wall_ahead(lane as u32, x);
         let Some(speed) = self.insertion_speed_at(head, x, ld, wall, v_max) else {
             return;

@@ -74,6 +74,9 @@ pub struct Geometry {
     pub entry_lanes: Vec<u32>,
     /// A plain road: every lane open everywhere (fast paths skip the lookups).
     pub plain: bool,
+    /// Per lane, per metre of road from x = 0: the index of the first segment that ends after
+    /// the start of that metre (`seg` starts its search there; O(1) per lookup).
+    index: Vec<Vec<u8>>,
 }
 
 impl Geometry {
@@ -94,6 +97,7 @@ impl Geometry {
                 ramps_by_x: Vec::new(),
                 entry_lanes: (0..n as u32).collect(),
                 plain: true,
+                index: Vec::new(),
             });
         };
         build(net, n, cfg.road.length_m)
@@ -102,10 +106,12 @@ impl Geometry {
     /// The segment of `lane` that contains `x`.
     #[inline]
     pub fn seg(&self, lane: u32, x: f64) -> Option<&Seg> {
-        self.lanes
-            .get(lane as usize)?
-            .iter()
-            .find(|s| s.contains(x))
+        let segs = self.lanes.get(lane as usize)?;
+        let start = match self.index.get(lane as usize) {
+            Some(ix) if x >= 0.0 && !ix.is_empty() => ix[(x as usize).min(ix.len() - 1)] as usize,
+            _ => 0,
+        };
+        segs[start.min(segs.len())..].iter().find(|s| s.contains(x))
     }
 
     /// May a vehicle change into `lane` at `x`? (Open there and not an acceleration lane.)
@@ -264,6 +270,22 @@ fn build(net: &Network, n: usize, length: f64) -> Result<Geometry, String> {
     if entry_lanes.is_empty() {
         return Err("network: no through lane is open at the entrance".into());
     }
+    let metres = length.max(0.0).ceil() as usize + 2;
+    let index = lanes
+        .iter()
+        .map(|segs| {
+            assert!(segs.len() < 255, "at most 254 segments per lane");
+            let mut k = 0usize;
+            (0..metres)
+                .map(|m| {
+                    while k < segs.len() && segs[k].to <= m as f64 {
+                        k += 1;
+                    }
+                    k as u8
+                })
+                .collect()
+        })
+        .collect();
     Ok(Geometry {
         lanes,
         on_ramps,
@@ -271,6 +293,7 @@ fn build(net: &Network, n: usize, length: f64) -> Result<Geometry, String> {
         ramps_by_x,
         entry_lanes,
         plain: false,
+        index,
     })
 }
 
