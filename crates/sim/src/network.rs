@@ -77,6 +77,10 @@ pub struct Geometry {
     /// Per lane, per metre of road from x = 0: the index of the first segment that ends after
     /// the start of that metre (`seg` starts its search there; O(1) per lookup).
     index: Vec<Vec<u8>>,
+    /// Per metre: rightmost and leftmost through lane at the start of the metre, or 255 when a
+    /// segment boundary lies inside the metre (then the lanes are searched).
+    right_tab: Vec<u8>,
+    left_tab: Vec<u8>,
 }
 
 impl Geometry {
@@ -98,6 +102,8 @@ impl Geometry {
                 entry_lanes: (0..n as u32).collect(),
                 plain: true,
                 index: Vec::new(),
+                right_tab: Vec::new(),
+                left_tab: Vec::new(),
             });
         };
         build(net, n, cfg.road.length_m)
@@ -111,7 +117,14 @@ impl Geometry {
             Some(ix) if x >= 0.0 && !ix.is_empty() => ix[(x as usize).min(ix.len() - 1)] as usize,
             _ => 0,
         };
-        segs[start.min(segs.len())..].iter().find(|s| s.contains(x))
+        // Sorted and disjoint: the segment ending after the metre's start, or (a boundary
+        // inside the metre) the next one; a lookup without an index scans them all.
+        let n = if self.index.is_empty() { segs.len() } else { 2 };
+        segs.get(start..)?
+            .iter()
+            .take(n)
+            .take_while(|s| s.from <= x)
+            .find(|s| s.contains(x))
     }
 
     /// May a vehicle change into `lane` at `x`? (Open there and not an acceleration lane.)
@@ -286,7 +299,7 @@ fn build(net: &Network, n: usize, length: f64) -> Result<Geometry, String> {
                 .collect()
         })
         .collect();
-    Ok(Geometry {
+    let mut g = Geometry {
         lanes,
         on_ramps,
         off_ramps,
@@ -294,7 +307,28 @@ fn build(net: &Network, n: usize, length: f64) -> Result<Geometry, String> {
         entry_lanes,
         plain: false,
         index,
-    })
+        right_tab: Vec::new(),
+        left_tab: Vec::new(),
+    };
+    let inside = |m: usize| {
+        g.lanes.iter().flatten().any(|s| {
+            let (a, b) = (m as f64, m as f64 + 1.0);
+            (s.from > a && s.from < b) || (s.to > a && s.to < b)
+        })
+    };
+    let (mut right, mut left) = (Vec::with_capacity(metres), Vec::with_capacity(metres));
+    for m in 0..metres {
+        if inside(m) {
+            right.push(255);
+            left.push(255);
+        } else {
+            right.push(g.rightmost_through(m as f64).map_or(255, |l| l as u8));
+            left.push(g.leftmost_through(m as f64).map_or(255, |l| l as u8));
+        }
+    }
+    g.right_tab = right;
+    g.left_tab = left;
+    Ok(g)
 }
 
 /// Sort segments and merge the ones that overlap or touch with the same kind; an overlap of
