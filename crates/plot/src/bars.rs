@@ -71,8 +71,57 @@ impl output::Figure for Figure<'_> {
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult {
+        self.draw_in(root, &theme::FULL)
+    }
+}
+
+/// Bar charts in a grid under a common title.
+pub(crate) struct Grid<'a> {
+    charts: &'a [Bars],
+    cols: usize,
+    rows: usize,
+    title: &'a str,
+}
+
+impl<'a> Grid<'a> {
+    /// `cols` is taken as at least 1 and at most the number of charts.
+    pub fn new(charts: &'a [Bars], cols: usize, title: &'a str) -> Self {
+        let cols = cols.clamp(1, charts.len().max(1));
+        let rows = charts.len().div_ceil(cols).max(1);
+        Grid {
+            charts,
+            cols,
+            rows,
+            title,
+        }
+    }
+}
+
+impl output::Figure for Grid<'_> {
+    fn size(&self) -> (u32, u32) {
+        let w = (560 * self.cols as u32).max(1000);
+        let h = (440 * self.rows as u32 + 56).max(560);
+        (w, h)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult {
+        let body = crate::line::title_band(root, self.title, 56)?;
+        let cells = body.split_evenly((self.rows, self.cols));
+        for (chart, cell) in self.charts.iter().zip(&cells) {
+            Figure(chart).draw_in(cell, &theme::PANEL)?;
+        }
+        Ok(())
+    }
+}
+
+impl Figure<'_> {
+    /// Draws the chart into `area` with text sizes `sz`.
+    fn draw_in<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        sz: &theme::Sizes,
+    ) -> DrawResult {
         let b = self.0;
-        let sz = &theme::FULL;
         let bars = self.bars();
 
         // The value axis always shows zero, the bars' feet.

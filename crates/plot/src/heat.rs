@@ -110,20 +110,36 @@ impl output::Figure for Figure<'_> {
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult {
-        let sz = &theme::FULL;
         let body = title_band(root, &self.h.title, 56)?;
         let (w, _) = body.dim_in_pixel();
         let (cells_area, bar_area) = body.split_horizontally(w.saturating_sub(BAR_AREA));
+        self.cells(&cells_area, &theme::FULL, false)?;
+        let missing = self.h.z.iter().flatten().any(|z| !z.is_finite());
+        colour_bar(&bar_area, self.z_range, &self.h.z_label, missing)
+    }
+}
 
+impl Figure<'_> {
+    /// The axes and the coloured cells in `area`; with `caption`, the heat map's title above
+    /// them (panels of a grid).
+    fn cells<DB: DrawingBackend>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+        sz: &theme::Sizes,
+        caption: bool,
+    ) -> DrawResult {
         let (x0, x1) = span(&self.x_edges);
         let (y0, y1) = span(&self.y_edges);
-        let mut ctx = ChartBuilder::on(&cells_area)
+        let mut builder = ChartBuilder::on(area);
+        builder
             .margin(12)
             .margin_top(TOP)
             .x_label_area_size(sz.x_area)
-            .y_label_area_size(sz.y_area)
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(msg)?;
+            .y_label_area_size(sz.y_area);
+        if caption && !self.h.title.is_empty() {
+            builder.caption(&self.h.title, theme::bold(sz.title));
+        }
+        let mut ctx = builder.build_cartesian_2d(x0..x1, y0..y1).map_err(msg)?;
         let (x_tick, y_tick) = (tick_label(x0, x1), tick_label(y0, y1));
         ctx.configure_mesh()
             .disable_mesh()
@@ -155,70 +171,132 @@ impl output::Figure for Figure<'_> {
             }
         }
         ctx.draw_series(rects).map_err(msg)?;
-
-        let missing = self.h.z.iter().flatten().any(|z| !z.is_finite());
-        self.colour_bar(&bar_area, missing)
+        Ok(())
     }
 }
 
-impl Figure<'_> {
-    /// The colour scale at the right, labelled with `z_label`; a "no data" key if needed.
-    fn colour_bar<DB: DrawingBackend>(
-        &self,
-        area: &DrawingArea<DB, Shift>,
-        missing: bool,
-    ) -> DrawResult {
-        let sz = &theme::FULL;
-        let (lo, hi) = self.z_range;
-        let mut ctx = ChartBuilder::on(area)
-            .margin_top(TOP)
-            .margin_bottom(12)
-            .margin_left(8)
-            .margin_right(8)
-            .x_label_area_size(sz.x_area)
-            .right_y_label_area_size(100)
-            .build_cartesian_2d(0.0..1.0, lo..hi)
-            .map_err(msg)?;
-        let z_tick = tick_label(lo, hi);
-        ctx.configure_mesh()
-            .disable_mesh()
-            .disable_x_axis()
-            .y_label_formatter(&z_tick)
-            .set_tick_mark_size(LabelAreaPosition::Right, 8)
-            .y_desc(self.h.z_label.as_str())
-            .axis_desc_style(text(sz.axis))
-            .label_style(text(sz.tick))
-            .y_labels(8)
-            .draw()
-            .map_err(msg)?;
-        const STEPS: usize = 128;
-        let step = (hi - lo) / STEPS as f64;
-        ctx.draw_series((0..STEPS).map(|k| {
-            let a = lo + step * k as f64;
-            let c = speed_colour((k as f64 + 0.5) / STEPS as f64);
-            Rectangle::new([(0.0, a), (1.0, a + step)], c.filled())
-        }))
-        .map_err(msg)?;
-        ctx.draw_series([Rectangle::new(
-            [(0.0, lo), (1.0, hi)],
-            BLACK.stroke_width(1),
-        )])
-        .map_err(msg)?;
+/// Heat maps side by side in a grid under a common title, sharing the colour scale of the
+/// first (its `z_range`, or the extent of all finite data, and its `z_label`).
+pub(crate) struct Grid<'a> {
+    figures: Vec<Figure<'a>>,
+    cols: usize,
+    rows: usize,
+    title: &'a str,
+    z_range: (f64, f64),
+    z_label: &'a str,
+}
 
-        if missing {
-            let (_, h) = area.dim_in_pixel();
-            let key = EmptyElement::at((10, h as i32 - 30))
-                + Rectangle::new([(0, -9), (18, 9)], MISSING.filled())
-                + Rectangle::new([(0, -9), (18, 9)], BLACK.stroke_width(1))
-                + Text::new(
-                    "no data",
-                    (26, 0),
-                    text(sz.tick).pos(Pos::new(HPos::Left, VPos::Center)),
-                );
-            area.draw(&key).map_err(msg)?;
+impl<'a> Grid<'a> {
+    /// Checks every map (an error names the panel); `cols` is clamped to 1..=maps.
+    pub fn new(maps: &'a [Heatmap], cols: usize, title: &'a str) -> Result<Self, String> {
+        let z_range = maps
+            .first()
+            .and_then(|h| valid_range(h.z_range))
+            .unwrap_or_else(|| {
+                padded(
+                    extent(maps.iter().flat_map(|h| h.z.iter().flatten().copied())),
+                    0.0,
+                )
+            });
+        let mut figures = Vec::with_capacity(maps.len());
+        for (i, h) in maps.iter().enumerate() {
+            let mut f = Figure::new(h).map_err(|e| format!("panel {}: {e}", i + 1))?;
+            f.z_range = z_range;
+            figures.push(f);
         }
-        Ok(())
+        let cols = cols.clamp(1, maps.len().max(1));
+        let rows = maps.len().div_ceil(cols).max(1);
+        Ok(Grid {
+            figures,
+            cols,
+            rows,
+            title,
+            z_range,
+            z_label: maps.first().map_or("", |h| h.z_label.as_str()),
+        })
     }
+}
+
+impl output::Figure for Grid<'_> {
+    fn size(&self) -> (u32, u32) {
+        let w = 560 * self.cols as u32 + BAR_AREA;
+        let h = (440 * self.rows as u32 + 56).max(560);
+        (w.max(1000), h)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult {
+        let body = title_band(root, self.title, 56)?;
+        let (w, _) = body.dim_in_pixel();
+        let (cells_area, bar_area) = body.split_horizontally(w.saturating_sub(BAR_AREA));
+        let areas = cells_area.split_evenly((self.rows, self.cols));
+        for (f, area) in self.figures.iter().zip(&areas) {
+            f.cells(area, &theme::PANEL, true)?;
+        }
+        let missing = self
+            .figures
+            .iter()
+            .any(|f| f.h.z.iter().flatten().any(|z| !z.is_finite()));
+        colour_bar(&bar_area, self.z_range, self.z_label, missing)
+    }
+}
+
+/// The colour scale for `(lo, hi)` in `area`, labelled with `label`; a "no data" key if
+/// `missing`.
+fn colour_bar<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    (lo, hi): (f64, f64),
+    label: &str,
+    missing: bool,
+) -> DrawResult {
+    let sz = &theme::FULL;
+    let mut ctx = ChartBuilder::on(area)
+        .margin_top(TOP)
+        .margin_bottom(12)
+        .margin_left(8)
+        .margin_right(8)
+        .x_label_area_size(sz.x_area)
+        .right_y_label_area_size(100)
+        .build_cartesian_2d(0.0..1.0, lo..hi)
+        .map_err(msg)?;
+    let z_tick = tick_label(lo, hi);
+    ctx.configure_mesh()
+        .disable_mesh()
+        .disable_x_axis()
+        .y_label_formatter(&z_tick)
+        .set_tick_mark_size(LabelAreaPosition::Right, 8)
+        .y_desc(label)
+        .axis_desc_style(text(sz.axis))
+        .label_style(text(sz.tick))
+        .y_labels(8)
+        .draw()
+        .map_err(msg)?;
+    const STEPS: usize = 128;
+    let step = (hi - lo) / STEPS as f64;
+    ctx.draw_series((0..STEPS).map(|k| {
+        let a = lo + step * k as f64;
+        let c = speed_colour((k as f64 + 0.5) / STEPS as f64);
+        Rectangle::new([(0.0, a), (1.0, a + step)], c.filled())
+    }))
+    .map_err(msg)?;
+    ctx.draw_series([Rectangle::new(
+        [(0.0, lo), (1.0, hi)],
+        BLACK.stroke_width(1),
+    )])
+    .map_err(msg)?;
+
+    if missing {
+        let (_, h) = area.dim_in_pixel();
+        let key = EmptyElement::at((10, h as i32 - 30))
+            + Rectangle::new([(0, -9), (18, 9)], MISSING.filled())
+            + Rectangle::new([(0, -9), (18, 9)], BLACK.stroke_width(1))
+            + Text::new(
+                "no data",
+                (26, 0),
+                text(sz.tick).pos(Pos::new(HPos::Left, VPos::Center)),
+            );
+        area.draw(&key).map_err(msg)?;
+    }
+    Ok(())
 }
 
 #[cfg(test)]

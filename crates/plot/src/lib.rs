@@ -1,4 +1,6 @@
-//! Figures for platoonsim, written as both PNG and SVG.
+//! Figures for platoonsim, written as both PNG and SVG: line charts ([`line_chart`], as
+//! panels [`panels`]), speed contours ([`heatmap`], [`heatmap_panels`]) and grouped bars
+//! ([`bar_chart`], [`bar_panels`]).
 //!
 //! The crate takes plain data (vectors of `f64`, strings) and knows nothing about the
 //! simulator. Every public function writes `<stem>.png` and `<stem>.svg` and returns both
@@ -215,4 +217,34 @@ pub fn heatmap(h: &Heatmap, stem: &Path) -> Result<Vec<PathBuf>, PlotError> {
 /// Writes a grouped bar chart with optional error bars (1000 × 700 px); returns both paths.
 pub fn bar_chart(b: &Bars, stem: &Path) -> Result<Vec<PathBuf>, PlotError> {
     output::write_figure(&bars::Figure(b), stem)
+}
+
+/// Writes several bar charts as one figure, in a grid of `cols` columns (0 is taken as 1)
+/// filled row by row, under a common `title`; returns both paths. Each panel is about
+/// 560 × 440 px.
+pub fn bar_panels(
+    charts: &[Bars],
+    cols: usize,
+    title: &str,
+    stem: &Path,
+) -> Result<Vec<PathBuf>, PlotError> {
+    output::write_figure(&bars::Grid::new(charts, cols, title), stem)
+}
+
+/// Writes several speed contours as one figure, in a grid of `cols` columns (at least one)
+/// under a common `title`, with one colour bar for all of them: the first map's
+/// `z_range` and `z_label` (or, if that range is not a finite increasing pair, the extent
+/// of all the maps' finite values). Each map's `title` is its panel's caption. Every map is
+/// checked as in [`heatmap`]; an error names the panel. Returns both paths.
+pub fn heatmap_panels(
+    maps: &[Heatmap],
+    cols: usize,
+    title: &str,
+    stem: &Path,
+) -> Result<Vec<PathBuf>, PlotError> {
+    let grid = heat::Grid::new(maps, cols, title).map_err(|message| PlotError::Invalid {
+        path: output::file_path(stem, "png"),
+        message,
+    })?;
+    output::write_figure(&grid, stem)
 }

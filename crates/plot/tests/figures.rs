@@ -7,7 +7,8 @@ use std::fs;
 use std::path::{Path, PathBuf};
 
 use platoonsim_plot::{
-    bar_chart, heatmap, line_chart, panels, Bars, Chart, Heatmap, PlotError, Series, Style,
+    bar_chart, bar_panels, heatmap, heatmap_panels, line_chart, panels, Bars, Chart, Heatmap,
+    PlotError, Series, Style,
 };
 
 /// A fresh, empty directory for one test.
@@ -337,6 +338,60 @@ fn bar_chart_writes_png_and_svg() {
         "human",
         "CACC",
         "paper",
+    ] {
+        assert!(svg.contains(text), "SVG lacks {text:?}");
+    }
+}
+
+#[test]
+fn heatmap_panels_share_one_colour_bar() {
+    let dir = Dir::new("heat-panels");
+    let stem = dir.stem("contours");
+    let mut maps = vec![contour(), contour(), contour()];
+    for (m, name) in maps.iter_mut().zip(["Baseline", "PD lane", "Flow-Aware"]) {
+        m.title = name.into();
+    }
+    // Only the first map's range counts: the others' are ignored.
+    maps[1].z_range = (50.0, 60.0);
+    let svg = check_files(
+        &heatmap_panels(&maps, 3, "Speed contours, 40 % CAV", &stem).unwrap(),
+        &stem,
+    );
+    for text in [
+        "Speed contours, 40 % CAV",
+        "Baseline",
+        "PD lane",
+        "Flow-Aware",
+        "Speed (km/h)",
+        "no data",
+    ] {
+        assert!(svg.contains(text), "SVG lacks {text:?}");
+    }
+    assert_eq!(svg.matches("Speed (km/h)").count(), 1, "one colour bar");
+
+    // A bad panel is named; no panels draws an empty figure.
+    maps[2].z.pop();
+    let err = heatmap_panels(&maps, 3, "", &stem).unwrap_err().to_string();
+    assert!(err.contains("panel 3"), "{err}");
+    let stem = dir.stem("none");
+    check_files_min(&heatmap_panels(&[], 2, "", &stem).unwrap(), &stem, 1_000);
+}
+
+#[test]
+fn bar_panels_draw_a_grid_of_bar_charts() {
+    let dir = Dir::new("bar-panels");
+    let stem = dir.stem("fig8");
+    let mut b = fig8();
+    b.title = "Average platoon length".into();
+    let svg = check_files(
+        &bar_panels(&[fig8(), b, Bars::default()], 3, "Paper Fig. 8", &stem).unwrap(),
+        &stem,
+    );
+    for text in [
+        "Paper Fig. 8",
+        "Lane changes per vehicle",
+        "Average platoon length",
+        "100 %",
     ] {
         assert!(svg.contains(text), "SVG lacks {text:?}");
     }
