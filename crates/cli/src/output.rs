@@ -103,7 +103,7 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
     // every exit.
     let (demand, network) = match &config.road.network {
         Some(n) => (
-            format!("the network's demand x {}", n.demand_scale),
+            format!("the network's demand x {:.3}", n.demand_scale),
             format!(
                 " Network discharge (off-ramps and the end): {} veh/h; {} missed exits.",
                 s.network_discharge_vph
@@ -301,7 +301,7 @@ mod tests {
         let p = paragraph(&config, &out.summary, Path::new("out/run")).replace('\n', " ");
         for part in [
             "sr99:",
-            "40 % CAV, the network's demand x 1.1,",
+            "40 % CAV, the network's demand x 1.243,",
             "Network discharge (off-ramps and the end):",
             "missed exits",
         ] {

@@ -47,7 +47,8 @@ fn sr99_is_the_corridor_of_the_data() {
     assert_eq!(n.interval_s, 900.0);
     assert_eq!(n.mainline_vph.len(), 16);
     assert_eq!(n.mainline_vph[0], 1020.0);
-    assert_eq!(n.demand_scale, 1.0);
+    // Calibrated base multiplier 1.13 (docs/calibration.md) × the paper's scale 1.00 at 0 %.
+    assert_eq!(n.demand_scale, 1.13);
     assert_eq!(n.ramp_speed_kmh, 90.0);
     // HOV lane open to all: 3 lanes, 4 from the Calvine WB on-ramp, 5 from the Fruitridge WB one.
     assert_eq!(
@@ -142,14 +143,16 @@ fn sr99_demand_scale_follows_the_penetration_unless_given() {
             .unwrap()
             .demand_scale
     };
-    assert_eq!(at(0.4, None), 1.1);
-    assert_eq!(at(1.0, None), 1.27);
-    assert_eq!(at(0.5, None), demand_scales::default_at(0.5));
-    assert_eq!(at(0.5, Some(1.3)), 1.3);
+    // Engine scale = the calibrated base multiplier 1.13 × the run's scale.
+    let base = 1.13;
+    assert_eq!(at(0.4, None), base * 1.1);
+    assert_eq!(at(1.0, None), base * 1.27);
+    assert_eq!(at(0.5, None), base * demand_scales::default_at(0.5));
+    assert_eq!(at(0.5, Some(1.3)), base * 1.3);
     // The base multiplier multiplies the scale.
     let c = from_toml(
         &SR99.replace(
-            "base_demand_multiplier = 1.0",
+            "base_demand_multiplier = 1.13",
             "base_demand_multiplier = 1.5",
         ),
         "t",
