@@ -169,7 +169,8 @@ fn show_sr99_prints_the_network_and_takes_the_run_flags() {
     assert_eq!(json["seed"], 4);
     assert_eq!(json["strategy"]["kind"], "pd");
     assert_eq!(json["road"]["lanes"], 6);
-    assert_eq!(json["road"]["network"]["demand_scale"], 1.2);
+    // --demand-scale times the calibrated base multiplier 1.13 of sr99.
+    assert_eq!(json["road"]["network"]["demand_scale"], 1.13 * 1.2);
     assert_eq!(json["road"]["network"]["origin_m"], -500.0);
     assert_eq!(
         json["road"]["network"]["on_ramps"]
