@@ -3,6 +3,7 @@
 //! resolved [`Config`] it runs. A run is a cell with one seed ([`RunSpec`]); the seeds are
 //! 1..=N.
 
+use crate::detectors::Scope;
 use crate::hash::config_key;
 use crate::Error;
 use platoonsim_scenario::{load_with, Overrides, StrategyKind};
@@ -63,12 +64,14 @@ pub struct Cell {
     pub config: Config,
 }
 
-/// One run: cell index, seed, and the configuration with that seed.
+/// One run: cell index, seed, the configuration with that seed, and which detector records
+/// the run keeps beside its run file (none unless an experiment asks, see [`keep_detectors`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct RunSpec {
     pub cell: usize,
     pub seed: u64,
     pub config: Config,
+    pub detectors: Scope,
 }
 
 impl RunSpec {
@@ -94,10 +97,18 @@ pub fn runs(cells: &[Cell], seeds: &[u64]) -> Vec<RunSpec> {
                 cell: i,
                 seed,
                 config,
+                detectors: Scope::None,
             });
         }
     }
     out
+}
+
+/// Keep the detector records of `scope` for the runs that `wanted(cell, seed)` selects.
+pub fn keep_detectors(specs: &mut [RunSpec], scope: Scope, wanted: impl Fn(usize, u64) -> bool) {
+    for s in specs.iter_mut().filter(|s| wanted(s.cell, s.seed)) {
+        s.detectors = s.detectors.max(scope);
+    }
 }
 
 /// A point on the built-in homogeneous road: what the experiments vary.

@@ -4,15 +4,20 @@
 //! * [`runner`]: runs in parallel (rayon; each run single-threaded), with a progress bar,
 //!   resumable through atomic run files `<out>/<experiment>/runs/<key>.json`, where the key
 //!   is the stable hash of the run's configuration ([`hash`]).
+//!   Selected runs also keep detector records beside their run file ([`detectors`]).
 //! * [`stats`]: mean, sample sd, n, Student-t 95 % confidence interval.
 //! * [`table`]: `runs.csv`, `summary.csv` and `run.json`.
 //! * [`paper`]: the paper's values, each with its source.
-//! * [`experiments`]: `capacity` (Fig. 4), `sensitivity` (Table 3), `flow-aware`.
+//! * [`experiments`]: `capacity` (Fig. 4), `sensitivity` (Table 3), `flow-aware`,
+//!   `calibrate-flow-aware`, `sr99` (Table 4, Figs. 6-8) and `sr99-demand` (the demand-scale
+//!   search); [`corridor`] reads contours, lane series and bottlenecks from detector records.
 //! * [`report`]: `REPORT.md` and a self-contained `report.html` over several experiments.
 //! * [`atomic`]: the one atomic file writer (also used by the CLI).
 
 pub mod atomic;
+pub mod corridor;
 pub mod design;
+pub mod detectors;
 pub mod experiments;
 pub mod hash;
 pub mod paper;

@@ -3,7 +3,10 @@
 //! cell (a subset of the cell's labels) and a metric (a run field name).
 //!
 //! Fig. 4 (capacity vs penetration) is not available as a figure; only the values stated in
-//! the text of the Preliminary Study are given. Table 3's values are as printed.
+//! the text of the Preliminary Study are given. Table 3's and Table 4's (SR-99, the appendix
+//! table `tab:network_result_v3`) values are as printed, the percentages in parentheses too
+//! (they are rounded from the paper's own unrounded results, so they may differ from the
+//! printed values' ratio in the last digit).
 
 /// One value of the paper.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -71,9 +74,132 @@ pub const CAPACITY: [PaperValue; 3] = [
     v!("capacity", ["stage" => "pd", "penetration" => "0.5"], "max_sustained_flow_vphpl", 2000.0, FIG4_TEXT),
 ];
 
+const TABLE4: &str = "Table 4 (SR-99)";
+
+/// One row of Table 4: penetration label, strategy, network discharge (veh/h), lane changes
+/// per vehicle, L̄ (NaN: not applicable), and for PD / Flow-Aware PD the changes to the
+/// baseline at the same penetration (%).
+type Table4Row = (&'static str, &'static str, f64, f64, f64, Option<[f64; 3]>);
+
+const TABLE4_ROWS: [Table4Row; 14] = [
+    ("0", "none", 10675.8, 2.40, f64::NAN, None),
+    ("0.2", "none", 10687.3, 2.35, 1.87, None),
+    ("0.2", "pd", 10675.8, 3.40, 4.47, Some([-0.1, 45.0, 138.9])),
+    (
+        "0.2",
+        "flow-aware",
+        10687.8,
+        2.58,
+        2.25,
+        Some([0.0, 9.7, 20.0]),
+    ),
+    ("0.4", "none", 11739.8, 2.40, 3.28, None),
+    ("0.4", "pd", 11402.0, 4.90, 6.81, Some([-2.9, 103.9, 107.2])),
+    (
+        "0.4",
+        "flow-aware",
+        11733.8,
+        2.93,
+        3.94,
+        Some([-0.1, 22.0, 20.0]),
+    ),
+    ("0.6", "none", 12449.3, 2.15, 4.27, None),
+    ("0.6", "pd", 11780.3, 5.55, 7.12, Some([-5.4, 157.6, 66.6])),
+    (
+        "0.6",
+        "flow-aware",
+        12446.8,
+        3.06,
+        4.98,
+        Some([0.0, 42.2, 16.6]),
+    ),
+    ("0.8", "none", 13347.0, 2.03, 5.97, None),
+    ("0.8", "pd", 12378.8, 5.24, 7.78, Some([-7.3, 157.9, 30.4])),
+    (
+        "0.8",
+        "flow-aware",
+        13356.8,
+        2.66,
+        6.47,
+        Some([0.1, 30.9, 8.5]),
+    ),
+    ("1", "none", 13069.0, 1.82, 7.55, None),
+];
+
+/// The paper's SR-99 demand scales by penetration (Table 4 and the Results text).
+pub const SR99_DEMAND_SCALES: [(f64, f64); 6] = [
+    (0.0, 1.00),
+    (0.2, 1.00),
+    (0.4, 1.10),
+    (0.6, 1.17),
+    (0.8, 1.25),
+    (1.0, 1.27),
+];
+
+/// The paper's SR-99 demand scale at a penetration (one of its six).
+pub fn sr99_demand_scale(penetration: f64) -> Option<f64> {
+    SR99_DEMAND_SCALES
+        .iter()
+        .find(|(p, _)| (p - penetration).abs() < 1e-9)
+        .map(|(_, s)| *s)
+}
+
+/// The SR-99 values (experiment `sr99`): cells by `penetration` and `strategy`.
+fn table4() -> Vec<PaperValue> {
+    let mut out = Vec::new();
+    for (i, &(_, _, q, lc, lbar, change)) in TABLE4_ROWS.iter().enumerate() {
+        let cell = table4_cell(i);
+        let mut push = |metric: &'static str, value: f64| {
+            if value.is_finite() {
+                out.push(PaperValue {
+                    experiment: "sr99",
+                    cell,
+                    metric,
+                    value,
+                    source: TABLE4,
+                });
+            }
+        };
+        push("network_discharge_vph", q);
+        push("lane_changes_per_vehicle", lc);
+        push("avg_platoon_length", lbar);
+        if let Some([dq, dlc, dl]) = change {
+            push("discharge_change_pct", dq);
+            push("lane_changes_change_pct", dlc);
+            push("platoon_length_change_pct", dl);
+        }
+    }
+    out
+}
+
+/// The cell selector of Table 4's row `i` (static, for [`PaperValue::cell`]).
+fn table4_cell(i: usize) -> CellSel {
+    const fn sel(p: &'static str, k: &'static str) -> [(&'static str, &'static str); 2] {
+        [("penetration", p), ("strategy", k)]
+    }
+    const CELLS: [[(&str, &str); 2]; 14] = [
+        sel(TABLE4_ROWS[0].0, TABLE4_ROWS[0].1),
+        sel(TABLE4_ROWS[1].0, TABLE4_ROWS[1].1),
+        sel(TABLE4_ROWS[2].0, TABLE4_ROWS[2].1),
+        sel(TABLE4_ROWS[3].0, TABLE4_ROWS[3].1),
+        sel(TABLE4_ROWS[4].0, TABLE4_ROWS[4].1),
+        sel(TABLE4_ROWS[5].0, TABLE4_ROWS[5].1),
+        sel(TABLE4_ROWS[6].0, TABLE4_ROWS[6].1),
+        sel(TABLE4_ROWS[7].0, TABLE4_ROWS[7].1),
+        sel(TABLE4_ROWS[8].0, TABLE4_ROWS[8].1),
+        sel(TABLE4_ROWS[9].0, TABLE4_ROWS[9].1),
+        sel(TABLE4_ROWS[10].0, TABLE4_ROWS[10].1),
+        sel(TABLE4_ROWS[11].0, TABLE4_ROWS[11].1),
+        sel(TABLE4_ROWS[12].0, TABLE4_ROWS[12].1),
+        sel(TABLE4_ROWS[13].0, TABLE4_ROWS[13].1),
+    ];
+    &CELLS[i]
+}
+
 /// Every value of the paper used here.
 pub fn all() -> Vec<PaperValue> {
     let mut out: Vec<PaperValue> = CAPACITY.to_vec();
+    out.extend(table4());
     for row in &TABLE3_ROWS {
         let v = row.v;
         let metrics = [
@@ -161,7 +287,36 @@ mod tests {
             .with("stage", "pd")
             .with("penetration", "0.75");
         assert!(lookup("capacity", &cap75, "max_sustained_flow_vphpl").is_none());
-        // 3 Fig. 4 values + 4 demands × (4 metrics × 2 strategies + ΔQ).
-        assert_eq!(all().len(), 3 + 4 * 9);
+        // 3 Fig. 4 values + 4 demands × (4 metrics × 2 strategies + ΔQ) + Table 4: 14 rows ×
+        // 3 (no L̄ at 0 %) + 8 × 3 changes.
+        assert_eq!(all().len(), 3 + 4 * 9 + 14 * 3 - 1 + 8 * 3);
+    }
+
+    #[test]
+    fn table4_values_are_found_by_labels() {
+        let l = |p: &str, k: &str| {
+            Labels::new()
+                .with("penetration", p)
+                .with("demand_scale", "1.1")
+                .with("strategy", k)
+        };
+        let get = |p: &str, k: &str, m: &str| lookup("sr99", &l(p, k), m).map(|v| v.value);
+        assert_eq!(get("0.4", "none", "network_discharge_vph"), Some(11739.8));
+        assert_eq!(get("0.4", "pd", "discharge_change_pct"), Some(-2.9));
+        assert_eq!(
+            get("0.8", "flow-aware", "platoon_length_change_pct"),
+            Some(8.5)
+        );
+        assert_eq!(get("0.2", "pd", "lane_changes_change_pct"), Some(45.0));
+        assert_eq!(get("1", "none", "avg_platoon_length"), Some(7.55));
+        assert_eq!(get("0", "none", "avg_platoon_length"), None);
+        assert_eq!(get("0.4", "none", "discharge_change_pct"), None);
+        assert_eq!(get("0.5", "none", "network_discharge_vph"), None);
+        assert!(lookup("sr99", &l("0.6", "pd"), "lane_changes_per_vehicle")
+            .unwrap()
+            .source
+            .contains("Table 4"));
+        assert_eq!(sr99_demand_scale(0.6), Some(1.17));
+        assert_eq!(sr99_demand_scale(0.5), None);
     }
 }

@@ -4,12 +4,18 @@
 //!
 //! ```json
 //! { "config_hash": "…16 hex…", "seed": 3, "version": "0.1.0", "engine": "…16 hex…",
+//!   "detectors": { "scope": "all", "rows": 11089, "hash": "…16 hex…" },
 //!   "summary": { …Summary… } }
 //! ```
+//!
+//! `detectors` is present only for runs that keep their detector records
+//! (`<key>.detectors.csv`, see [`crate::detectors`]): which records, how many, and the hash
+//! of the file's bytes, written before the run file.
 //!
 //! `engine` identifies the program that computed the run (see [`engine_id`]): a file made
 //! by another build is not reused, so a rebuilt engine never reports stale results.
 
+use crate::detectors::DetectorsRef;
 use platoonsim_sim::Summary;
 use serde::de::{Deserializer, MapAccess, Visitor};
 use serde::{Deserialize, Serialize};
@@ -59,6 +65,8 @@ struct RunFileOut<'a> {
     seed: u64,
     version: &'a str,
     engine: &'a str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    detectors: Option<&'a DetectorsRef>,
     summary: &'a Summary,
 }
 
@@ -68,6 +76,8 @@ struct RunFileIn {
     seed: u64,
     #[serde(default)]
     engine: String,
+    #[serde(default)]
+    detectors: Option<DetectorsRef>,
     summary: OrderedObject,
 }
 
@@ -108,11 +118,23 @@ impl<'de> Deserialize<'de> for OrderedObject {
 
 /// The bytes of a run file (pretty JSON, final newline).
 pub fn encode(key: &str, seed: u64, engine: &str, summary: &Summary) -> Vec<u8> {
+    encode_with(key, seed, engine, summary, None)
+}
+
+/// [`encode`] naming the run's detector file.
+pub fn encode_with(
+    key: &str,
+    seed: u64,
+    engine: &str,
+    summary: &Summary,
+    detectors: Option<&DetectorsRef>,
+) -> Vec<u8> {
     let out = RunFileOut {
         config_hash: key,
         seed,
         version: env!("CARGO_PKG_VERSION"),
         engine,
+        detectors,
         summary,
     };
     let mut bytes = serde_json::to_vec_pretty(&out).expect("a Summary always serializes");
@@ -124,6 +146,16 @@ pub fn encode(key: &str, seed: u64, engine: &str, summary: &Summary) -> Vec<u8> 
 /// another configuration's hash or seed, another engine when `engine` is given, a missing
 /// summary): the run is then computed again.
 pub fn decode(bytes: &[u8], key: &str, seed: u64, engine: Option<&str>) -> Result<Fields, String> {
+    decode_with(bytes, key, seed, engine).map(|(fields, _)| fields)
+}
+
+/// [`decode`], with what the run file says about its detector file.
+pub fn decode_with(
+    bytes: &[u8],
+    key: &str,
+    seed: u64,
+    engine: Option<&str>,
+) -> Result<(Fields, Option<DetectorsRef>), String> {
     let f: RunFileIn = serde_json::from_slice(bytes).map_err(|e| e.to_string())?;
     if let Some(e) = engine {
         if f.engine != e {
@@ -156,7 +188,7 @@ pub fn decode(bytes: &[u8], key: &str, seed: u64, engine: Option<&str>) -> Resul
     if fields.get("discharge_flow_vphpl").is_none() {
         return Err("its summary has no discharge_flow_vphpl".into());
     }
-    Ok(fields)
+    Ok((fields, f.detectors))
 }
 
 #[cfg(test)]
@@ -210,6 +242,18 @@ mod tests {
             None
         )
         .is_err());
+    }
+
+    #[test]
+    fn the_detector_reference_round_trips() {
+        let s = summary();
+        let r = DetectorsRef::of(crate::detectors::Scope::All, 2, b"x");
+        let bytes = encode_with("k", 4, "e", &s, Some(&r));
+        assert!(String::from_utf8_lossy(&bytes).contains("\"scope\": \"all\""));
+        let (_, got) = decode_with(&bytes, "k", 4, Some("e")).unwrap();
+        assert_eq!(got, Some(r));
+        let (_, none) = decode_with(&encode("k", 4, "e", &s), "k", 4, None).unwrap();
+        assert_eq!(none, None);
     }
 
     #[test]

@@ -7,13 +7,20 @@
 //! a run whose file is present and valid (same key, same seed) is reused, not recomputed.
 //! Results come back in the order of the specs, whatever the number of threads and the
 //! order in which runs finish.
+//!
+//! A spec may ask to keep detector records ([`RunSpec::detectors`], a [`Scope`]): they are
+//! written to `<runs_dir>/<key>.detectors.csv` (atomically, before the run file, which names
+//! the file's scope and hash). Such a run is reused only if its run file is valid, names a
+//! scope that covers the one asked for, and the detector file has the named hash; otherwise
+//! it is computed again (and both files rewritten). [`Runner::detectors`] reads them back.
 
 use crate::atomic::write_atomic;
 use crate::design::RunSpec;
+use crate::detectors::{self, DetectorsRef, Scope};
 use crate::record::{self, Fields};
 use crate::Error;
 use indicatif::{ProgressBar, ProgressStyle};
-use platoonsim_sim::{Config, Summary};
+use platoonsim_sim::{Config, DetectorRecord, Output};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::fs;
@@ -21,11 +28,11 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// What executes one run: the engine ([`simulate`]) or, in tests, a counting wrapper.
-pub type Executor<'a> = &'a (dyn Fn(&Config) -> Result<Summary, String> + Sync);
+pub type Executor<'a> = &'a (dyn Fn(&Config) -> Result<Output, String> + Sync);
 
 /// The engine, without a progress callback.
-pub fn simulate(config: &Config) -> Result<Summary, String> {
-    platoonsim_sim::run(config, None).map(|o| o.summary)
+pub fn simulate(config: &Config) -> Result<Output, String> {
+    platoonsim_sim::run(config, None)
 }
 
 /// A run's metrics and whether it was computed (rather than read from its file).
@@ -109,6 +116,21 @@ impl<'a> Runner<'a> {
         self.runs_dir.join(format!("{key}.json"))
     }
 
+    /// The detector file of a run that keeps its detector records.
+    pub fn detectors_file(&self, key: &str) -> PathBuf {
+        self.runs_dir.join(format!("{key}.detectors.csv"))
+    }
+
+    /// The detector records kept by a run (after [`Runner::run`] computed or reused it).
+    pub fn detectors(&self, key: &str) -> Result<Vec<DetectorRecord>, Error> {
+        let path = self.detectors_file(key);
+        let bytes = fs::read(&path).map_err(|e| Error::io(&path, e))?;
+        detectors::from_csv(&bytes).map_err(|message| Error::Io {
+            path: path.display().to_string(),
+            message,
+        })
+    }
+
     /// Execute (or reuse) every spec; results in the order of `specs`. Runs with the same
     /// key are executed once. If runs fail, the others still finish and are saved; the first
     /// failure (in spec order) is returned.
@@ -116,16 +138,22 @@ impl<'a> Runner<'a> {
         fs::create_dir_all(&self.runs_dir).map_err(|e| Error::io(&self.runs_dir, e))?;
         remove_stale_tmp(&self.runs_dir);
 
-        // Unique runs in first-appearance order, with how many specs share each.
+        // Unique runs in first-appearance order, with how many specs share each and the
+        // widest detector scope any of them asks for.
         let keys: Vec<String> = specs.iter().map(RunSpec::key).collect();
         let mut index: HashMap<&str, usize> = HashMap::new();
         let mut unique: Vec<(usize, usize)> = Vec::new(); // (spec index, multiplicity)
+        let mut scope: Vec<Scope> = Vec::new();
         for (i, k) in keys.iter().enumerate() {
             match index.get(k.as_str()) {
-                Some(&u) => unique[u].1 += 1,
+                Some(&u) => {
+                    unique[u].1 += 1;
+                    scope[u] = scope[u].max(specs[i].detectors);
+                }
                 None => {
                     index.insert(k, unique.len());
                     unique.push((i, 1));
+                    scope.push(specs[i].detectors);
                 }
             }
         }
@@ -134,7 +162,7 @@ impl<'a> Runner<'a> {
         let mut todo = Vec::new();
         for (u, &(i, mult)) in unique.iter().enumerate() {
             let loaded = if self.reuse {
-                self.load(&keys[i], specs[i].seed)
+                self.load(&keys[i], specs[i].seed, scope[u])
             } else {
                 None
             };
@@ -152,7 +180,7 @@ impl<'a> Runner<'a> {
             todo.par_iter()
                 .map(|&u| {
                     let (i, mult) = unique[u];
-                    let r = self.compute(&specs[i], &keys[i]);
+                    let r = self.compute(&specs[i], &keys[i], scope[u]);
                     if r.is_ok() {
                         self.computed.fetch_add(mult, Ordering::Relaxed);
                     }
@@ -199,19 +227,47 @@ impl<'a> Runner<'a> {
         }
     }
 
-    /// A valid existing run file's metrics, or `None` (missing or unusable: recompute).
-    fn load(&self, key: &str, seed: u64) -> Option<Fields> {
+    /// A valid existing run file's metrics, or `None` (missing or unusable: recompute). With
+    /// a detector scope, the run file must name a detector file of a covering scope, and that
+    /// file must be there with the named hash.
+    fn load(&self, key: &str, seed: u64, scope: Scope) -> Option<Fields> {
         let bytes = fs::read(self.file(key)).ok()?;
-        record::decode(&bytes, key, seed, self.engine.as_deref()).ok()
+        let (fields, det) = record::decode_with(&bytes, key, seed, self.engine.as_deref()).ok()?;
+        if scope != Scope::None {
+            let det = det?;
+            if !det.scope.covers(scope) {
+                return None;
+            }
+            let csv = fs::read(self.detectors_file(key)).ok()?;
+            if !det.matches(&csv) {
+                return None;
+            }
+        }
+        Some(fields)
     }
 
-    fn compute(&self, spec: &RunSpec, key: &str) -> Result<Fields, Error> {
-        let summary = (self.exec)(&spec.config).map_err(|message| Error::Run {
+    fn compute(&self, spec: &RunSpec, key: &str, scope: Scope) -> Result<Fields, Error> {
+        let run_error = |message: String| Error::Run {
             key: key.to_string(),
             seed: spec.seed,
             message,
-        })?;
-        let bytes = record::encode(key, spec.seed, record::engine_id(), &summary);
+        };
+        let output = (self.exec)(&spec.config).map_err(run_error)?;
+        let det = if scope == Scope::None {
+            None
+        } else {
+            let (csv, rows) = detectors::to_csv(&output.detectors, scope).map_err(run_error)?;
+            let path = self.detectors_file(key);
+            write_atomic(&path, &csv).map_err(|e| Error::io(&path, e))?;
+            Some(DetectorsRef::of(scope, rows, &csv))
+        };
+        let bytes = record::encode_with(
+            key,
+            spec.seed,
+            record::engine_id(),
+            &output.summary,
+            det.as_ref(),
+        );
         let path = self.file(key);
         write_atomic(&path, &bytes).map_err(|e| Error::io(&path, e))?;
         // Read back what was written, so a fresh result and a reused one are identical.

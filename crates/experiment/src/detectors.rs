@@ -1,0 +1,202 @@
+//! Detector records kept beside a run file: `<runs>/<key>.detectors.csv`, in the format of
+//! `platoonsim run`'s `detectors.csv` (same columns, same number text), restricted to a
+//! [`Scope`]. The run file names the scope, the row count and the FNV-1a hash of the CSV's
+//! bytes, so a detector file is used only with the run file that was written with it.
+
+use crate::hash::fnv1a64;
+use platoonsim_sim::DetectorRecord;
+use serde::{Deserialize, Serialize};
+
+/// Which detector records a run keeps.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Scope {
+    /// None (the summary only).
+    #[default]
+    None,
+    /// The cross-section rows (`lane == "all"`) of every detector: speed contours, the
+    /// bottleneck criterion.
+    CrossSection,
+    /// Every row (each lane too): the lane-by-lane figures.
+    All,
+}
+
+impl Scope {
+    /// Whether records kept with this scope hold everything `wanted` needs.
+    pub fn covers(self, wanted: Scope) -> bool {
+        self >= wanted
+    }
+
+    /// Whether a record belongs to this scope.
+    pub fn keeps(self, r: &DetectorRecord) -> bool {
+        match self {
+            Scope::None => false,
+            Scope::CrossSection => r.lane == "all",
+            Scope::All => true,
+        }
+    }
+}
+
+/// What the run file says about its detector file.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct DetectorsRef {
+    pub scope: Scope,
+    pub rows: usize,
+    /// FNV-1a 64 of the CSV file's bytes, 16 hex digits.
+    pub hash: String,
+}
+
+impl DetectorsRef {
+    /// The reference of a CSV file's bytes.
+    pub fn of(scope: Scope, rows: usize, bytes: &[u8]) -> DetectorsRef {
+        DetectorsRef {
+            scope,
+            rows,
+            hash: format!("{:016x}", fnv1a64(bytes)),
+        }
+    }
+
+    /// Whether `bytes` are the file this reference names.
+    pub fn matches(&self, bytes: &[u8]) -> bool {
+        self.hash == format!("{:016x}", fnv1a64(bytes))
+    }
+}
+
+/// The columns, in order (those of `platoonsim run`'s `detectors.csv`).
+pub const COLUMNS: [&str; 11] = [
+    "detector",
+    "kind",
+    "position_m",
+    "lane",
+    "interval_start_s",
+    "interval_s",
+    "count",
+    "cav_count",
+    "flow_vph",
+    "speed_kmh",
+    "occupancy",
+];
+
+/// The records of `scope`, as CSV bytes, with how many rows were written.
+pub fn to_csv(records: &[DetectorRecord], scope: Scope) -> Result<(Vec<u8>, usize), String> {
+    let mut w = csv::WriterBuilder::new()
+        .has_headers(false)
+        .from_writer(Vec::new());
+    let err = |e: csv::Error| format!("cannot encode detector records: {e}");
+    w.write_record(COLUMNS).map_err(err)?;
+    let mut rows = 0;
+    for r in records.iter().filter(|r| scope.keeps(r)) {
+        w.write_record([
+            r.detector.clone(),
+            r.kind.clone(),
+            format!("{}", r.position_m),
+            r.lane.clone(),
+            format!("{}", r.interval_start_s),
+            format!("{}", r.interval_s),
+            r.count.to_string(),
+            r.cav_count.to_string(),
+            format!("{}", r.flow_vph),
+            r.speed_kmh.map(|v| format!("{v}")).unwrap_or_default(),
+            format!("{}", r.occupancy),
+        ])
+        .map_err(err)?;
+        rows += 1;
+    }
+    let bytes = w
+        .into_inner()
+        .map_err(|e| format!("cannot encode detector records: {e}"))?;
+    Ok((bytes, rows))
+}
+
+/// Read records written by [`to_csv`] (or `platoonsim run`'s `detectors.csv`).
+pub fn from_csv(bytes: &[u8]) -> Result<Vec<DetectorRecord>, String> {
+    let mut r = csv::ReaderBuilder::new()
+        .has_headers(true)
+        .from_reader(bytes);
+    let header: Vec<String> = r
+        .headers()
+        .map_err(|e| e.to_string())?
+        .iter()
+        .map(String::from)
+        .collect();
+    if header != COLUMNS {
+        return Err(format!("unexpected columns {header:?}"));
+    }
+    let mut out = Vec::new();
+    for (i, rec) in r.records().enumerate() {
+        let rec = rec.map_err(|e| e.to_string())?;
+        let row = i + 2;
+        let f = |k: usize| -> Result<f64, String> {
+            rec[k]
+                .parse::<f64>()
+                .map_err(|_| format!("line {row}: {} is not a number", COLUMNS[k]))
+        };
+        let u = |k: usize| -> Result<u64, String> {
+            rec[k]
+                .parse::<u64>()
+                .map_err(|_| format!("line {row}: {} is not a count", COLUMNS[k]))
+        };
+        out.push(DetectorRecord {
+            detector: rec[0].to_string(),
+            kind: rec[1].to_string(),
+            position_m: f(2)?,
+            lane: rec[3].to_string(),
+            interval_start_s: f(4)?,
+            interval_s: f(5)?,
+            count: u(6)?,
+            cav_count: u(7)?,
+            flow_vph: f(8)?,
+            speed_kmh: if rec[9].is_empty() { None } else { Some(f(9)?) },
+            occupancy: f(10)?,
+        });
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn record(det: &str, lane: &str, t: f64, speed: Option<f64>) -> DetectorRecord {
+        DetectorRecord {
+            detector: det.into(),
+            kind: "mainline".into(),
+            position_m: 100.5,
+            lane: lane.into(),
+            interval_start_s: t,
+            interval_s: 300.0,
+            count: 10,
+            cav_count: 4,
+            flow_vph: 120.0,
+            speed_kmh: speed,
+            occupancy: 0.125,
+        }
+    }
+
+    #[test]
+    fn csv_round_trip_by_scope() {
+        let recs = vec![
+            record("A", "1", 0.0, Some(101.25)),
+            record("A", "all", 0.0, None),
+            record("A", "2", 300.0, Some(0.1)),
+        ];
+        let (all, n) = to_csv(&recs, Scope::All).unwrap();
+        assert_eq!(n, 3);
+        assert_eq!(from_csv(&all).unwrap(), recs);
+        let text = String::from_utf8(all.clone()).unwrap();
+        assert!(text.starts_with("detector,kind,position_m,lane,interval_start_s,"));
+        assert!(text.contains("A,mainline,100.5,all,0,300,10,4,120,,0.125\n"));
+        let (cross, n) = to_csv(&recs, Scope::CrossSection).unwrap();
+        assert_eq!(n, 1);
+        assert_eq!(from_csv(&cross).unwrap(), vec![recs[1].clone()]);
+        assert_eq!(to_csv(&recs, Scope::None).unwrap().1, 0);
+
+        let r = DetectorsRef::of(Scope::All, 3, &all);
+        assert!(r.matches(&all) && !r.matches(&cross));
+        assert!(Scope::All.covers(Scope::CrossSection));
+        assert!(!Scope::CrossSection.covers(Scope::All));
+        assert!(Scope::CrossSection.covers(Scope::None));
+        assert!(from_csv(b"a,b\n1,2\n").is_err());
+        assert!(from_csv(&all[..all.len() - 8]).is_err());
+    }
+}
