@@ -4,8 +4,9 @@
 
 use platoonsim_experiment::design::{keep_detectors, runs, seeds};
 use platoonsim_experiment::detectors::Scope;
+use platoonsim_experiment::experiments::run_experiment_with;
 use platoonsim_experiment::runner::{bar, simulate};
-use platoonsim_experiment::{Cell, Labels, Runner};
+use platoonsim_experiment::{Cell, ExperimentName, Labels, Runner, Settings};
 use platoonsim_scenario::{demand_scale_set, load_with, Overrides, StrategyKind};
 use platoonsim_sim::{Config, Output};
 use std::fs;
@@ -112,4 +113,147 @@ fn detector_files_are_kept_for_the_selected_runs_and_reused() {
     assert_eq!(names(&dir, ".detectors.csv"), 2);
     runner().run(&specs).unwrap();
     assert_eq!(count.swap(0, Ordering::SeqCst), 2);
+}
+
+fn settings(out: &Path, seeds: u32) -> Settings {
+    Settings {
+        out: out.to_path_buf(),
+        seeds,
+        jobs: Some(2),
+        network_duration_s: Some(600.0),
+        network_penetrations: vec![0.0, 0.4],
+        ..Settings::default()
+    }
+}
+
+#[test]
+fn sr99_writes_table4_and_the_three_figures() {
+    let out = scratch("sr99");
+    let s = settings(&out, 2);
+    assert_eq!(ExperimentName::Sr99.total_runs(&s), 2 * 4);
+    let res = run_experiment_with(ExperimentName::Sr99, &s, &simulate).unwrap();
+    assert_eq!(res.outcomes.len(), 8);
+    let dir = out.join("sr99");
+    for f in [
+        "runs.csv",
+        "summary.csv",
+        "summary.md",
+        "run.json",
+        "sr99_contours.png",
+        "sr99_contours.svg",
+        "sr99_lanes.png",
+        "sr99_lanes.svg",
+        "sr99_bars.png",
+        "sr99_bars.svg",
+    ] {
+        assert!(dir.join(f).is_file(), "{f} missing");
+    }
+    // Detector files: seed 1 of the three 40 % cells only.
+    assert_eq!(names(&dir.join("runs"), ".detectors.csv"), 3);
+    assert_eq!(names(&dir.join("runs"), ".json"), 8);
+
+    let runs = fs::read_to_string(dir.join("runs.csv")).unwrap();
+    let header = runs.lines().next().unwrap();
+    assert!(header.starts_with("penetration,demand_scale,strategy,seed,key,"));
+    for col in [
+        "network_discharge_vph",
+        "discharge_change_pct",
+        "lane_changes_change_pct",
+        "platoon_length_change_pct",
+        "florin_congested_min",
+    ] {
+        assert!(header.contains(col), "{col} missing in {header}");
+    }
+    let summary = fs::read_to_string(dir.join("summary.csv")).unwrap();
+    assert!(
+        summary.contains(",Table 4 (SR-99)"),
+        "paper values in summary.csv"
+    );
+    let md = fs::read_to_string(dir.join("summary.md")).unwrap();
+    for part in [
+        "## Table 4: ours vs the paper",
+        "| 40 % | 1.10 / 1.10 | PD |",
+        "11739.8",
+        "## Change vs the baseline at the same penetration (%)",
+        "| 40 % | Flow-Aware PD |",
+        "-2.9",
+        "## Bottlenecks in the figure runs",
+        "## Checks",
+        "sr99_contours.png",
+    ] {
+        assert!(md.contains(part), "{part} missing in summary.md:\n{md}");
+    }
+    assert_eq!(res.figures.len(), 3);
+    assert!(!res.checks.is_empty());
+
+    // A rerun reuses every run, detector files included.
+    let again = run_experiment_with(ExperimentName::Sr99, &s, &simulate).unwrap();
+    assert_eq!((again.computed, again.reused), (0, 8));
+    assert_eq!(fs::read_to_string(dir.join("runs.csv")).unwrap(), runs);
+}
+
+#[test]
+fn sr99_demand_searches_the_grid_and_writes_the_table() {
+    let out = scratch("demand");
+    let table = out.join("written.toml");
+    let s = Settings {
+        scale_grid: vec![1.0, 1.4],
+        network_penetrations: vec![0.2, 0.4],
+        // In 10 min nothing jams at 60 km/h, but everything is below 200 km/h from the
+        // first interval on: "active" at once if the criterion asks for 5 min.
+        bottleneck_speed_kmh: 200.0,
+        bottleneck_minutes: 5.0,
+        write_table: Some(table.clone()),
+        ..settings(&out, 1)
+    };
+    assert_eq!(ExperimentName::Sr99Demand.total_runs(&s), 4);
+    let res = run_experiment_with(ExperimentName::Sr99Demand, &s, &simulate).unwrap();
+    // Found at the first scale: the grid stops there.
+    assert_eq!(res.outcomes.len(), 2);
+    let dir = out.join("sr99-demand");
+    for f in [
+        "demand_scales.toml",
+        "demand_scales.png",
+        "demand_contours.png",
+        "summary.md",
+    ] {
+        assert!(dir.join(f).is_file(), "{f} missing");
+    }
+    let written = fs::read_to_string(&table).unwrap();
+    assert_eq!(
+        written,
+        fs::read_to_string(dir.join("demand_scales.toml")).unwrap()
+    );
+    let rows = platoonsim_scenario::demand_scales::parse(&written).unwrap();
+    assert_eq!(rows.len(), 2);
+    assert!(rows.iter().all(|r| r.demand_scale == 1.0));
+    assert_eq!(names(&dir.join("runs"), ".detectors.csv"), 2);
+
+    // With the real criterion, 10 min never shows a bottleneck: every scale is tried.
+    let strict = Settings {
+        write_table: None,
+        network_penetrations: vec![0.4],
+        ..settings(&out, 1)
+    };
+    let strict = Settings {
+        scale_grid: vec![1.0, 1.4],
+        ..strict
+    };
+    let res = run_experiment_with(ExperimentName::Sr99Demand, &strict, &simulate).unwrap();
+    assert_eq!(res.outcomes.len(), 2);
+    let md = fs::read_to_string(dir.join("summary.md")).unwrap();
+    assert!(md.contains("not reached (≤ 1.4)"), "{md}");
+    let toml = fs::read_to_string(dir.join("demand_scales.toml")).unwrap();
+    assert!(toml.contains("feasible = false"));
+
+    // No grid: the table's scales are only checked.
+    let check = Settings {
+        scale_grid: vec![],
+        ..strict
+    };
+    let res = run_experiment_with(ExperimentName::Sr99Demand, &check, &simulate).unwrap();
+    assert_eq!(res.outcomes.len(), 1);
+    let md = fs::read_to_string(dir.join("summary.md")).unwrap();
+    assert!(md.contains("**No search**"), "{md}");
+    assert!(md.contains("| 40 % | 1.10: no | 1.10 |"), "{md}");
 }

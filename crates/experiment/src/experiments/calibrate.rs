@@ -86,7 +86,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
             false,
         );
     }
-    Ok(Done { cells, outcomes })
+    Ok(Done::new(cells, outcomes))
 }
 
 /// One (penetration, ρ_q, ρ_v) of the trade-off.

@@ -38,7 +38,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
     outcomes.extend(run_cells(runner, &stage2, seeds, stage1.len())?);
     let mut cells = stage1;
     cells.extend(stage2);
-    Ok(Done { cells, outcomes })
+    Ok(Done::new(cells, outcomes))
 }
 
 pub(super) fn markdown(

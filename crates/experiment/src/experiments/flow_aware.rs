@@ -46,7 +46,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
             false,
         );
     }
-    Ok(Done { cells, outcomes })
+    Ok(Done::new(cells, outcomes))
 }
 
 pub(super) fn markdown(

@@ -1,16 +1,21 @@
-//! The experiments: `capacity` (paper Fig. 4), `sensitivity` (paper Table 3) and
-//! `flow-aware` (issue 3's acceptance test of the Flow-Aware strategy) and
-//! `calibrate-flow-aware` (a grid search for the Flow-Aware thresholds).
+//! The experiments: `capacity` (paper Fig. 4), `sensitivity` (paper Table 3),
+//! `flow-aware` (issue 3's acceptance test of the Flow-Aware strategy),
+//! `calibrate-flow-aware` (a grid search for the Flow-Aware thresholds), `sr99` (the SR-99
+//! corridor: paper Table 4 and Figs. 6-8) and `sr99-demand` (the search for the SR-99 demand
+//! scale at which the recurrent bottlenecks show).
 //!
 //! [`run_experiment`] runs one into `<out>/<name>/`: the run files in `runs/`, then
 //! `runs.csv`, `summary.csv`, `summary.md`, `run.json` and the figures (`capacity.png`/`.svg`,
-//! `sensitivity.png`/`.svg`), all written atomically.
+//! `sensitivity.png`/`.svg`, …), all written atomically.
 
 pub mod calibrate;
 mod capacity;
 mod figures;
 mod flow_aware;
 mod sensitivity;
+pub mod sr99;
+pub mod sr99_demand;
+mod sr99_figures;
 
 use crate::atomic::write_atomic;
 use crate::design::{self, Cell, Labels, Point};
@@ -33,15 +38,21 @@ pub enum ExperimentName {
     Sensitivity,
     FlowAware,
     CalibrateFlowAware,
+    Sr99,
+    Sr99Demand,
 }
 
 impl ExperimentName {
-    /// The experiments that `reproduce` runs (the calibration is not one of the paper's).
+    /// The homogeneous-road experiments that `reproduce` runs (the calibration is not one of
+    /// the paper's).
     pub const ALL: [ExperimentName; 3] = [
         ExperimentName::Capacity,
         ExperimentName::Sensitivity,
         ExperimentName::FlowAware,
     ];
+
+    /// The SR-99 experiments that `reproduce` runs after them.
+    pub const NETWORK: [ExperimentName; 2] = [ExperimentName::Sr99, ExperimentName::Sr99Demand];
 
     /// The name on the command line and of the output directory.
     pub fn as_str(self) -> &'static str {
@@ -50,6 +61,8 @@ impl ExperimentName {
             ExperimentName::Sensitivity => "sensitivity",
             ExperimentName::FlowAware => "flow-aware",
             ExperimentName::CalibrateFlowAware => "calibrate-flow-aware",
+            ExperimentName::Sr99 => "sr99",
+            ExperimentName::Sr99Demand => "sr99-demand",
         }
     }
 
@@ -62,6 +75,12 @@ impl ExperimentName {
             }
             ExperimentName::FlowAware => "Flow-Aware strategy on the homogeneous road",
             ExperimentName::CalibrateFlowAware => "Calibration of the Flow-Aware thresholds",
+            ExperimentName::Sr99 => {
+                "SR-99 corridor: baseline, PD lane and Flow-Aware PD lane (paper Table 4, Figs. 6-8)"
+            }
+            ExperimentName::Sr99Demand => {
+                "SR-99 demand scale by penetration: the search for the recurrent bottlenecks"
+            }
         }
     }
 
@@ -75,6 +94,8 @@ impl ExperimentName {
                 ExperimentName::CalibrateFlowAware => {
                     calibrate::PENETRATIONS.len() * calibrate::cells_per_penetration(s)
                 }
+                ExperimentName::Sr99 => sr99::cell_count(s),
+                ExperimentName::Sr99Demand => sr99_demand::max_cells(s),
             }
     }
 }
@@ -110,6 +131,25 @@ pub struct Settings {
     pub speed_thresholds: Vec<f64>,
     /// `calibrate-flow-aware`: the largest discharge loss accepted at any demand (%).
     pub tolerance_pct: f64,
+    /// `sr99`, `sr99-demand`: the CAV penetrations (at 0 and 1 `sr99` runs the baseline only).
+    pub network_penetrations: Vec<f64>,
+    /// `sr99`: one demand scale for every cell, instead of the table.
+    pub demand_scale: Option<f64>,
+    /// `sr99`, and `sr99-demand` without a grid: a demand-scale table file (the format of
+    /// `crates/scenario/scenarios/sr99_demand_scales.toml`) instead of the embedded one.
+    pub demand_scale_table: Option<PathBuf>,
+    /// Simulated time of the SR-99 runs (`None`: the scenario's 14,400 s, 05:00-09:00).
+    pub network_duration_s: Option<f64>,
+    /// `sr99-demand`: the demand scales to try, in increasing order; empty: no search, the
+    /// criterion is only evaluated at the table's scale of each penetration.
+    pub scale_grid: Vec<f64>,
+    /// `sr99-demand`: a detector is congested in a 5-min interval slower than this (km/h) …
+    pub bottleneck_speed_kmh: f64,
+    /// … and a bottleneck is active if it stays congested this long (min).
+    pub bottleneck_minutes: f64,
+    /// `sr99-demand`: also write the scales found into this table file (e.g. the embedded
+    /// table's source, to rebuild with them).
+    pub write_table: Option<PathBuf>,
     /// The command line, for the provenance.
     pub arguments: Vec<String>,
 }
@@ -128,6 +168,14 @@ impl Default for Settings {
             flow_thresholds: calibrate::FLOW_THRESHOLDS.to_vec(),
             speed_thresholds: calibrate::SPEED_THRESHOLDS.to_vec(),
             tolerance_pct: calibrate::TOLERANCE_PCT,
+            network_penetrations: sr99::PENETRATIONS.to_vec(),
+            demand_scale: None,
+            demand_scale_table: None,
+            network_duration_s: None,
+            scale_grid: sr99_demand::SCALE_GRID.to_vec(),
+            bottleneck_speed_kmh: sr99_demand::BOTTLENECK_SPEED_KMH,
+            bottleneck_minutes: sr99_demand::BOTTLENECK_MINUTES,
+            write_table: None,
             arguments: Vec::new(),
         }
     }
@@ -198,10 +246,33 @@ pub fn run_experiment(
     run_experiment_with(name, settings, &runner::simulate)
 }
 
-/// The cells and runs an experiment produced, with its derived metrics added.
+/// The cells and runs an experiment produced, with its derived metrics added, and what an
+/// experiment keeps for its tables and figures beyond them.
 pub(crate) struct Done {
     pub cells: Vec<Cell>,
     pub outcomes: Vec<Outcome>,
+    pub extra: Extra,
+}
+
+impl Done {
+    pub fn new(cells: Vec<Cell>, outcomes: Vec<Outcome>) -> Done {
+        Done {
+            cells,
+            outcomes,
+            extra: Extra::None,
+        }
+    }
+}
+
+/// Experiment-specific results besides the runs' metrics.
+#[derive(Default)]
+pub(crate) enum Extra {
+    #[default]
+    None,
+    /// `sr99`: the detector records of the figure runs.
+    Sr99(sr99::Data),
+    /// `sr99-demand`: the search.
+    Demand(sr99_demand::Data),
 }
 
 /// [`run_experiment`] with another executor (tests count executions with it).
@@ -225,9 +296,15 @@ pub fn run_experiment_with(
         ExperimentName::Sensitivity => sensitivity::run(settings, &runner, &seeds),
         ExperimentName::FlowAware => flow_aware::run(settings, &runner, &seeds),
         ExperimentName::CalibrateFlowAware => calibrate::run(settings, &runner, &seeds),
+        ExperimentName::Sr99 => sr99::run(settings, &runner, &seeds),
+        ExperimentName::Sr99Demand => sr99_demand::run(settings, &runner, &seeds),
     };
     bar.finish_and_clear();
-    let Done { cells, outcomes } = done?;
+    let Done {
+        cells,
+        outcomes,
+        extra,
+    } = done?;
     let rows = table::summarize(name.as_str(), &cells, &outcomes);
     let (body, checks) = match name {
         ExperimentName::Capacity => capacity::markdown(settings, &cells, &outcomes, &rows),
@@ -236,16 +313,25 @@ pub fn run_experiment_with(
         ExperimentName::CalibrateFlowAware => {
             calibrate::markdown(settings, &cells, &outcomes, &rows)
         }
+        ExperimentName::Sr99 => sr99::markdown(settings, &cells, &rows, &extra),
+        ExperimentName::Sr99Demand => sr99_demand::markdown(settings, &cells, &rows, &extra),
     };
     let figures = match name {
         ExperimentName::Capacity => figures::capacity(&dir, &cells, &rows)?,
         ExperimentName::Sensitivity => figures::sensitivity(&dir, &cells, &rows)?,
         ExperimentName::FlowAware => Vec::new(),
         ExperimentName::CalibrateFlowAware => calibrate::figure(settings, &dir, &cells, &rows)?,
+        ExperimentName::Sr99 => sr99_figures::all(&dir, &cells, &rows, &extra)?,
+        ExperimentName::Sr99Demand => sr99_demand::figures(&dir, &extra)?,
     };
     if name == ExperimentName::CalibrateFlowAware {
         for (file, bytes) in calibrate::files(settings, &cells, &rows)? {
             write_file(&dir.join(file), &bytes)?;
+        }
+    }
+    if name == ExperimentName::Sr99Demand {
+        for (path, bytes) in sr99_demand::files(settings, &dir, &extra) {
+            write_file(&path, &bytes)?;
         }
     }
 

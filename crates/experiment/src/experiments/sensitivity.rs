@@ -32,7 +32,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
             true,
         );
     }
-    Ok(Done { cells, outcomes })
+    Ok(Done::new(cells, outcomes))
 }
 
 /// (column title, metric, strategy) of the paper's Table 3, in its order.

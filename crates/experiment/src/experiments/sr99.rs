@@ -1,0 +1,624 @@
+//! `sr99` (issue 4 item 6): the paper's freeway experiment on the built-in `sr99` corridor
+//! (SR-99 NB, 05:00-09:00). At 20, 40, 60 and 80 % CAV the baseline (no organization), the
+//! PD lane and the Flow-Aware PD lane; at 0 and 100 % the baseline only. Each penetration
+//! runs at its demand scale (the embedded table, the paper's 100/100/110/117/125/127 %, unless
+//! a table file or one scale is given). Per seed pair with the baseline at the same
+//! penetration: the changes of the network discharge, the lane changes per vehicle and L̄ (%).
+//!
+//! The first seed of the 40 % cells keeps its detector records (every lane): the speed
+//! contours (paper Fig. 6) and the lane-by-lane CAV flow ratio and speed upstream of Florin
+//! Rd (Fig. 7); see [`super::sr99_figures`].
+
+use super::{checks_md, find, Check, Done, Extra, Settings};
+use crate::corridor::{self, Bottlenecks, Criterion};
+use crate::design::{self, num, Cell, Labels};
+use crate::detectors::Scope;
+use crate::paper;
+use crate::runner::Runner;
+use crate::table::{self, fixed, md_table, pm, signed, SummaryRow};
+use crate::Error;
+use platoonsim_scenario::{demand_scale_set, demand_scales, load_with, Overrides, StrategyKind};
+use platoonsim_sim::{Config, DetectorRecord};
+
+/// The built-in scenario.
+pub const SCENARIO: &str = "sr99";
+/// The paper's penetrations.
+pub const PENETRATIONS: [f64; 6] = [0.0, 0.2, 0.4, 0.6, 0.8, 1.0];
+/// The penetration of the contour and lane figures (paper Figs. 6 and 7).
+pub const FIGURE_PENETRATION: f64 = 0.4;
+/// The strategies at a penetration strictly between 0 and 1.
+pub const STRATEGIES: [StrategyKind; 3] = [
+    StrategyKind::None,
+    StrategyKind::Pd,
+    StrategyKind::FlowAware,
+];
+
+/// Changes vs the baseline at the same penetration: (name, metric it is computed from).
+pub const CHANGES: [(&str, &str); 3] = [
+    ("discharge_change_pct", "network_discharge_vph"),
+    ("lane_changes_change_pct", "lane_changes_per_vehicle"),
+    ("platoon_length_change_pct", "avg_platoon_length"),
+];
+
+/// What `sr99` keeps besides the runs' metrics.
+#[derive(Default)]
+pub(crate) struct Data {
+    /// The detector records of the figure runs: (cell, records), baseline / PD / Flow-Aware.
+    pub figure_runs: Vec<(usize, Vec<DetectorRecord>)>,
+    /// The seed of those runs.
+    pub figure_seed: u64,
+}
+
+/// Strategies run at a penetration.
+pub fn strategies_at(p: f64) -> &'static [StrategyKind] {
+    if p <= 0.0 || p >= 1.0 {
+        &STRATEGIES[..1]
+    } else {
+        &STRATEGIES
+    }
+}
+
+/// How the strategies are named in tables.
+pub fn strategy_name(k: &str) -> &'static str {
+    match k {
+        "none" => "baseline",
+        "pd" => "PD",
+        "flow-aware" => "Flow-Aware PD",
+        _ => "?",
+    }
+}
+
+pub(super) fn cell_count(s: &Settings) -> usize {
+    s.network_penetrations
+        .iter()
+        .map(|&p| strategies_at(p).len())
+        .sum()
+}
+
+/// Where the demand scales come from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scales {
+    rows: Vec<demand_scales::Row>,
+    fixed: Option<f64>,
+    /// For the report: where they come from.
+    pub source: String,
+}
+
+impl Scales {
+    /// From the settings: `demand_scale`, else `demand_scale_table`, else the embedded table.
+    pub fn from_settings(s: &Settings) -> Result<Scales, Error> {
+        if let Some(v) = s.demand_scale {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(Error::Other(format!(
+                    "the demand scale must be a positive number (found {v})"
+                )));
+            }
+            return Ok(Scales {
+                rows: Vec::new(),
+                fixed: Some(v),
+                source: format!("one scale for every cell: {}", num(v)),
+            });
+        }
+        match &s.demand_scale_table {
+            Some(path) => {
+                let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+                let rows = demand_scales::parse(&text).map_err(|message| Error::Io {
+                    path: path.display().to_string(),
+                    message,
+                })?;
+                if rows.is_empty() {
+                    return Err(Error::Other(format!(
+                        "{} has no usable [[penetration]] row",
+                        path.display()
+                    )));
+                }
+                Ok(Scales {
+                    rows,
+                    fixed: None,
+                    source: format!("the table file `{}`", path.display()),
+                })
+            }
+            None => Ok(Scales {
+                rows: demand_scales::embedded(),
+                fixed: None,
+                source: format!(
+                    "the embedded table `{}` (interpolated in the penetration)",
+                    demand_scales::TABLE_PATH
+                ),
+            }),
+        }
+    }
+
+    /// The scale at a penetration, rounded to 4 decimals (it is a cell label).
+    pub fn at(&self, penetration: f64) -> f64 {
+        let v = self
+            .fixed
+            .unwrap_or_else(|| demand_scales::at(&self.rows, penetration, demand_scales::FALLBACK));
+        (v * 1e4).round() / 1e4
+    }
+}
+
+/// The `sr99` scenario at a penetration, strategy and demand scale, resolved exactly as
+/// `platoonsim run sr99 --penetration P --strategy K --demand-scale F` (seed 1; the duration
+/// from the settings if given).
+pub fn config(s: &Settings, p: f64, k: StrategyKind, scale: f64) -> Result<Config, Error> {
+    let o = Overrides {
+        penetration: Some(p),
+        seed: Some(1),
+        strategy: Some(k),
+        duration_s: s.network_duration_s,
+        set: vec![demand_scale_set(scale)],
+        ..Overrides::default()
+    };
+    Ok(load_with(SCENARIO, &o)?)
+}
+
+/// A cell with the labels `penetration`, `demand_scale`, `strategy`.
+pub fn cell(s: &Settings, p: f64, k: StrategyKind, scale: f64) -> Result<Cell, Error> {
+    Ok(Cell {
+        labels: Labels::new()
+            .with("penetration", num(p))
+            .with("demand_scale", num(scale))
+            .with("strategy", k.as_str()),
+        config: config(s, p, k, scale)?,
+    })
+}
+
+/// The cells: per penetration, its strategies at its scale.
+pub fn cells(s: &Settings) -> Result<Vec<Cell>, Error> {
+    let scales = Scales::from_settings(s)?;
+    let mut out = Vec::new();
+    for &p in &s.network_penetrations {
+        if !(0.0..=1.0).contains(&p) {
+            return Err(Error::Other(format!(
+                "a CAV penetration must lie in [0, 1] (found {p})"
+            )));
+        }
+        for &k in strategies_at(p) {
+            out.push(cell(s, p, k, scales.at(p))?);
+        }
+    }
+    Ok(out)
+}
+
+/// The corridor's base demand multiplier: the engine's total scale over the cell's.
+pub fn base_multiplier(c: &Cell) -> Option<f64> {
+    let scale: f64 = c.labels.get("demand_scale")?.parse().ok()?;
+    let n = c.config.road.network.as_ref()?;
+    (scale > 0.0).then(|| n.demand_scale / scale)
+}
+
+fn is_figure_cell(c: &Cell) -> bool {
+    c.labels.get("penetration") == Some(num(FIGURE_PENETRATION).as_str())
+}
+
+pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {
+    let cells = cells(s)?;
+    let figure_seed = seeds[0];
+    let mut specs = design::runs(&cells, seeds);
+    design::keep_detectors(&mut specs, Scope::All, |c, seed| {
+        seed == figure_seed && is_figure_cell(&cells[c])
+    });
+    let mut outcomes = runner.run(&specs)?;
+    for (i, c) in cells.iter().enumerate() {
+        let k = c.labels.get("strategy").unwrap_or("");
+        if k == "none" {
+            continue;
+        }
+        let base = find(
+            &cells,
+            &[
+                ("penetration", c.labels.get("penetration").unwrap_or("")),
+                ("strategy", "none"),
+            ],
+        );
+        if let Some(base) = base {
+            for (name, metric) in CHANGES {
+                table::add_paired(&mut outcomes, base, i, metric, name, true);
+            }
+        }
+    }
+    let mut data = Data {
+        figure_runs: Vec::new(),
+        figure_seed,
+    };
+    let crit = criterion(s);
+    for o in outcomes.iter_mut() {
+        if o.seed == figure_seed && is_figure_cell(&cells[o.cell]) {
+            let recs = runner.detectors(&o.key)?;
+            let b = corridor::bottlenecks(&recs, &crit);
+            o.fields.set("florin_congested_min", b.florin_min);
+            o.fields.set("south_congested_min", b.south_min);
+            data.figure_runs.push((o.cell, recs));
+        }
+    }
+    Ok(Done {
+        cells,
+        outcomes,
+        extra: Extra::Sr99(data),
+    })
+}
+
+/// The bottleneck criterion of the settings.
+pub fn criterion(s: &Settings) -> Criterion {
+    Criterion {
+        speed_kmh: s.bottleneck_speed_kmh,
+        minutes: s.bottleneck_minutes,
+    }
+}
+
+fn row<'a>(
+    cells: &[Cell],
+    rows: &'a [SummaryRow],
+    p: &str,
+    k: &str,
+    metric: &str,
+) -> Option<&'a SummaryRow> {
+    let c = find(cells, &[("penetration", p), ("strategy", k)])?;
+    rows.iter().find(|r| r.cell == c && r.metric == metric)
+}
+
+/// Ours with its 95 % interval (half-width), the paper's value, and ours − paper in % of the
+/// paper's value.
+fn triple(r: Option<&SummaryRow>, dec: usize, skip: bool) -> [String; 3] {
+    let Some(r) = r.filter(|_| !skip) else {
+        return ["–".into(), "–".into(), "–".into()];
+    };
+    let paper = r.paper.map_or("–".into(), |p| fixed(p.value, dec));
+    let rel = r.relative_difference();
+    let diff = if rel.is_finite() {
+        format!("{} %", signed(100.0 * rel, 1))
+    } else {
+        "–".into()
+    };
+    [pm(&r.stats, dec), paper, diff]
+}
+
+pub(super) fn markdown(
+    s: &Settings,
+    cells: &[Cell],
+    rows: &[SummaryRow],
+    extra: &Extra,
+) -> (String, Vec<Check>) {
+    let duration = cells.first().map_or(14400.0, |c| c.config.duration_s);
+    let source = Scales::from_settings(s).map_or_else(|e| e.to_string(), |x| x.source);
+    let mut md = format!(
+        "The built-in `sr99` corridor (SR-99 NB, Elk Grove Blvd to 12th Ave, 16 on-ramps, 11 \
+         off-ramps), {} s simulated from 05:00 ({} seeds per cell). Demand scale per \
+         penetration from {source}, on top of the corridor's base demand multiplier ({}; the \
+         entrance demands are multiplied by both). Network discharge = mean flow through every exit detector \
+         (off-ramps and the mainline end) over the whole run, veh/h; lane changes per vehicle \
+         and L̄ over every vehicle / CAV that entered. Ours: mean ± half-width of the 95 % \
+         confidence interval over the seeds; the paper gives single values. \"vs paper\" is \
+         (ours − paper) / paper.\n\n",
+        num(duration),
+        s.seeds,
+        cells
+            .first()
+            .and_then(base_multiplier)
+            .map_or("?".into(), |b| fixed(b, 3))
+    );
+    md.push_str("## Table 4: ours vs the paper\n\n");
+    let header: Vec<String> = [
+        "CAV",
+        "Demand scale (ours / paper)",
+        "Strategy",
+        "Network discharge (veh/h)",
+        "paper",
+        "vs paper",
+        "Lane changes / veh",
+        "paper",
+        "vs paper",
+        "L̄",
+        "paper",
+        "vs paper",
+    ]
+    .iter()
+    .map(|h| h.to_string())
+    .collect();
+    let mut trs = Vec::new();
+    let pens: Vec<f64> = s.network_penetrations.clone();
+    for &p in &pens {
+        let ps = num(p);
+        for &k in strategies_at(p) {
+            let ks = k.as_str();
+            let Some(c) = find(cells, &[("penetration", &ps), ("strategy", ks)]) else {
+                continue;
+            };
+            let scale = cells[c]
+                .labels
+                .get("demand_scale")
+                .and_then(|v| v.parse::<f64>().ok())
+                .map_or("?".into(), |v| fixed(v, 2));
+            let paper_scale = paper::sr99_demand_scale(p).map_or("–".into(), |v| fixed(v, 2));
+            let mut r = vec![
+                format!("{} %", num(100.0 * p)),
+                format!("{scale} / {paper_scale}"),
+                strategy_name(ks).to_string(),
+            ];
+            r.extend(triple(
+                row(cells, rows, &ps, ks, "network_discharge_vph"),
+                1,
+                false,
+            ));
+            r.extend(triple(
+                row(cells, rows, &ps, ks, "lane_changes_per_vehicle"),
+                2,
+                false,
+            ));
+            r.extend(triple(
+                row(cells, rows, &ps, ks, "avg_platoon_length"),
+                2,
+                p == 0.0,
+            ));
+            trs.push(r);
+        }
+    }
+    md.push_str(&md_table(&header, &trs));
+
+    md.push_str(
+        "\n## Change vs the baseline at the same penetration (%)\n\n\
+         Per seed pair with the baseline (same seed, same demand); the paper's values are the \
+         percentages in parentheses in its Table 4.\n\n",
+    );
+    let header: Vec<String> = [
+        "CAV",
+        "Strategy",
+        "Network discharge: ours",
+        "paper",
+        "Lane changes / veh: ours",
+        "paper",
+        "L̄: ours",
+        "paper",
+    ]
+    .iter()
+    .map(|h| h.to_string())
+    .collect();
+    let mut trs = Vec::new();
+    let mid: Vec<f64> = pens
+        .iter()
+        .copied()
+        .filter(|&p| strategies_at(p).len() > 1)
+        .collect();
+    for &p in &mid {
+        let ps = num(p);
+        for k in ["pd", "flow-aware"] {
+            let mut r = vec![format!("{} %", num(100.0 * p)), strategy_name(k).into()];
+            for (name, _) in CHANGES {
+                let x = row(cells, rows, &ps, k, name);
+                r.push(x.map_or("–".into(), |x| signed_pm(x, 1)));
+                r.push(
+                    x.and_then(|x| x.paper)
+                        .map_or("–".into(), |v| signed(v.value, 1)),
+                );
+            }
+            trs.push(r);
+        }
+    }
+    if trs.is_empty() {
+        md.push_str("No penetration between 0 and 100 % was run.\n");
+    } else {
+        md.push_str(&md_table(&header, &trs));
+    }
+
+    if let Extra::Sr99(d) = extra {
+        md.push_str(&bottleneck_section(s, cells, d));
+    }
+
+    let checks = checks(cells, rows, &mid);
+    if !checks.is_empty() {
+        md.push_str("\n## Checks (the paper's findings)\n\n");
+        md.push_str(&checks_md(&checks));
+    }
+    (md, checks)
+}
+
+fn bottleneck_section(s: &Settings, cells: &[Cell], d: &Data) -> String {
+    if d.figure_runs.is_empty() {
+        return String::new();
+    }
+    let crit = criterion(s);
+    let mut md = format!(
+        "\n## Bottlenecks in the figure runs ({} % CAV, seed {})\n\n\
+         Longest stretch of consecutive 5-min intervals with a cross-section mean speed below \
+         {} km/h at `{}` (upstream of the second Florin Rd on-ramp) and at any mainline \
+         detector from `{}` to `{}` (downstream of Elk Grove Blvd); a bottleneck counts as \
+         active from {} min on (the criterion of `sr99-demand`).\n\n",
+        num(100.0 * FIGURE_PENETRATION),
+        d.figure_seed,
+        num(crit.speed_kmh),
+        corridor::FLORIN_DETECTOR,
+        corridor::SOUTH_FIRST,
+        corridor::SOUTH_LAST,
+        num(crit.minutes)
+    );
+    let header: Vec<String> = [
+        "Strategy",
+        "Florin Rd (min)",
+        "Elk Grove Blvd stretch (min)",
+        "Both active",
+    ]
+    .iter()
+    .map(|h| h.to_string())
+    .collect();
+    let trs: Vec<Vec<String>> = d
+        .figure_runs
+        .iter()
+        .map(|(c, recs)| {
+            let b: Bottlenecks = corridor::bottlenecks(recs, &crit);
+            vec![
+                strategy_name(cells[*c].labels.get("strategy").unwrap_or("")).into(),
+                fixed(b.florin_min, 0),
+                if b.south_at.is_empty() {
+                    "0".into()
+                } else {
+                    format!("{} (at `{}`)", fixed(b.south_min, 0), b.south_at)
+                },
+                if b.active(&crit) { "yes" } else { "no" }.into(),
+            ]
+        })
+        .collect();
+    md.push_str(&md_table(&header, &trs));
+    md
+}
+
+/// `+mean ± half-width` (a change, with its sign).
+fn signed_pm(r: &SummaryRow, dec: usize) -> String {
+    let hw = r.stats.half_width();
+    if hw.is_finite() {
+        format!("{} ± {}", signed(r.stats.mean, dec), fixed(hw, dec))
+    } else {
+        signed(r.stats.mean, dec)
+    }
+}
+
+/// The paper's findings on Table 4, over the penetrations run with all three strategies.
+fn checks(cells: &[Cell], rows: &[SummaryRow], mid: &[f64]) -> Vec<Check> {
+    if mid.is_empty() {
+        return Vec::new();
+    }
+    let mean = |p: f64, k: &str, m: &str| {
+        row(cells, rows, &num(p), k, m).map_or(f64::NAN, |r| r.stats.mean)
+    };
+    let list = |k: &str, m: &str| -> (Vec<f64>, String) {
+        let v: Vec<f64> = mid.iter().map(|&p| mean(p, k, m)).collect();
+        let text = v
+            .iter()
+            .zip(mid)
+            .map(|(x, p)| format!("{} % at {} %", signed(*x, 1), num(100.0 * p)))
+            .collect::<Vec<_>>()
+            .join(", ");
+        (v, text)
+    };
+    let pens = mid
+        .iter()
+        .map(|p| num(100.0 * p))
+        .collect::<Vec<_>>()
+        .join("/");
+    let mut out = Vec::new();
+    let (dq_pd, t) = list("pd", "discharge_change_pct");
+    out.push(Check {
+        statement: format!(
+            "the PD lane lowers the network discharge at {pens} % CAV (paper: −0.1 to −7.3 %): {t}"
+        ),
+        passed: dq_pd.iter().all(|x| *x < 0.0),
+    });
+    let (dq_fa, t) = list("flow-aware", "discharge_change_pct");
+    out.push(Check {
+        statement: format!(
+            "the Flow-Aware PD lane keeps the network discharge within 0.5 % of the baseline at \
+             {pens} % CAV (paper: within 0.1 %): {t}"
+        ),
+        passed: dq_fa.iter().all(|x| x.abs() <= 0.5),
+    });
+    let (dl_fa, t) = list("flow-aware", "platoon_length_change_pct");
+    out.push(Check {
+        statement: format!(
+            "the Flow-Aware PD lane raises L̄ above the baseline at {pens} % CAV (paper: +8.5 to \
+             +20 %): {t}"
+        ),
+        passed: dl_fa.iter().all(|x| *x > 0.0),
+    });
+    let ordered = mid.iter().all(|&p| {
+        let (b, pd, fa) = (
+            mean(p, "none", "lane_changes_per_vehicle"),
+            mean(p, "pd", "lane_changes_per_vehicle"),
+            mean(p, "flow-aware", "lane_changes_per_vehicle"),
+        );
+        pd > fa && fa > b
+    });
+    out.push(Check {
+        statement: format!(
+            "lane changes per vehicle: PD > Flow-Aware PD > baseline at {pens} % CAV (as in the \
+             paper)"
+        ),
+        passed: ordered,
+    });
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cells_follow_the_paper_design() {
+        let s = Settings {
+            network_duration_s: Some(600.0),
+            ..Settings::default()
+        };
+        let c = cells(&s).unwrap();
+        assert_eq!(c.len(), 14);
+        assert_eq!(cell_count(&s), 14);
+        let labels: Vec<String> = c
+            .iter()
+            .map(|c| {
+                c.labels
+                    .0
+                    .iter()
+                    .map(|(_, v)| v.as_str())
+                    .collect::<Vec<_>>()
+                    .join("/")
+            })
+            .collect();
+        assert_eq!(labels[0], "0/1/none");
+        assert_eq!(labels[1..4], ["0.2/1/none", "0.2/1/pd", "0.2/1/flow-aware"]);
+        assert_eq!(
+            labels[4..7],
+            ["0.4/1.1/none", "0.4/1.1/pd", "0.4/1.1/flow-aware"]
+        );
+        assert_eq!(labels[7], "0.6/1.17/none");
+        assert_eq!(labels[10], "0.8/1.25/none");
+        assert_eq!(labels[13], "1/1.27/none");
+        // The engine's scale is the corridor's base multiplier times the cell's.
+        let base = base_multiplier(&c[0]).unwrap();
+        assert!(base > 0.5 && base < 2.0, "{base}");
+        for cell in &c {
+            assert!((base_multiplier(cell).unwrap() - base).abs() < 1e-9);
+            assert_eq!(cell.config.duration_s, 600.0);
+        }
+        assert!(matches!(
+            c[5].config.strategy,
+            platoonsim_sim::Strategy::Pd { .. }
+        ));
+
+        // One scale for all, or a table file.
+        let fixed = Settings {
+            demand_scale: Some(1.2),
+            network_penetrations: vec![0.5],
+            ..s.clone()
+        };
+        let c = cells(&fixed).unwrap();
+        assert_eq!(c.len(), 3);
+        assert!(c
+            .iter()
+            .all(|c| c.labels.get("demand_scale") == Some("1.2")));
+        let dir = std::env::temp_dir().join(format!("platoonsim-scales-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("t.toml");
+        std::fs::write(
+            &path,
+            "[[penetration]]\npenetration = 0\ndemand_scale = 1.3\n\
+             [[penetration]]\npenetration = 1\ndemand_scale = 1.5\n",
+        )
+        .unwrap();
+        let table = Settings {
+            demand_scale_table: Some(path.clone()),
+            network_penetrations: vec![0.0, 0.25],
+            ..s.clone()
+        };
+        let c = cells(&table).unwrap();
+        let scales: Vec<&str> = c
+            .iter()
+            .map(|c| c.labels.get("demand_scale").unwrap())
+            .collect();
+        assert_eq!(scales, ["1.3", "1.35", "1.35", "1.35"]);
+        std::fs::write(&path, "# nothing\n").unwrap();
+        assert!(cells(&table).is_err());
+        let bad = Settings {
+            network_penetrations: vec![1.5],
+            ..s
+        };
+        assert!(cells(&bad).is_err());
+    }
+}

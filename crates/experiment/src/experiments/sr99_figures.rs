@@ -1,0 +1,261 @@
+//! The figures of `sr99` (PNG and SVG, through `platoonsim-plot`):
+//!
+//! * `sr99_contours`: speed contours, time × mainline detector index (1 = most upstream), of
+//!   the baseline, PD and Flow-Aware PD at 40 % CAV (first seed), one colour scale (paper
+//!   Fig. 6);
+//! * `sr99_lanes`: at the detector upstream of the second Florin Rd on-ramp (`OR11-up`), per
+//!   lane, the CAV flow ratio (top) and the speed (bottom) over time, baseline / PD /
+//!   Flow-Aware PD (paper Fig. 7);
+//! * `sr99_bars`: lane changes per vehicle, L̄ and network discharge vs penetration, bars for
+//!   the three strategies with 95 % whiskers; a second row with the paper's Table 4 values
+//!   (paper Fig. 8).
+
+use super::sr99::{self, Data, FIGURE_PENETRATION};
+use super::{find, Extra, Figure};
+use crate::corridor::{self, FLORIN_DETECTOR};
+use crate::design::num;
+use crate::paper;
+use crate::table::SummaryRow;
+use crate::{Cell, Error, Labels};
+use platoonsim_plot::{
+    bar_panels, heatmap_panels, panels, Bars, Chart, Heatmap, PlotError, Series, Style,
+};
+use std::path::Path;
+
+fn plot_error(e: PlotError) -> Error {
+    Error::Other(e.to_string())
+}
+
+/// Colour range of the contours (km/h).
+pub const SPEED_RANGE: (f64, f64) = (0.0, 120.0);
+
+fn strategy_of(cells: &[Cell], c: usize) -> &str {
+    cells[c].labels.get("strategy").unwrap_or("")
+}
+
+pub(super) fn all(
+    dir: &Path,
+    cells: &[Cell],
+    rows: &[SummaryRow],
+    extra: &Extra,
+) -> Result<Vec<Figure>, Error> {
+    let mut out = Vec::new();
+    if let Extra::Sr99(d) = extra {
+        if !d.figure_runs.is_empty() {
+            out.push(contours(dir, cells, d)?);
+            out.push(lanes(dir, cells, d)?);
+        }
+    }
+    out.push(bars(dir, cells, rows)?);
+    Ok(out)
+}
+
+/// The contour panels' data: one heat map per figure run.
+pub fn contour_maps(cells: &[Cell], d: &Data) -> Vec<Heatmap> {
+    d.figure_runs
+        .iter()
+        .map(|(c, recs)| {
+            let k = corridor::contour(recs);
+            Heatmap {
+                title: sr99::strategy_name(strategy_of(cells, *c)).into(),
+                x_label: "Time from 05:00 (min)".into(),
+                y_label: "Mainline detector (1 = most upstream)".into(),
+                x: k.times_min.clone(),
+                y: (1..=k.detectors.len()).map(|j| j as f64).collect(),
+                z: k.speed_kmh,
+                z_label: "Speed (km/h)".into(),
+                z_range: SPEED_RANGE,
+            }
+        })
+        .collect()
+}
+
+fn contours(dir: &Path, cells: &[Cell], d: &Data) -> Result<Figure, Error> {
+    let maps = contour_maps(cells, d);
+    let title = format!(
+        "SR-99 speed contours, {} % CAV (seed {})",
+        num(100.0 * FIGURE_PENETRATION),
+        d.figure_seed
+    );
+    heatmap_panels(&maps, 3, &title, &dir.join("sr99_contours")).map_err(plot_error)?;
+    let index = d.figure_runs.first().and_then(|(_, recs)| {
+        corridor::mainline_detectors(recs)
+            .iter()
+            .position(|(n, _)| n == FLORIN_DETECTOR)
+            .map(|i| i + 1)
+    });
+    Ok(Figure {
+        title: format!(
+            "Speed contours at {} % CAV, seed {} (paper Fig. 6): baseline, PD lane, Flow-Aware \
+             PD lane; 5-min cross-section mean speed at each mainline detector, index 1 = most \
+             upstream (Elk Grove Blvd); `{FLORIN_DETECTOR}` (upstream of the second Florin Rd \
+             on-ramp) is index {}; grey: no vehicle crossed",
+            num(100.0 * FIGURE_PENETRATION),
+            d.figure_seed,
+            index.map_or("?".into(), |i| i.to_string())
+        ),
+        stem: "sr99_contours".into(),
+    })
+}
+
+/// A lane's legend name: lane 1 is the rightmost, the last the leftmost (the PD lane).
+fn lane_name(lane: &str, last: &str) -> String {
+    if lane == last {
+        format!("lane {lane} (leftmost, PD lane)")
+    } else if lane == "1" {
+        "lane 1 (rightmost)".into()
+    } else {
+        format!("lane {lane}")
+    }
+}
+
+/// The lane figure's charts: CAV flow ratio per strategy, then speed per strategy.
+pub fn lane_charts(cells: &[Cell], d: &Data) -> Vec<Chart> {
+    let series: Vec<(String, Vec<corridor::LaneSeries>)> = d
+        .figure_runs
+        .iter()
+        .map(|(c, recs)| {
+            (
+                sr99::strategy_name(strategy_of(cells, *c)).to_string(),
+                corridor::lane_series(recs, FLORIN_DETECTOR),
+            )
+        })
+        .collect();
+    let chart = |name: &str, lanes: &[corridor::LaneSeries], ratio: bool| {
+        let last = lanes.last().map_or("", |l| l.lane.as_str());
+        Chart {
+            title: name.into(),
+            x_label: "Time from 05:00 (min)".into(),
+            y_label: if ratio {
+                "CAV flow / total flow".into()
+            } else {
+                "Speed (km/h)".into()
+            },
+            series: lanes
+                .iter()
+                .map(|l| Series {
+                    name: lane_name(&l.lane, last),
+                    x: l.times_min.clone(),
+                    y: if ratio {
+                        l.cav_ratio.clone()
+                    } else {
+                        l.speed_kmh.clone()
+                    },
+                    band: None,
+                    style: if l.lane == last {
+                        Style::Dashed
+                    } else {
+                        Style::Line
+                    },
+                })
+                .collect(),
+            y_range: Some(if ratio { (0.0, 1.0) } else { SPEED_RANGE }),
+        }
+    };
+    let mut charts: Vec<Chart> = series.iter().map(|(n, l)| chart(n, l, true)).collect();
+    charts.extend(series.iter().map(|(n, l)| chart(n, l, false)));
+    charts
+}
+
+fn lanes(dir: &Path, cells: &[Cell], d: &Data) -> Result<Figure, Error> {
+    let charts = lane_charts(cells, d);
+    let cols = d.figure_runs.len().max(1);
+    let title = format!(
+        "SR-99 at {FLORIN_DETECTOR}, {} % CAV: CAV flow ratio and speed per lane",
+        num(100.0 * FIGURE_PENETRATION)
+    );
+    panels(&charts, cols, &title, &dir.join("sr99_lanes")).map_err(plot_error)?;
+    Ok(Figure {
+        title: format!(
+            "Lane by lane at `{FLORIN_DETECTOR}` (50 m upstream of the second Florin Rd on-ramp), \
+             {} % CAV, seed {} (paper Fig. 7): top, the CAV flow ratio (CAVs / all vehicles per \
+             5-min interval); bottom, the speed; left to right baseline, PD lane, Flow-Aware PD \
+             lane; lane 1 is the rightmost, the dashed line the leftmost (PD) lane",
+            num(100.0 * FIGURE_PENETRATION),
+            d.figure_seed
+        ),
+        stem: "sr99_lanes".into(),
+    })
+}
+
+/// The paper Fig. 8 panels: ours (with 95 % whiskers), then the paper's Table 4 values.
+pub fn bar_charts(cells: &[Cell], rows: &[SummaryRow]) -> Vec<Bars> {
+    let mut pens: Vec<f64> = Vec::new();
+    for c in cells {
+        if let Some(p) = c.labels.get("penetration").and_then(|p| p.parse().ok()) {
+            if !pens.contains(&p) {
+                pens.push(p);
+            }
+        }
+    }
+    let groups: Vec<String> = pens
+        .iter()
+        .map(|p| format!("{} %", num(100.0 * p)))
+        .collect();
+    let metrics = [
+        (
+            "lane_changes_per_vehicle",
+            "Lane changes per vehicle",
+            "1/veh",
+        ),
+        ("avg_platoon_length", "Average platoon length L", "CAVs"),
+        ("network_discharge_vph", "Network discharge", "veh/h"),
+    ];
+    let mut ours = Vec::new();
+    let mut theirs = Vec::new();
+    for (metric, title, unit) in metrics {
+        let mut s_ours = Vec::new();
+        let mut s_paper = Vec::new();
+        for k in sr99::STRATEGIES {
+            let ks = k.as_str();
+            let mut mean = Vec::new();
+            let mut err = Vec::new();
+            let mut pap = Vec::new();
+            for &p in &pens {
+                let ps = num(p);
+                let r = find(cells, &[("penetration", &ps), ("strategy", ks)])
+                    .and_then(|c| rows.iter().find(|r| r.cell == c && r.metric == metric));
+                let skip = metric == "avg_platoon_length" && p == 0.0;
+                mean.push(r.filter(|_| !skip).map_or(f64::NAN, |r| r.stats.mean));
+                err.push(r.map_or(f64::NAN, |r| r.stats.half_width()));
+                let labels = Labels::new().with("penetration", ps).with("strategy", ks);
+                pap.push(paper::lookup("sr99", &labels, metric).map_or(f64::NAN, |v| v.value));
+            }
+            let name = sr99::strategy_name(ks).to_string();
+            s_ours.push((name.clone(), mean, Some(err)));
+            s_paper.push((name, pap, None));
+        }
+        ours.push(Bars {
+            title: format!("{title}: ours"),
+            y_label: unit.into(),
+            groups: groups.clone(),
+            series: s_ours,
+        });
+        theirs.push(Bars {
+            title: format!("{title}: paper"),
+            y_label: unit.into(),
+            groups: groups.clone(),
+            series: s_paper,
+        });
+    }
+    ours.extend(theirs);
+    ours
+}
+
+fn bars(dir: &Path, cells: &[Cell], rows: &[SummaryRow]) -> Result<Figure, Error> {
+    let charts = bar_charts(cells, rows);
+    bar_panels(
+        &charts,
+        3,
+        "SR-99: lane changes, platoon length and network discharge vs CAV penetration",
+        &dir.join("sr99_bars"),
+    )
+    .map_err(plot_error)?;
+    Ok(Figure {
+        title: "Lane changes per vehicle, average platoon length L̄ and network discharge vs CAV \
+                penetration (paper Fig. 8): top, ours (mean, whiskers: 95 % confidence \
+                interval); bottom, the paper's Table 4"
+            .into(),
+        stem: "sr99_bars".into(),
+    })
+}
