@@ -37,8 +37,10 @@ pub enum Command {
     /// runs.csv, summary.csv, summary.md and run.json to OUT/NAME/. Resumable: finished runs
     /// are kept in OUT/NAME/runs/ and reused by a rerun with the same arguments.
     Experiment(ExperimentArgs),
-    /// Run every experiment and write OUT/REPORT.md and OUT/report.html (our results beside
-    /// the paper's, with the differences). --quick uses 3 seeds per cell.
+    /// Run every experiment (the homogeneous road, then the SR-99 corridor) and write
+    /// OUT/REPORT.md and OUT/report.html (our results beside the paper's, with the
+    /// differences). --quick uses 3 seeds per cell on the homogeneous road and a reduced SR-99
+    /// part.
     Reproduce(ReproduceArgs),
 }
 
@@ -206,6 +208,14 @@ pub enum ExperimentArg {
     /// 1000-2500 veh/h/lane: the largest platoon-length gain whose discharge loss stays within
     /// --tolerance at every demand; writes tradeoff.csv and thresholds.toml.
     CalibrateFlowAware,
+    /// Table 4 and Figs. 6-8 on the SR-99 corridor (4 h from 05:00): baseline, PD and
+    /// Flow-Aware PD at 20-80 % CAV, the baseline at 0 and 100 %, each penetration at its
+    /// demand scale (the embedded table unless --demand-scale-table or --demand-scale).
+    Sr99,
+    /// The SR-99 demand-scale search: per penetration, the smallest scale of --scales at which
+    /// the baseline shows both recurrent bottlenecks (see --bottleneck-speed); writes
+    /// demand_scales.toml (and the embedded table with --write-table).
+    Sr99Demand,
 }
 
 impl From<ExperimentArg> for ExperimentName {
@@ -215,6 +225,8 @@ impl From<ExperimentArg> for ExperimentName {
             ExperimentArg::Sensitivity => ExperimentName::Sensitivity,
             ExperimentArg::FlowAware => ExperimentName::FlowAware,
             ExperimentArg::CalibrateFlowAware => ExperimentName::CalibrateFlowAware,
+            ExperimentArg::Sr99 => ExperimentName::Sr99,
+            ExperimentArg::Sr99Demand => ExperimentName::Sr99Demand,
         }
     }
 }
@@ -269,6 +281,55 @@ pub struct ExperimentArgs {
     /// calibrate-flow-aware: the largest discharge loss accepted at any demand (%).
     #[arg(long, value_name = "PCT", default_value_t = platoonsim_experiment::experiments::calibrate::TOLERANCE_PCT)]
     pub tolerance: f64,
+
+    #[command(flatten)]
+    pub network: NetworkArgs,
+}
+
+/// The SR-99 experiments' flags.
+#[derive(Debug, Args)]
+pub struct NetworkArgs {
+    /// sr99, sr99-demand: the CAV penetrations (0 to 1), comma-separated.
+    #[arg(long, value_name = "LIST", value_delimiter = ',', default_values_t = platoonsim_experiment::experiments::sr99::PENETRATIONS)]
+    pub penetrations: Vec<f64>,
+
+    /// sr99: one demand scale for every penetration instead of the table.
+    #[arg(long, value_name = "F", conflicts_with = "demand_scale_table")]
+    pub demand_scale: Option<f64>,
+
+    /// sr99 (and sr99-demand --no-search): the demand scales by penetration from this file
+    /// (the format of crates/scenario/scenarios/sr99_demand_scales.toml, e.g. the
+    /// demand_scales.toml that sr99-demand writes) instead of the embedded table.
+    #[arg(long, value_name = "FILE")]
+    pub demand_scale_table: Option<PathBuf>,
+
+    /// sr99-demand: the demand scales to try at each penetration, comma-separated (in
+    /// increasing order; the search stops at the first with both bottlenecks).
+    #[arg(long, value_name = "LIST", value_delimiter = ',', default_values_t = platoonsim_experiment::experiments::sr99_demand::SCALE_GRID)]
+    pub scales: Vec<f64>,
+
+    /// sr99-demand: no search; only evaluate the bottleneck criterion at the table's scales.
+    #[arg(long)]
+    pub no_search: bool,
+
+    /// sr99-demand: a detector is congested in a 5-min interval slower than this (km/h).
+    #[arg(long, value_name = "KMH", default_value_t = platoonsim_experiment::experiments::sr99_demand::BOTTLENECK_SPEED_KMH)]
+    pub bottleneck_speed: f64,
+
+    /// sr99-demand: a bottleneck is active once a watched detector stays congested this long
+    /// (min).
+    #[arg(long, value_name = "MIN", default_value_t = platoonsim_experiment::experiments::sr99_demand::BOTTLENECK_MINUTES)]
+    pub bottleneck_minutes: f64,
+
+    /// sr99-demand: also write the scales found into the embedded table file (default:
+    /// crates/scenario/scenarios/sr99_demand_scales.toml of this repository; rebuild to use
+    /// them) or into FILE.
+    #[arg(long, value_name = "FILE", num_args = 0..=1, require_equals = false)]
+    pub write_table: Option<Option<PathBuf>>,
+
+    /// Simulated time of the SR-99 runs (tests only; the paper's: 14400 s).
+    #[arg(long, value_name = "S", hide = true)]
+    pub network_duration: Option<f64>,
 }
 
 #[derive(Debug, Args)]
@@ -291,6 +352,10 @@ pub struct ReproduceArgs {
     /// Warm-up of the runs that have one (tests only; the paper's: 1200 s).
     #[arg(long, value_name = "S", default_value_t = 1200.0, hide = true)]
     pub warmup: f64,
+
+    /// Simulated time of the SR-99 runs (tests only; the paper's: 14400 s).
+    #[arg(long, value_name = "S", hide = true)]
+    pub network_duration: Option<f64>,
 }
 
 #[cfg(test)]
@@ -407,6 +472,48 @@ mod tests {
         assert_eq!((r.seeds, r.grid.jobs), (Some(4), Some(1)));
         assert_eq!(r.grid.out, PathBuf::from("o"));
 
+        let cli = Cli::try_parse_from([
+            "platoonsim",
+            "experiment",
+            "sr99-demand",
+            "--penetrations",
+            "0,0.4",
+            "--scales",
+            "1,1.1",
+            "--bottleneck-speed",
+            "50",
+            "--write-table",
+        ])
+        .unwrap();
+        let Command::Experiment(e) = cli.command else {
+            panic!()
+        };
+        assert_eq!(ExperimentName::from(e.name), ExperimentName::Sr99Demand);
+        assert_eq!(e.network.penetrations, [0.0, 0.4]);
+        assert_eq!(e.network.scales, [1.0, 1.1]);
+        assert_eq!(e.network.bottleneck_speed, 50.0);
+        assert_eq!(e.network.bottleneck_minutes, 30.0);
+        assert_eq!(e.network.write_table, Some(None));
+        let cli = Cli::try_parse_from(["platoonsim", "experiment", "sr99"]).unwrap();
+        let Command::Experiment(e) = cli.command else {
+            panic!()
+        };
+        assert_eq!(e.network.penetrations.len(), 6);
+        assert_eq!(e.network.scales.len(), 11);
+        assert_eq!(
+            (e.network.write_table, e.network.demand_scale),
+            (None, None)
+        );
+        assert!(Cli::try_parse_from([
+            "platoonsim",
+            "experiment",
+            "sr99",
+            "--demand-scale",
+            "1.1",
+            "--demand-scale-table",
+            "t.toml"
+        ])
+        .is_err());
         assert!(Cli::try_parse_from(["platoonsim", "experiment", "table9"]).is_err());
         assert!(
             Cli::try_parse_from(["platoonsim", "experiment", "capacity", "--seeds", "0"]).is_err()

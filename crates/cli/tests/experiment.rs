@@ -39,6 +39,12 @@ fn help_lists_the_experiment_commands() {
         "capacity",
         "sensitivity",
         "flow-aware",
+        "sr99",
+        "sr99-demand",
+        "--penetrations <LIST>",
+        "--scales <LIST>",
+        "--write-table",
+        "--demand-scale-table <FILE>",
         "--seeds <N>",
         "--out <DIR>",
         "--jobs <N>",
@@ -58,7 +64,7 @@ fn help_lists_the_experiment_commands() {
         );
     }
     assert!(
-        !text.contains("--duration"),
+        !text.contains("--duration") && !text.contains("--network-duration"),
         "test-only flag shown:\n{text}"
     );
 }
@@ -108,15 +114,97 @@ fn experiment_writes_its_files_and_a_rerun_reuses_every_run() {
 }
 
 #[test]
+fn sr99_experiments_run_from_the_command_line() {
+    let out = scratch("sr99");
+    let o = platoonsim(&[
+        "experiment",
+        "sr99",
+        "--seeds",
+        "1",
+        "--penetrations",
+        "0.4",
+        "--network-duration",
+        "300",
+        "--out",
+        s(&out),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        stdout(&o).contains("3 runs (3 computed, 0 reused)"),
+        "{}",
+        stdout(&o)
+    );
+    for f in [
+        "summary.md",
+        "sr99_contours.png",
+        "sr99_lanes.svg",
+        "sr99_bars.png",
+    ] {
+        assert!(out.join("sr99").join(f).is_file(), "{f} missing");
+    }
+
+    // The demand search writes its table where --write-table says.
+    let table = out.join("scales.toml");
+    let o = platoonsim(&[
+        "experiment",
+        "sr99-demand",
+        "--seeds",
+        "1",
+        "--penetrations",
+        "0",
+        "--scales",
+        "1",
+        "--bottleneck-speed",
+        "300",
+        "--bottleneck-minutes",
+        "5",
+        "--network-duration",
+        "300",
+        "--write-table",
+        s(&table),
+        "--out",
+        s(&out),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        stdout(&o).contains("Wrote the demand scales found to"),
+        "{}",
+        stdout(&o)
+    );
+    let text = std::fs::read_to_string(&table).unwrap();
+    assert!(
+        text.contains("[[penetration]]\npenetration = 0.0\ndemand_scale = 1.0"),
+        "{text}"
+    );
+
+    // --write-table needs a search.
+    let o = platoonsim(&[
+        "experiment",
+        "sr99",
+        "--write-table",
+        s(&table),
+        "--out",
+        s(&out),
+    ]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--write-table"));
+}
+
+#[test]
 fn reproduce_writes_the_report() {
     let out = scratch("reproduce");
     let o = platoonsim(&[
         "reproduce",
+        "--quick",
         "--seeds",
         "2",
         "--duration",
         "600",
         "--warmup",
+        "300",
+        "--network-duration",
         "300",
         "--out",
         s(&out),
@@ -130,18 +218,33 @@ fn reproduce_writes_the_report() {
         "## 1. Capacity",
         "## 2. Platoon organization at various demands (paper Table 3)",
         "## 3. Flow-Aware",
+        "## 4. SR-99 corridor (paper Table 4, Figs. 6-8)",
+        "**Quick mode**",
+        "#### Table 4: ours vs the paper",
+        "#### Demand scale by penetration",
+        "**No search**",
+        "### Notes on the SR-99 results",
         "## Run time",
         "## Notes on differences",
-        "platoonsim reproduce --seeds 2",
+        "platoonsim reproduce --quick --seeds 2",
     ] {
         assert!(md.contains(part), "{part} missing from REPORT.md");
     }
+    // The SR-99 notes are in the SR-99 section, not again at the end.
+    assert_eq!(md.matches("## SR-99 corridor\n").count(), 0);
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     assert!(html.starts_with("<!DOCTYPE html>"));
     assert!(html.contains("<table>") && html.contains("Notes on differences"));
-    assert_eq!(html.matches("src=\"data:image/png;base64,").count(), 2);
+    // capacity, sensitivity; sr99: contours, lanes, bars; sr99-demand: scales, contours.
+    assert_eq!(html.matches("src=\"data:image/png;base64,").count(), 7);
     assert!(out.join("capacity/capacity.svg").is_file());
-    for exp in ["capacity", "sensitivity", "flow-aware"] {
+    for exp in [
+        "capacity",
+        "sensitivity",
+        "flow-aware",
+        "sr99",
+        "sr99-demand",
+    ] {
         assert!(out.join(exp).join("summary.csv").is_file(), "{exp}");
     }
 }

@@ -1,8 +1,12 @@
 //! The reproduction report over several experiments: `REPORT.md` and a self-contained
 //! `report.html` (the same text; figures inlined as base64 data URIs, style inline).
+//!
+//! The homogeneous-road experiments get one numbered section each; the SR-99 experiments
+//! share one section ("SR-99 corridor"), which ends with the `## SR-99 corridor` section of
+//! the notes (the rest of the notes closes the report).
 
 use crate::atomic::write_atomic;
-use crate::experiments::{ExperimentOutput, Figure};
+use crate::experiments::{ExperimentName, ExperimentOutput, Figure};
 use crate::table::md_table;
 use crate::{Error, VERSION};
 use pulldown_cmark::{html, CowStr, Event, Options, Parser, Tag};
@@ -15,7 +19,12 @@ pub struct ReportInput<'a> {
     pub notes: &'a str,
     /// The command that produced it, e.g. `platoonsim reproduce --quick`.
     pub command: &'a str,
+    /// Seeds per cell on the homogeneous road …
     pub seeds: u32,
+    /// … and on SR-99 (if it was run).
+    pub network_seeds: Option<u32>,
+    /// Markdown at the start of the SR-99 section (e.g. what quick mode left out).
+    pub network_note: &'a str,
     pub jobs: Option<usize>,
     pub wall_seconds: f64,
 }
@@ -46,6 +55,34 @@ pub fn notes_section(notes: &str) -> String {
     }
 }
 
+/// The heading of the notes' SR-99 section.
+pub const NETWORK_NOTES: &str = "## SR-99 corridor";
+
+/// The notes without their `## SR-99 corridor` section, and that section's text (without its
+/// heading; empty if there is none). The section runs to the next level-2 heading.
+pub fn split_notes(notes: &str) -> (String, String) {
+    let mut rest = String::new();
+    let mut network = String::new();
+    let mut inside = false;
+    for line in notes.lines() {
+        if line.starts_with("## ") || line.starts_with("# ") {
+            inside = line.trim_end() == NETWORK_NOTES;
+            if inside {
+                continue;
+            }
+        }
+        let out = if inside { &mut network } else { &mut rest };
+        out.push_str(line);
+        out.push('\n');
+    }
+    (rest, network.trim().to_string())
+}
+
+/// Whether an output belongs to the SR-99 section.
+fn is_network(o: &ExperimentOutput) -> bool {
+    ExperimentName::NETWORK.contains(&o.name)
+}
+
 /// `REPORT.md`.
 pub fn markdown(input: &ReportInput<'_>) -> String {
     let computed: usize = input.outputs.iter().map(|o| o.computed).sum();
@@ -55,7 +92,7 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
          CAVs in Mixed Traffic\"\n\n",
     );
     md.push_str(&format!(
-        "Made by `{}` (platoonsim {VERSION}) with {} seeds per cell on {}. Total wall time \
+        "Made by `{}` (platoonsim {VERSION}) with {} seeds per cell{} on {}. Total wall time \
          **{:.0} s** ({:.1} min): {computed} runs computed, {reused} reused from earlier run \
          files. Every number below is the mean over the seeds with the half-width of its 95 % \
          confidence interval (Student t); the paper reports single values without intervals. \
@@ -63,6 +100,10 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
          directory beside this report.\n\n",
         input.command,
         input.seeds,
+        match input.network_seeds {
+            Some(n) if n != input.seeds => format!(" ({n} on SR-99)"),
+            _ => String::new(),
+        },
         match input.jobs {
             Some(n) => format!("{n} worker thread(s)"),
             None => format!(
@@ -74,7 +115,7 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
         input.wall_seconds / 60.0
     ));
 
-    md.push_str("## At a glance: issue 3's targets\n\n");
+    md.push_str("## At a glance: the checks\n\n");
     for o in input.outputs {
         for c in &o.checks {
             md.push_str(&format!(
@@ -87,18 +128,28 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
     }
     md.push('\n');
 
-    for (i, o) in input.outputs.iter().enumerate() {
-        md.push_str(&format!("## {}. {}\n\n", i + 1, o.name.title()));
+    let (notes, network_notes) = split_notes(input.notes);
+    let mut n = 0;
+    for o in input.outputs.iter().filter(|o| !is_network(o)) {
+        n += 1;
+        md.push_str(&format!("## {n}. {}\n\n", o.name.title()));
+        md.push_str(&section(o, 1));
+    }
+    let network: Vec<&ExperimentOutput> = input.outputs.iter().filter(|o| is_network(o)).collect();
+    if !network.is_empty() {
+        n += 1;
         md.push_str(&format!(
-            "Files: `{0}/summary.md`, `{0}/summary.csv`, `{0}/runs.csv`, `{0}/run.json`.\n\n",
-            o.name.as_str()
+            "## {n}. SR-99 corridor (paper Table 4, Figs. 6-8)\n\n{}\n\n",
+            input.network_note.trim()
         ));
-        md.push_str(&demote(&o.body));
-        if o.figures.is_empty() {
+        for o in network {
+            md.push_str(&format!("### {}\n\n", o.name.title()));
+            md.push_str(&section(o, 2));
+        }
+        if !network_notes.is_empty() {
+            md.push_str("### Notes on the SR-99 results\n\n");
+            md.push_str(&demote(&network_notes));
             md.push('\n');
-        } else {
-            md.push_str("\n### Figures\n\n");
-            md.push_str(&o.figures_md(&format!("{}/", o.name.as_str())));
         }
     }
 
@@ -134,7 +185,27 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
     ]);
     md.push_str(&md_table(&header, &rows));
     md.push('\n');
-    md.push_str(&notes_section(input.notes));
+    md.push_str(&notes_section(&notes));
+    md
+}
+
+/// An experiment's files, body and figures, its headings pushed `depth` levels down.
+fn section(o: &ExperimentOutput, depth: usize) -> String {
+    let mut md = format!(
+        "Files: `{0}/summary.md`, `{0}/summary.csv`, `{0}/runs.csv`, `{0}/run.json`.\n\n",
+        o.name.as_str()
+    );
+    let mut body = o.body.clone();
+    for _ in 0..depth {
+        body = demote(&body);
+    }
+    md.push_str(&body);
+    if o.figures.is_empty() {
+        md.push('\n');
+    } else {
+        md.push_str(&format!("\n{} Figures\n\n", "#".repeat(depth + 2)));
+        md.push_str(&o.figures_md(&format!("{}/", o.name.as_str())));
+    }
     md
 }
 
@@ -277,6 +348,16 @@ mod tests {
         assert!(page.contains("src=\"missing.png\""));
         assert!(page.contains("<title>x &lt;y&gt;</title>"));
         assert!(!page.contains("capacity/fig.png"));
+    }
+
+    #[test]
+    fn the_sr99_notes_are_split_off() {
+        let notes = "## Notes on differences\n\nA.\n\n## SR-99 corridor\n\nB.\n\n### Sub\n\nC.\n\n## Later\n\nD.\n";
+        let (rest, net) = split_notes(notes);
+        assert_eq!(rest, "## Notes on differences\n\nA.\n\n## Later\n\nD.\n");
+        assert_eq!(net, "B.\n\n### Sub\n\nC.");
+        let (rest, net) = split_notes("plain");
+        assert_eq!((rest.as_str(), net.as_str()), ("plain\n", ""));
     }
 
     #[test]

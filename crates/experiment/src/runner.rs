@@ -76,6 +76,9 @@ pub struct Runner<'a> {
     /// Reuse only run files computed by this engine build ([`record::engine_id`]); `None`
     /// accepts any.
     pub engine: Option<String>,
+    /// Other experiments' run directories: a run missing here but valid there is copied
+    /// here and reused (e.g. `sr99-demand` reusing the baseline runs of `sr99`).
+    pub reuse_from: Vec<PathBuf>,
     /// Advanced by one per run, reused or computed.
     pub bar: ProgressBar,
     pub exec: Executor<'a>,
@@ -95,6 +98,7 @@ impl<'a> Runner<'a> {
             jobs,
             reuse: true,
             engine: Some(record::engine_id().to_string()),
+            reuse_from: Vec::new(),
             bar,
             exec,
             computed: AtomicUsize::new(0),
@@ -227,23 +231,47 @@ impl<'a> Runner<'a> {
         }
     }
 
-    /// A valid existing run file's metrics, or `None` (missing or unusable: recompute). With
-    /// a detector scope, the run file must name a detector file of a covering scope, and that
-    /// file must be there with the named hash.
+    /// A valid existing run file's metrics, or `None` (missing or unusable: recompute): from
+    /// this runner's directory, else from the first of [`Runner::reuse_from`] that has it,
+    /// whose files are then copied here (atomically, detector file first).
     fn load(&self, key: &str, seed: u64, scope: Scope) -> Option<Fields> {
-        let bytes = fs::read(self.file(key)).ok()?;
-        let (fields, det) = record::decode_with(&bytes, key, seed, self.engine.as_deref()).ok()?;
-        if scope != Scope::None {
-            let det = det?;
-            if !det.scope.covers(scope) {
-                return None;
-            }
-            let csv = fs::read(self.detectors_file(key)).ok()?;
-            if !det.matches(&csv) {
-                return None;
-            }
+        if let Some((fields, _)) = self.load_from(&self.runs_dir, key, seed, scope) {
+            return Some(fields);
         }
-        Some(fields)
+        self.reuse_from.iter().find_map(|dir| {
+            let (fields, files) = self.load_from(dir, key, seed, scope)?;
+            let (bytes, csv) = files;
+            if let Some(csv) = csv {
+                write_atomic(&self.detectors_file(key), &csv).ok()?;
+            }
+            write_atomic(&self.file(key), &bytes).ok()?;
+            Some(fields)
+        })
+    }
+
+    /// A valid run in `dir`: its metrics, and the bytes of its run file and (if it names one)
+    /// detector file. With a detector scope, the run file must name a detector file of a
+    /// covering scope, and that file must be there with the named hash.
+    #[allow(clippy::type_complexity)]
+    fn load_from(
+        &self,
+        dir: &Path,
+        key: &str,
+        seed: u64,
+        scope: Scope,
+    ) -> Option<(Fields, (Vec<u8>, Option<Vec<u8>>))> {
+        let bytes = fs::read(dir.join(format!("{key}.json"))).ok()?;
+        let (fields, det) = record::decode_with(&bytes, key, seed, self.engine.as_deref()).ok()?;
+        let csv = match det {
+            Some(det) => fs::read(dir.join(format!("{key}.detectors.csv")))
+                .ok()
+                .filter(|csv| det.matches(csv) && det.scope.covers(scope)),
+            None => None,
+        };
+        if scope != Scope::None && csv.is_none() {
+            return None;
+        }
+        Some((fields, (bytes, csv)))
     }
 
     fn compute(&self, spec: &RunSpec, key: &str, scope: Scope) -> Result<Fields, Error> {

@@ -148,8 +148,9 @@ fn sr99_writes_table4_and_the_three_figures() {
     ] {
         assert!(dir.join(f).is_file(), "{f} missing");
     }
-    // Detector files: seed 1 of the three 40 % cells only.
-    assert_eq!(names(&dir.join("runs"), ".detectors.csv"), 3);
+    // Detector files: every baseline run (cross-section), and seed 1 of PD and Flow-Aware at
+    // 40 % (every lane).
+    assert_eq!(names(&dir.join("runs"), ".detectors.csv"), 2 + 2 + 1 + 1);
     assert_eq!(names(&dir.join("runs"), ".json"), 8);
 
     let runs = fs::read_to_string(dir.join("runs.csv")).unwrap();
@@ -177,7 +178,8 @@ fn sr99_writes_table4_and_the_three_figures() {
         "## Change vs the baseline at the same penetration (%)",
         "| 40 % | Flow-Aware PD |",
         "-2.9",
-        "## Bottlenecks in the figure runs",
+        "## Recurrent bottlenecks",
+        "In words:",
         "## Checks",
         "sr99_contours.png",
     ] {
@@ -190,6 +192,15 @@ fn sr99_writes_table4_and_the_three_figures() {
     let again = run_experiment_with(ExperimentName::Sr99, &s, &simulate).unwrap();
     assert_eq!((again.computed, again.reused), (0, 8));
     assert_eq!(fs::read_to_string(dir.join("runs.csv")).unwrap(), runs);
+
+    // sr99-demand at the table's scales runs sr99's baselines: reused from its directory.
+    let check = Settings {
+        scale_grid: vec![],
+        ..s
+    };
+    let demand = run_experiment_with(ExperimentName::Sr99Demand, &check, &simulate).unwrap();
+    assert_eq!((demand.computed, demand.reused), (0, 4));
+    assert_eq!(names(&out.join("sr99-demand/runs"), ".detectors.csv"), 4);
 }
 
 #[test]

@@ -1,9 +1,11 @@
 //! `platoonsim experiment NAME`: one of the paper's experiments, resumable, with its tables.
 
-use crate::args::{ExperimentArgs, GridArgs};
+use crate::args::{ExperimentArgs, GridArgs, NetworkArgs};
 use crate::progress;
-use anyhow::{Context, Result};
+use anyhow::{bail, Context, Result};
 use platoonsim_experiment::{run_experiment, ExperimentName, ExperimentOutput, Settings};
+use platoonsim_scenario::demand_scales;
+use std::path::{Path, PathBuf};
 
 /// The settings shared by `experiment` and `reproduce`.
 pub fn settings(grid: &GridArgs, seeds: u32, quiet: bool) -> Settings {
@@ -20,10 +22,9 @@ pub fn settings(grid: &GridArgs, seeds: u32, quiet: bool) -> Settings {
 
 pub fn experiment(args: &ExperimentArgs, quiet: bool) -> Result<()> {
     let name = ExperimentName::from(args.name);
-    let default_seeds = if name == ExperimentName::CalibrateFlowAware {
-        3
-    } else {
-        10
+    let default_seeds = match name {
+        ExperimentName::CalibrateFlowAware | ExperimentName::Sr99Demand => 3,
+        _ => 10,
     };
     let mut s = settings(&args.grid, args.seeds.unwrap_or(default_seeds), quiet);
     s.duration_s = args.duration;
@@ -31,9 +32,72 @@ pub fn experiment(args: &ExperimentArgs, quiet: bool) -> Result<()> {
     s.flow_thresholds = args.flow_thresholds.clone();
     s.speed_thresholds = args.speed_thresholds.clone();
     s.tolerance_pct = args.tolerance;
+    network(&mut s, &args.network, name)?;
     let out = run_experiment(name, &s).with_context(|| format!("experiment {name} failed"))?;
     print!("{}", describe(&out));
+    if let Some(p) = &s.write_table {
+        println!(
+            "Wrote the demand scales found to {}; rebuild platoonsim to make them the default.",
+            p.display()
+        );
+    }
     Ok(())
+}
+
+/// The SR-99 flags into the settings.
+pub fn network(s: &mut Settings, n: &NetworkArgs, name: ExperimentName) -> Result<()> {
+    if n.penetrations.is_empty() || n.penetrations.iter().any(|p| !(0.0..=1.0).contains(p)) {
+        bail!("--penetrations: every value must lie in [0, 1]");
+    }
+    let positive = |v: f64| v.is_finite() && v > 0.0;
+    if !positive(n.bottleneck_speed) || !positive(n.bottleneck_minutes) {
+        bail!("--bottleneck-speed and --bottleneck-minutes must be positive");
+    }
+    if let Some(d) = n.network_duration {
+        if !positive(d) {
+            bail!("--network-duration must be positive");
+        }
+    }
+    s.network_penetrations = n.penetrations.clone();
+    s.demand_scale = n.demand_scale;
+    s.demand_scale_table = n.demand_scale_table.clone();
+    s.scale_grid = if n.no_search {
+        Vec::new()
+    } else {
+        n.scales.clone()
+    };
+    s.bottleneck_speed_kmh = n.bottleneck_speed;
+    s.bottleneck_minutes = n.bottleneck_minutes;
+    s.network_duration_s = n.network_duration;
+    if let Some(w) = &n.write_table {
+        if name != ExperimentName::Sr99Demand || n.no_search {
+            bail!("--write-table applies to sr99-demand with a search (not with --no-search)");
+        }
+        s.write_table = Some(table_path(w.as_deref())?);
+    }
+    Ok(())
+}
+
+/// Where `--write-table` writes: FILE if given, else the embedded table's source in the
+/// repository (from the current directory, or where this binary was built from).
+fn table_path(given: Option<&Path>) -> Result<PathBuf> {
+    if let Some(p) = given {
+        return Ok(p.to_path_buf());
+    }
+    let here = PathBuf::from(demand_scales::TABLE_PATH);
+    if here.is_file() {
+        return Ok(here);
+    }
+    let built = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .join(demand_scales::TABLE_PATH);
+    if built.is_file() {
+        return Ok(built);
+    }
+    bail!(
+        "cannot find {} (run from the repository root, or give --write-table FILE)",
+        demand_scales::TABLE_PATH
+    )
 }
 
 /// A few lines about a finished experiment: files, runs, checks.

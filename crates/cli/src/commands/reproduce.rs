@@ -1,17 +1,71 @@
-//! `platoonsim reproduce`: every experiment, then `REPORT.md` and `report.html`.
+//! `platoonsim reproduce`: every experiment (the homogeneous road, then SR-99), then
+//! `REPORT.md` and `report.html`.
 
 use crate::args::ReproduceArgs;
 use crate::commands::experiment::{describe, settings};
 use anyhow::{Context, Result};
 use platoonsim_experiment::report::{self, ReportInput};
-use platoonsim_experiment::{run_experiment, ExperimentName};
+use platoonsim_experiment::{run_experiment, ExperimentName, Settings};
 use std::time::Instant;
 
 /// The report's "Notes on differences", written by hand in the repository.
 const NOTES: &str = include_str!("../../../../docs/reproduction-notes.md");
 
-/// Seeds per cell with --quick.
+/// Seeds per cell on the homogeneous road with --quick.
 pub const QUICK_SEEDS: u32 = 3;
+/// Seeds per cell on SR-99 with --quick.
+pub const QUICK_NETWORK_SEEDS: u32 = 1;
+/// The `sr99` penetrations with --quick: the figures' 40 % (baseline, PD, Flow-Aware) and
+/// the 0 % baseline.
+pub const QUICK_SR99_PENETRATIONS: [f64; 2] = [0.0, 0.4];
+
+/// The SR-99 settings: `sr99` and `sr99-demand` (quick: 0 % and 40 % only, and no demand
+/// search, only the criterion at the table's scales, on the runs `sr99` made: no extra run).
+fn network_settings(args: &ReproduceArgs, base: &Settings) -> (Settings, Settings) {
+    let seeds = args
+        .seeds
+        .unwrap_or(if args.quick { QUICK_NETWORK_SEEDS } else { 10 });
+    let mut sr99 = Settings {
+        seeds,
+        network_duration_s: args.network_duration,
+        ..base.clone()
+    };
+    let mut demand = sr99.clone();
+    if args.quick {
+        sr99.network_penetrations = QUICK_SR99_PENETRATIONS.to_vec();
+        demand.network_penetrations = QUICK_SR99_PENETRATIONS.to_vec();
+        demand.scale_grid = Vec::new();
+    }
+    (sr99, demand)
+}
+
+/// What the SR-99 section says about the choices of this invocation.
+fn network_note(args: &ReproduceArgs, sr99: &Settings) -> String {
+    if args.quick {
+        format!(
+            "**Quick mode** (to finish within 10 minutes on 2 cores; a 4-hour SR-99 run takes \
+             1-3 minutes of one core with the current engine): `sr99` runs {} seed(s) at {} % \
+             CAV only (the baseline at 0 %, and baseline, PD and Flow-Aware PD at 40 %, the \
+             cells of the figures), and `sr99-demand` does not search: it evaluates the \
+             bottleneck criterion at the table's demand scales of those two penetrations, on \
+             the baseline runs of `sr99` (no extra run). The full reproduction (`platoonsim \
+             reproduce`) runs every penetration with 10 seeds and the search.",
+            sr99.seeds,
+            sr99.network_penetrations
+                .iter()
+                .map(|p| format!("{}", 100.0 * p))
+                .collect::<Vec<_>>()
+                .join(" and ")
+        )
+    } else {
+        format!(
+            "Every penetration of the paper with {} seeds per cell; the demand-scale search over \
+             the grid with the same seeds. `sr99` uses the demand scales of the embedded table \
+             (the paper's), not the ones the search finds (see the search's table).",
+            sr99.seeds
+        )
+    }
+}
 
 pub fn reproduce(args: &ReproduceArgs, quiet: bool) -> Result<()> {
     let start = Instant::now();
@@ -24,6 +78,13 @@ pub fn reproduce(args: &ReproduceArgs, quiet: bool) -> Result<()> {
     let mut outputs = Vec::new();
     for name in ExperimentName::ALL {
         let out = run_experiment(name, &s).with_context(|| format!("experiment {name} failed"))?;
+        print!("{}", describe(&out));
+        outputs.push(out);
+    }
+    let (sr99, demand) = network_settings(args, &s);
+    for (name, settings) in ExperimentName::NETWORK.into_iter().zip([&sr99, &demand]) {
+        let out =
+            run_experiment(name, settings).with_context(|| format!("experiment {name} failed"))?;
         print!("{}", describe(&out));
         outputs.push(out);
     }
@@ -40,12 +101,18 @@ pub fn reproduce(args: &ReproduceArgs, quiet: bool) -> Result<()> {
             args.duration, args.warmup
         ));
     }
+    if let Some(d) = args.network_duration {
+        command.push_str(&format!(" --network-duration {d}"));
+    }
     let wall = start.elapsed().as_secs_f64();
+    let note = network_note(args, &sr99);
     let input = ReportInput {
         outputs: &outputs,
         notes: NOTES,
         command: &command,
         seeds,
+        network_seeds: Some(sr99.seeds),
+        network_note: &note,
         jobs: s.jobs,
         wall_seconds: wall,
     };

@@ -291,6 +291,13 @@ pub fn run_experiment_with(
     let bar = runner::bar(name.total_runs(settings), settings.progress, name.as_str());
     let mut runner = Runner::new(dir.join("runs"), settings.jobs, bar.clone(), exec);
     runner.reuse = settings.reuse;
+    // The SR-99 experiments share runs: sr99's baselines are sr99-demand's cells at the
+    // table's scales.
+    runner.reuse_from = match name {
+        ExperimentName::Sr99 => vec![settings.out.join("sr99-demand").join("runs")],
+        ExperimentName::Sr99Demand => vec![settings.out.join("sr99").join("runs")],
+        _ => Vec::new(),
+    };
     let done = match name {
         ExperimentName::Capacity => capacity::run(settings, &runner, &seeds),
         ExperimentName::Sensitivity => sensitivity::run(settings, &runner, &seeds),
@@ -313,7 +320,7 @@ pub fn run_experiment_with(
         ExperimentName::CalibrateFlowAware => {
             calibrate::markdown(settings, &cells, &outcomes, &rows)
         }
-        ExperimentName::Sr99 => sr99::markdown(settings, &cells, &rows, &extra),
+        ExperimentName::Sr99 => sr99::markdown(settings, &cells, &rows),
         ExperimentName::Sr99Demand => sr99_demand::markdown(settings, &cells, &rows, &extra),
     };
     let figures = match name {

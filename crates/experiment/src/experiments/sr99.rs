@@ -10,7 +10,7 @@
 //! Rd (Fig. 7); see [`super::sr99_figures`].
 
 use super::{checks_md, find, Check, Done, Extra, Settings};
-use crate::corridor::{self, Bottlenecks, Criterion};
+use crate::corridor::{self, Criterion};
 use crate::design::{self, num, Cell, Labels};
 use crate::detectors::Scope;
 use crate::paper;
@@ -196,6 +196,9 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
     let cells = cells(s)?;
     let figure_seed = seeds[0];
     let mut specs = design::runs(&cells, seeds);
+    design::keep_detectors(&mut specs, Scope::CrossSection, |c, _| {
+        cells[c].labels.get("strategy") == Some("none")
+    });
     design::keep_detectors(&mut specs, Scope::All, |c, seed| {
         seed == figure_seed && is_figure_cell(&cells[c])
     });
@@ -223,12 +226,17 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
         figure_seed,
     };
     let crit = criterion(s);
-    for o in outcomes.iter_mut() {
+    for (o, spec) in outcomes.iter_mut().zip(&specs) {
+        if spec.detectors == Scope::None {
+            continue;
+        }
+        let recs = runner.detectors(&o.key)?;
+        let b = corridor::bottlenecks(&recs, &crit);
+        o.fields.set("florin_congested_min", b.florin_min);
+        o.fields.set("south_congested_min", b.south_min);
+        o.fields
+            .set("bottlenecks_active", f64::from(u8::from(b.active(&crit))));
         if o.seed == figure_seed && is_figure_cell(&cells[o.cell]) {
-            let recs = runner.detectors(&o.key)?;
-            let b = corridor::bottlenecks(&recs, &crit);
-            o.fields.set("florin_congested_min", b.florin_min);
-            o.fields.set("south_congested_min", b.south_min);
             data.figure_runs.push((o.cell, recs));
         }
     }
@@ -274,12 +282,7 @@ fn triple(r: Option<&SummaryRow>, dec: usize, skip: bool) -> [String; 3] {
     [pm(&r.stats, dec), paper, diff]
 }
 
-pub(super) fn markdown(
-    s: &Settings,
-    cells: &[Cell],
-    rows: &[SummaryRow],
-    extra: &Extra,
-) -> (String, Vec<Check>) {
+pub(super) fn markdown(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> (String, Vec<Check>) {
     let duration = cells.first().map_or(14400.0, |c| c.config.duration_s);
     let source = Scales::from_settings(s).map_or_else(|e| e.to_string(), |x| x.source);
     let mut md = format!(
@@ -355,6 +358,7 @@ pub(super) fn markdown(
         }
     }
     md.push_str(&md_table(&header, &trs));
+    md.push_str(&plain(cells, rows, &pens));
 
     md.push_str(
         "\n## Change vs the baseline at the same penetration (%)\n\n\
@@ -401,9 +405,7 @@ pub(super) fn markdown(
         md.push_str(&md_table(&header, &trs));
     }
 
-    if let Extra::Sr99(d) = extra {
-        md.push_str(&bottleneck_section(s, cells, d));
-    }
+    md.push_str(&bottleneck_section(s, cells, rows));
 
     let checks = checks(cells, rows, &mid);
     if !checks.is_empty() {
@@ -413,19 +415,44 @@ pub(super) fn markdown(
     (md, checks)
 }
 
-fn bottleneck_section(s: &Settings, cells: &[Cell], d: &Data) -> String {
-    if d.figure_runs.is_empty() {
+fn bottleneck_section(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> String {
+    let crit = criterion(s);
+    let get = |c: usize, m: &str| rows.iter().find(|r| r.cell == c && r.metric == m);
+    let mut trs = Vec::new();
+    for (c, cell) in cells.iter().enumerate() {
+        let Some(active) = get(c, "bottlenecks_active") else {
+            continue;
+        };
+        let p: f64 = cell
+            .labels
+            .get("penetration")
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(f64::NAN);
+        let mean = |m: &str| get(c, m).map_or("–".into(), |r| fixed(r.stats.mean, 0));
+        trs.push(vec![
+            format!("{} %", num(100.0 * p)),
+            strategy_name(cell.labels.get("strategy").unwrap_or("")).into(),
+            cell.labels.get("demand_scale").unwrap_or("?").into(),
+            format!(
+                "{}/{}",
+                (active.stats.mean * active.stats.n as f64).round(),
+                active.stats.n
+            ),
+            mean("florin_congested_min"),
+            mean("south_congested_min"),
+        ]);
+    }
+    if trs.is_empty() {
         return String::new();
     }
-    let crit = criterion(s);
     let mut md = format!(
-        "\n## Bottlenecks in the figure runs ({} % CAV, seed {})\n\n\
-         Longest stretch of consecutive 5-min intervals with a cross-section mean speed below \
-         {} km/h at `{}` (upstream of the second Florin Rd on-ramp) and at any mainline \
-         detector from `{}` to `{}` (downstream of Elk Grove Blvd); a bottleneck counts as \
-         active from {} min on (the criterion of `sr99-demand`).\n\n",
-        num(100.0 * FIGURE_PENETRATION),
-        d.figure_seed,
+        "\n## Recurrent bottlenecks\n\n\
+         Every baseline run, and the PD and Flow-Aware PD runs of the figures: runs with both \
+         recurrent bottlenecks active, and the means of the longest stretch of consecutive \
+         5-min intervals with a cross-section mean speed below {} km/h at `{}` (upstream of the \
+         second Florin Rd on-ramp) and at any mainline detector from `{}` to `{}` (downstream \
+         of Elk Grove Blvd). A bottleneck counts as active from {} min on (the criterion of \
+         `sr99-demand`, which the paper's demand scales are meant to meet in the baseline).\n\n",
         num(crit.speed_kmh),
         corridor::FLORIN_DETECTOR,
         corridor::SOUTH_FIRST,
@@ -433,32 +460,76 @@ fn bottleneck_section(s: &Settings, cells: &[Cell], d: &Data) -> String {
         num(crit.minutes)
     );
     let header: Vec<String> = [
+        "CAV",
         "Strategy",
+        "Demand scale",
+        "Runs with both active",
         "Florin Rd (min)",
         "Elk Grove Blvd stretch (min)",
-        "Both active",
     ]
     .iter()
     .map(|h| h.to_string())
     .collect();
-    let trs: Vec<Vec<String>> = d
-        .figure_runs
-        .iter()
-        .map(|(c, recs)| {
-            let b: Bottlenecks = corridor::bottlenecks(recs, &crit);
-            vec![
-                strategy_name(cells[*c].labels.get("strategy").unwrap_or("")).into(),
-                fixed(b.florin_min, 0),
-                if b.south_at.is_empty() {
-                    "0".into()
-                } else {
-                    format!("{} (at `{}`)", fixed(b.south_min, 0), b.south_at)
-                },
-                if b.active(&crit) { "yes" } else { "no" }.into(),
-            ]
-        })
-        .collect();
     md.push_str(&md_table(&header, &trs));
+    md
+}
+
+/// "x % higher / lower than the paper's" for a row with a paper value.
+fn versus(r: Option<&SummaryRow>) -> String {
+    let Some(r) = r else { return "–".into() };
+    let rel = 100.0 * r.relative_difference();
+    if !rel.is_finite() {
+        return "no paper value".into();
+    }
+    format!(
+        "{} % {} than the paper's {}",
+        fixed(rel.abs(), 1),
+        if rel >= 0.0 { "higher" } else { "lower" },
+        r.paper.map_or("?".into(), |p| fixed(p.value, 2))
+    )
+}
+
+/// The differences to the paper in words, one line per penetration.
+fn plain(cells: &[Cell], rows: &[SummaryRow], pens: &[f64]) -> String {
+    let mut md = String::from("\nIn words:\n\n");
+    for &p in pens {
+        let ps = num(p);
+        let r = |k: &str, m: &str| row(cells, rows, &ps, k, m);
+        let mean = |k: &str, m: &str| r(k, m).map_or(f64::NAN, |x| x.stats.mean);
+        let paper = |k: &str, m: &str| r(k, m).and_then(|x| x.paper).map_or(f64::NAN, |v| v.value);
+        let mut line = format!(
+            "- **{} % CAV**: baseline network discharge {} veh/h, {}; lane changes per vehicle \
+             {}, {}",
+            num(100.0 * p),
+            fixed(mean("none", "network_discharge_vph"), 0),
+            versus(r("none", "network_discharge_vph")),
+            fixed(mean("none", "lane_changes_per_vehicle"), 2),
+            versus(r("none", "lane_changes_per_vehicle")),
+        );
+        if p > 0.0 {
+            line.push_str(&format!(
+                "; L̄ {}, {}",
+                fixed(mean("none", "avg_platoon_length"), 2),
+                versus(r("none", "avg_platoon_length"))
+            ));
+        }
+        if strategies_at(p).len() > 1 {
+            line.push_str(&format!(
+                ". Against the baseline, PD changes the discharge by {} % (paper {} %) and \
+                 Flow-Aware PD by {} % (paper {} %); L̄ by {} % and {} % (paper {} % and {} %)",
+                signed(mean("pd", "discharge_change_pct"), 1),
+                signed(paper("pd", "discharge_change_pct"), 1),
+                signed(mean("flow-aware", "discharge_change_pct"), 1),
+                signed(paper("flow-aware", "discharge_change_pct"), 1),
+                signed(mean("pd", "platoon_length_change_pct"), 1),
+                signed(mean("flow-aware", "platoon_length_change_pct"), 1),
+                signed(paper("pd", "platoon_length_change_pct"), 1),
+                signed(paper("flow-aware", "platoon_length_change_pct"), 1),
+            ));
+        }
+        line.push_str(".\n");
+        md.push_str(&line);
+    }
     md
 }
 

@@ -259,3 +259,131 @@ fn bars(dir: &Path, cells: &[Cell], rows: &[SummaryRow]) -> Result<Figure, Error
         stem: "sr99_bars".into(),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::record::Fields;
+    use crate::runner::Outcome;
+    use crate::table;
+    use platoonsim_sim::{Config, DetectorRecord};
+
+    fn rec(det: &str, x: f64, lane: &str, t: f64, cavs: u64, speed: f64) -> DetectorRecord {
+        DetectorRecord {
+            detector: det.into(),
+            kind: "mainline".into(),
+            position_m: x,
+            lane: lane.into(),
+            interval_start_s: t,
+            interval_s: 300.0,
+            count: 10,
+            cav_count: cavs,
+            flow_vph: 120.0,
+            speed_kmh: Some(speed),
+            occupancy: 0.1,
+        }
+    }
+
+    /// Three 40 % cells and a 0 % baseline; synthetic records at two detectors, two lanes.
+    fn synthetic() -> (Vec<Cell>, Data, Vec<Outcome>) {
+        let cfg = Config::homogeneous(0.4, 1000.0, 60.0, 0.0, 1);
+        let mut cells = vec![Cell {
+            labels: Labels::new()
+                .with("penetration", "0")
+                .with("strategy", "none"),
+            config: cfg.clone(),
+        }];
+        let mut data = Data {
+            figure_runs: Vec::new(),
+            figure_seed: 1,
+        };
+        for (i, k) in ["none", "pd", "flow-aware"].iter().enumerate() {
+            cells.push(Cell {
+                labels: Labels::new()
+                    .with("penetration", "0.4")
+                    .with("strategy", *k),
+                config: cfg.clone(),
+            });
+            let mut recs = Vec::new();
+            for t in 0..6 {
+                let t = 300.0 * t as f64;
+                for (det, x) in [("OR11-up", 11197.0), ("OR1-up", -50.0)] {
+                    recs.push(rec(det, x, "1", t, 2 + i as u64, 90.0));
+                    recs.push(rec(det, x, "2", t, 8 - i as u64, 30.0));
+                    recs.push(rec(det, x, "all", t, 5, 60.0 + t / 100.0));
+                }
+            }
+            data.figure_runs.push((cells.len() - 1, recs));
+        }
+        let mut outcomes = Vec::new();
+        for c in 0..cells.len() {
+            for seed in 1..=2 {
+                outcomes.push(Outcome {
+                    cell: c,
+                    seed,
+                    key: String::new(),
+                    fields: Fields(vec![
+                        (
+                            "network_discharge_vph".into(),
+                            9000.0 + c as f64 + seed as f64,
+                        ),
+                        ("lane_changes_per_vehicle".into(), 2.0 + c as f64),
+                        ("avg_platoon_length".into(), 3.0),
+                    ]),
+                    computed: true,
+                });
+            }
+        }
+        (cells, data, outcomes)
+    }
+
+    #[test]
+    fn figure_data_from_synthetic_records() {
+        let (cells, data, outcomes) = synthetic();
+        let maps = contour_maps(&cells, &data);
+        assert_eq!(maps.len(), 3);
+        assert_eq!(maps[1].title, "PD");
+        // Detectors sorted by position: OR1-up (index 1) before OR11-up (index 2).
+        assert_eq!(maps[0].y, [1.0, 2.0]);
+        assert_eq!(maps[0].x, [2.5, 7.5, 12.5, 17.5, 22.5, 27.5]);
+        assert_eq!(maps[0].z[1], [63.0, 63.0]);
+
+        let charts = lane_charts(&cells, &data);
+        assert_eq!(charts.len(), 6);
+        let names: Vec<&str> = charts[0].series.iter().map(|s| s.name.as_str()).collect();
+        assert_eq!(names, ["lane 1 (rightmost)", "lane 2 (leftmost, PD lane)"]);
+        assert_eq!(charts[0].series[0].y[0], 0.2);
+        assert_eq!(charts[1].series[1].y[0], 0.7);
+        assert_eq!(charts[3].series[1].y[0], 30.0);
+        assert_eq!(charts[3].series[1].style, Style::Dashed);
+        assert_eq!(charts[2].y_range, Some((0.0, 1.0)));
+
+        let rows = table::summarize("sr99", &cells, &outcomes);
+        let bars = bar_charts(&cells, &rows);
+        assert_eq!(bars.len(), 6);
+        assert_eq!(bars[0].groups, ["0 %", "40 %"]);
+        // Ours: the baseline's lane changes at 0 % and 40 %; PD only at 40 %.
+        assert_eq!(bars[0].series[0].1, [2.0, 3.0]);
+        assert!(bars[0].series[1].1[0].is_nan());
+        // L̄ has no value at 0 %.
+        assert!(bars[1].series[0].1[0].is_nan());
+        // The paper's row: Table 4.
+        assert_eq!(bars[5].series[0].1, [10675.8, 11739.8]);
+        assert_eq!(bars[3].series[1].1[1], 4.90);
+        assert!(bars[3].series[0].2.is_none());
+
+        let dir = std::env::temp_dir().join(format!("platoonsim-sr99fig-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let figs = all(&dir, &cells, &rows, &Extra::Sr99(data)).unwrap();
+        let stems: Vec<&str> = figs.iter().map(|f| f.stem.as_str()).collect();
+        assert_eq!(stems, ["sr99_contours", "sr99_lanes", "sr99_bars"]);
+        assert!(figs[0].title.contains("is index 2"));
+        for stem in stems {
+            for ext in ["png", "svg"] {
+                let f = dir.join(format!("{stem}.{ext}"));
+                assert!(std::fs::metadata(&f).unwrap().len() > 1000, "{f:?}");
+            }
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
