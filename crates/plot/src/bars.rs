@@ -132,8 +132,15 @@ impl Figure<'_> {
         let (lo, hi) = extent(ends.chain([0.0])).unwrap_or((0.0, 1.0));
         let (lo, hi) = if hi > lo { (lo, hi) } else { (0.0, 1.0) };
         let pad = (hi - lo) * 0.08;
+        // Room above the bars for the legend, so it covers none of them.
+        let legend_rows = b.series.iter().filter(|s| !s.0.is_empty()).count();
+        let top = if legend_rows > 0 {
+            (hi - lo) * (0.1 + 0.08 * legend_rows as f64)
+        } else {
+            pad
+        };
         let y0 = if lo < 0.0 { lo - pad } else { 0.0 };
-        let y1 = if hi > 0.0 { hi + pad } else { 0.0 };
+        let y1 = if hi > 0.0 { hi + top } else { 0.0 };
         let (y0, y1) = bounded((y0, y1));
 
         let n = b.groups.len();

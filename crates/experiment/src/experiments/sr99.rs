@@ -287,7 +287,7 @@ pub(super) fn markdown(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> (St
     let source = Scales::from_settings(s).map_or_else(|e| e.to_string(), |x| x.source);
     let mut md = format!(
         "The built-in `sr99` corridor (SR-99 NB, Elk Grove Blvd to 12th Ave, 16 on-ramps, 11 \
-         off-ramps), {} s simulated from 05:00 ({} seeds per cell). Demand scale per \
+         off-ramps), {} s simulated from 05:00 ({} per cell). Demand scale per \
          penetration from {source}, on top of the corridor's base demand multiplier ({}; the \
          entrance demands are multiplied by both). Network discharge = mean flow through every exit detector \
          (off-ramps and the mainline end) over the whole run, veh/h; lane changes per vehicle \
@@ -295,7 +295,7 @@ pub(super) fn markdown(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> (St
          confidence interval over the seeds; the paper gives single values. \"vs paper\" is \
          (ours − paper) / paper.\n\n",
         num(duration),
-        s.seeds,
+        seeds_text(s.seeds),
         cells
             .first()
             .and_then(base_multiplier)
@@ -432,7 +432,10 @@ fn bottleneck_section(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> Stri
         trs.push(vec![
             format!("{} %", num(100.0 * p)),
             strategy_name(cell.labels.get("strategy").unwrap_or("")).into(),
-            cell.labels.get("demand_scale").unwrap_or("?").into(),
+            cell.labels
+                .get("demand_scale")
+                .and_then(|v| v.parse::<f64>().ok())
+                .map_or("?".into(), |v| fixed(v, 2)),
             format!(
                 "{}/{}",
                 (active.stats.mean * active.stats.n as f64).round(),
@@ -475,7 +478,7 @@ fn bottleneck_section(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> Stri
 }
 
 /// "x % higher / lower than the paper's" for a row with a paper value.
-fn versus(r: Option<&SummaryRow>) -> String {
+fn versus(r: Option<&SummaryRow>, dec: usize) -> String {
     let Some(r) = r else { return "–".into() };
     let rel = 100.0 * r.relative_difference();
     if !rel.is_finite() {
@@ -485,7 +488,7 @@ fn versus(r: Option<&SummaryRow>) -> String {
         "{} % {} than the paper's {}",
         fixed(rel.abs(), 1),
         if rel >= 0.0 { "higher" } else { "lower" },
-        r.paper.map_or("?".into(), |p| fixed(p.value, 2))
+        r.paper.map_or("?".into(), |p| fixed(p.value, dec))
     )
 }
 
@@ -502,15 +505,15 @@ fn plain(cells: &[Cell], rows: &[SummaryRow], pens: &[f64]) -> String {
              {}, {}",
             num(100.0 * p),
             fixed(mean("none", "network_discharge_vph"), 0),
-            versus(r("none", "network_discharge_vph")),
+            versus(r("none", "network_discharge_vph"), 1),
             fixed(mean("none", "lane_changes_per_vehicle"), 2),
-            versus(r("none", "lane_changes_per_vehicle")),
+            versus(r("none", "lane_changes_per_vehicle"), 2),
         );
         if p > 0.0 {
             line.push_str(&format!(
                 "; L̄ {}, {}",
                 fixed(mean("none", "avg_platoon_length"), 2),
-                versus(r("none", "avg_platoon_length"))
+                versus(r("none", "avg_platoon_length"), 2)
             ));
         }
         if strategies_at(p).len() > 1 {
@@ -531,6 +534,15 @@ fn plain(cells: &[Cell], rows: &[SummaryRow], pens: &[f64]) -> String {
         md.push_str(&line);
     }
     md
+}
+
+/// "1 seed", "10 seeds".
+pub fn seeds_text(n: u32) -> String {
+    if n == 1 {
+        "1 seed".into()
+    } else {
+        format!("{n} seeds")
+    }
 }
 
 /// `+mean ± half-width` (a change, with its sign).

@@ -260,10 +260,10 @@ pub(super) fn markdown(
     let mut md = if d.grid {
         format!(
             "The paper's procedure on the `sr99` corridor ({} s from 05:00, baseline without \
-             organization, {} seeds per scale): for each penetration, the demand scale is raised \
+             organization, {} per scale): for each penetration, the demand scale is raised \
              over the grid {} until the recurrent bottlenecks show; the grid stops there. {}\n\n",
             num(duration),
-            s.seeds,
+            sr99::seeds_text(s.seeds),
             s.scale_grid
                 .iter()
                 .map(|v| num(*v))
@@ -274,9 +274,9 @@ pub(super) fn markdown(
     } else {
         format!(
             "**No search** (quick mode, or no grid given): the criterion is evaluated only at the \
-             scale of {source} at each penetration ({} s from 05:00, baseline, {} seeds). {}\n\n",
+             scale of {source} at each penetration ({} s from 05:00, baseline, {}). {}\n\n",
             num(duration),
-            s.seeds,
+            sr99::seeds_text(s.seeds),
             criterion_text(s)
         )
     };
