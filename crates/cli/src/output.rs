@@ -10,23 +10,9 @@
 
 use crate::atomic::write_atomic;
 use anyhow::{Context, Result};
+use platoonsim_experiment::detectors::Scope;
 use platoonsim_sim::{Config, DetectorRecord, Output, Summary};
 use std::path::{Path, PathBuf};
-
-/// The columns of `detectors.csv`, in order.
-pub const DETECTOR_COLUMNS: [&str; 11] = [
-    "detector",
-    "kind",
-    "position_m",
-    "lane",
-    "interval_start_s",
-    "interval_s",
-    "count",
-    "cav_count",
-    "flow_vph",
-    "speed_kmh",
-    "occupancy",
-];
 
 /// Write every output file of a run into `dir` (which must exist); returns the paths written.
 pub fn write_run(dir: &Path, config: &Config, output: &Output) -> Result<Vec<PathBuf>> {
@@ -58,31 +44,10 @@ pub fn json<T: serde::Serialize + ?Sized>(value: &T) -> Result<Vec<u8>> {
 /// `detectors.csv`: the header, then one row per record; an interval without vehicles has an
 /// empty `speed_kmh` cell.
 pub fn detectors_csv(records: &[DetectorRecord]) -> Result<Vec<u8>> {
-    let mut w = csv::WriterBuilder::new()
-        .has_headers(false)
-        .from_writer(Vec::new());
-    w.write_record(DETECTOR_COLUMNS)?;
-    for r in records {
-        w.write_record([
-            r.detector.clone(),
-            r.kind.clone(),
-            number(r.position_m),
-            r.lane.clone(),
-            number(r.interval_start_s),
-            number(r.interval_s),
-            r.count.to_string(),
-            r.cav_count.to_string(),
-            number(r.flow_vph),
-            r.speed_kmh.map(number).unwrap_or_default(),
-            number(r.occupancy),
-        ])?;
-    }
-    w.into_inner().context("cannot encode detectors.csv")
-}
-
-/// Shortest text that reads back to the same f64 (`6100`, `0.1`, `1234.5678`).
-fn number(v: f64) -> String {
-    format!("{v}")
+    // One writer for the run files and the experiment runner's kept detector files.
+    let (bytes, _) = platoonsim_experiment::detectors::to_csv(records, Scope::All)
+        .map_err(anyhow::Error::msg)?;
+    Ok(bytes)
 }
 
 /// The one-paragraph human summary printed after a run.
