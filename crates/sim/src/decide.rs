@@ -209,11 +209,7 @@ impl Simulation {
             && self.organization_active(v)
             && !self.exit_within(v, lcd.anticipation_distance_m);
         let (side, gamma) = if organize {
-            let pd_lane = if self.geom.plain {
-                self.lanes.len() as u32 - 1
-            } else {
-                self.geom.leftmost_through(v.x)?
-            };
+            let pd_lane = self.geom.leftmost_through(v.x)?;
             if v.lane >= pd_lane {
                 return None; // γ_d = 0 in the PD lane (spec 4.7)
             }
