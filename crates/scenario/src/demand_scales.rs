@@ -26,29 +26,13 @@ pub struct Row {
 /// The feasible rows of a demand-scale file, sorted by penetration. Rows missing a number,
 /// with a non-finite one, or with `feasible = false`, are skipped.
 pub fn parse(text: &str) -> Result<Vec<Row>, String> {
-    let doc: toml::Table = text.parse().map_err(|e| format!("{e}"))?;
-    let mut rows = Vec::new();
-    let Some(list) = doc.get("penetration").and_then(Value::as_array) else {
-        return Ok(rows);
-    };
-    let num = |t: &toml::Table, k: &str| {
-        t.get(k)
-            .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
-            .filter(|x| x.is_finite())
-    };
-    for t in list.iter().filter_map(Value::as_table) {
-        if t.get("feasible").and_then(Value::as_bool) == Some(false) {
-            continue;
-        }
-        if let (Some(p), Some(s)) = (num(t, "penetration"), num(t, "demand_scale")) {
-            rows.push(Row {
-                penetration: p,
-                demand_scale: s,
-            });
-        }
-    }
-    rows.sort_by(|a, b| a.penetration.total_cmp(&b.penetration));
-    Ok(rows)
+    Ok(crate::pen_table::parse(text, ["demand_scale"])?
+        .into_iter()
+        .map(|(p, [s])| Row {
+            penetration: p,
+            demand_scale: s,
+        })
+        .collect())
 }
 
 /// A table in the embedded file's format: `header` (each line prefixed with `# `), then one
@@ -75,23 +59,11 @@ pub fn to_toml(header: &str, rows: &[Row]) -> String {
 /// The scale at a penetration from rows: linear interpolation, nearest row outside;
 /// `fallback` if there is no row.
 pub fn at(rows: &[Row], penetration: f64, fallback: f64) -> f64 {
-    let (Some(first), Some(last)) = (rows.first(), rows.last()) else {
-        return fallback;
-    };
-    if penetration <= first.penetration {
-        return first.demand_scale;
-    }
-    if penetration >= last.penetration {
-        return last.demand_scale;
-    }
-    for w in rows.windows(2) {
-        let (a, b) = (w[0], w[1]);
-        if penetration <= b.penetration {
-            let f = (penetration - a.penetration) / (b.penetration - a.penetration);
-            return a.demand_scale + f * (b.demand_scale - a.demand_scale);
-        }
-    }
-    last.demand_scale
+    let table: Vec<(f64, [f64; 1])> = rows
+        .iter()
+        .map(|r| (r.penetration, [r.demand_scale]))
+        .collect();
+    crate::pen_table::at(&table, penetration).map_or(fallback, |[s]| s)
 }
 
 /// The embedded table's rows.

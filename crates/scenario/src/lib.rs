@@ -42,6 +42,7 @@ pub mod error;
 pub mod format;
 pub mod network;
 pub mod overrides;
+mod pen_table;
 pub mod raw;
 pub mod thresholds;
 pub mod validate;

@@ -2,8 +2,6 @@
 //! `scenarios/flow_aware_thresholds.toml` that `platoonsim experiment calibrate-flow-aware`
 //! produces.
 
-use toml::Value;
-
 const TABLE: &str = include_str!("../scenarios/flow_aware_thresholds.toml");
 
 /// One calibrated row.
@@ -14,62 +12,35 @@ pub struct Row {
     pub speed_threshold_kmh: f64,
 }
 
+/// The value columns of a thresholds file.
+const COLUMNS: [&str; 2] = ["flow_threshold_vphpl", "speed_threshold_kmh"];
+
 /// The feasible rows of a thresholds file, sorted by penetration. Rows missing a number, or
 /// with `feasible = false`, are skipped.
 pub fn parse(text: &str) -> Result<Vec<Row>, String> {
-    let doc: toml::Table = text.parse().map_err(|e| format!("{e}"))?;
-    let mut rows = Vec::new();
-    let Some(list) = doc.get("penetration").and_then(Value::as_array) else {
-        return Ok(rows);
-    };
-    let num = |t: &toml::Table, k: &str| {
-        t.get(k)
-            .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
-            .filter(|x| x.is_finite())
-    };
-    for t in list.iter().filter_map(Value::as_table) {
-        if t.get("feasible").and_then(Value::as_bool) == Some(false) {
-            continue;
-        }
-        if let (Some(p), Some(q), Some(v)) = (
-            num(t, "penetration"),
-            num(t, "flow_threshold_vphpl"),
-            num(t, "speed_threshold_kmh"),
-        ) {
-            rows.push(Row {
-                penetration: p,
-                flow_threshold_vphpl: q,
-                speed_threshold_kmh: v,
-            });
-        }
-    }
-    rows.sort_by(|a, b| a.penetration.total_cmp(&b.penetration));
-    Ok(rows)
+    Ok(crate::pen_table::parse(text, COLUMNS)?
+        .into_iter()
+        .map(|(p, [q, v])| Row {
+            penetration: p,
+            flow_threshold_vphpl: q,
+            speed_threshold_kmh: v,
+        })
+        .collect())
 }
 
 /// (ρ_q, ρ_v) at a penetration from rows: linear interpolation, nearest row outside;
 /// `fallback` if there is no row.
 pub fn at(rows: &[Row], penetration: f64, fallback: (f64, f64)) -> (f64, f64) {
-    let (Some(first), Some(last)) = (rows.first(), rows.last()) else {
-        return fallback;
-    };
-    if penetration <= first.penetration {
-        return (first.flow_threshold_vphpl, first.speed_threshold_kmh);
-    }
-    if penetration >= last.penetration {
-        return (last.flow_threshold_vphpl, last.speed_threshold_kmh);
-    }
-    for w in rows.windows(2) {
-        let (a, b) = (w[0], w[1]);
-        if penetration <= b.penetration {
-            let f = (penetration - a.penetration) / (b.penetration - a.penetration);
-            return (
-                a.flow_threshold_vphpl + f * (b.flow_threshold_vphpl - a.flow_threshold_vphpl),
-                a.speed_threshold_kmh + f * (b.speed_threshold_kmh - a.speed_threshold_kmh),
-            );
-        }
-    }
-    (last.flow_threshold_vphpl, last.speed_threshold_kmh)
+    let table: Vec<(f64, [f64; 2])> = rows
+        .iter()
+        .map(|r| {
+            (
+                r.penetration,
+                [r.flow_threshold_vphpl, r.speed_threshold_kmh],
+            )
+        })
+        .collect();
+    crate::pen_table::at(&table, penetration).map_or(fallback, |[q, v]| (q, v))
 }
 
 /// The built-in defaults at a penetration.
