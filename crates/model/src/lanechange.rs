@@ -35,6 +35,7 @@
 //! | t_min,LC | `min_interval_s` | 5 | fixed (×`return_factor` = 3 back) | s |
 //! | – | `slow_down_desire` | 0.5 | fixed | – |
 //! | w_CAV | `cav_weight_leader`, `cav_weight_follower` | 0.5, 0 | fixed | – |
+//! | – | `yield_range_m` | 100 | fixed; farthest yield requester (rear ahead of the driver's front) [D] | m |
 //! | v_ref floor | `min_reference_speed_mps` | 2.3 | fixed | m/s |
 //! | – | `min_speed_gain_mps` | 2.34 (5 mph) | fixed; γ_d = 0 below this gain ([P15-doc] gate) | m/s |
 
@@ -117,6 +118,9 @@ pub struct LaneChangeDists {
     /// η_e penalty on a discretionary change away from the exit lane (-), applied within
     /// `anticipation_distance_m` of the exit.
     pub exit_lane_penalty: f64,
+    /// A driver answers a yield request only from a requester whose rear is at most this far
+    /// ahead of its front (spec 4.5 "immediate leaders in the adjacent lanes"; [D]) (m).
+    pub yield_range_m: f64,
 }
 
 impl Default for LaneChangeDists {
@@ -154,6 +158,7 @@ impl Default for LaneChangeDists {
             anticipation_strength: 1.0,
             exit_no_change_m: 300.0,
             exit_lane_penalty: 0.5,
+            yield_range_m: 100.0,
         }
     }
 }

@@ -317,6 +317,7 @@ pub(super) fn check_lane_change(c: &mut Checker, l: &LaneChangeDists, road_lengt
     );
     nonneg(c, "lane_change.exit_no_change_m", l.exit_no_change_m);
     unit(c, "lane_change.exit_lane_penalty", l.exit_lane_penalty);
+    nonneg(c, "lane_change.yield_range_m", l.yield_range_m);
     c.value(
         "lane_change.min_reference_speed_mps",
         l.min_reference_speed_mps,

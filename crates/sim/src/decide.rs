@@ -516,8 +516,19 @@ impl Simulation {
                 continue;
             }
             let dist = r.rear() - v.x;
-            if dist < 0.0 {
-                continue; // too late
+            // Too late (spec 4.5) once the requester's rear is behind the driver's front; and
+            // also while it is closer than the requester's own relaxed jam gap: the yielder
+            // cannot back up, so braking could never open the gap the requester's test needs
+            // (spec 4.3 g0 > d_jam'); two standing vehicles side by side would wait for each
+            // other at the end of an acceleration lane. The driver drives on instead and the
+            // next follower receives the request [D].
+            if dist < r.lc.relax_jam * r.human.jam_gap_m {
+                continue;
+            }
+            // The adjacent-lane leader may be far ahead (an empty stretch, or a lane that is
+            // closed in between): only a nearby requester is a request [D].
+            if dist > self.cfg.lane_change.yield_range_m {
+                continue;
             }
             // Ignore a request from the lane the driver has just left.
             if let (Relaxation::Since(_), Some(last)) = (v.relax, v.last_lc_side) {
