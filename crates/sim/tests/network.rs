@@ -243,3 +243,46 @@ fn detectors_count_cavs() {
         "CAV share {share:.3} of {n}"
     );
 }
+
+/// Flow (veh/h) at a detector over the intervals that start at or after `from_s`.
+fn flow_after(out: &Output, detector: &str, from_s: f64) -> f64 {
+    let rows: Vec<_> = out
+        .detectors
+        .iter()
+        .filter(|r| r.detector == detector && r.lane == "all" && r.interval_start_s >= from_s)
+        .collect();
+    let n: u64 = rows.iter().map(|r| r.count).sum();
+    let s: f64 = rows.iter().map(|r| r.interval_s).sum();
+    n as f64 * 3600.0 / s
+}
+
+#[test]
+fn an_overloaded_merge_keeps_discharging_from_its_queue() {
+    // 3 × 2,000 veh/h on the mainline and 1,200 veh/h on ramp A exceed what the merge can
+    // carry: a queue forms upstream of A and in its acceleration lane. Ramp vehicles that wait
+    // at the lane end beside standing through traffic must still get in (spec 4.5: a driver
+    // does not yield to a requester it can no longer let in, it drives on and the next one
+    // yields), so the merge discharges at a queue-discharge rate, not a trickle.
+    let mut cfg = toy(0.0, vec![6000.0], 11);
+    cfg.duration_s = 2400.0;
+    let net = cfg.road.network.as_mut().unwrap();
+    net.on_ramps[0].demand_vph = vec![1200.0];
+    net.on_ramps[1].demand_vph = vec![0.0];
+    net.on_ramps[2].demand_vph = vec![0.0];
+    let out = run(&cfg, None).unwrap();
+    let upstream = flow_after(&out, "A-up", 1200.0);
+    let downstream = flow_after(&out, "F-up", 1200.0);
+    eprintln!(
+        "A-up {upstream:.0} veh/h, F-up {downstream:.0} veh/h, waiting {}",
+        out.summary.vehicles_waiting
+    );
+    assert_eq!(out.summary.collisions, 0);
+    // Queued: the ramp and the mainline entrance hold vehicles back.
+    assert!(
+        out.summary.vehicles_waiting > 50,
+        "no queue: {}",
+        out.summary.vehicles_waiting
+    );
+    // Three lanes discharging from a merge queue: at least 1,500 veh/h per lane.
+    assert!(downstream > 4500.0, "merge discharge {downstream:.0} veh/h");
+}
