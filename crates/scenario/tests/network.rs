@@ -68,10 +68,13 @@ fn sr99_is_the_corridor_of_the_data() {
         (500.0, 250.0, 320.7)
     );
     assert_eq!(n.on_ramps[6].x_m, 6234.0); // Calvine Rd WB: the lane add
-    assert!(n
-        .on_ramps
-        .iter()
-        .all(|r| r.accel_lane_m == 250.0 && r.demand_vph.len() == 16));
+                                           // 250 m everywhere except the two lengths read from the PATH composite lane numbers.
+    let accel: Vec<f64> = n.on_ramps.iter().map(|r| r.accel_lane_m).collect();
+    let mut expected = vec![250.0; 16];
+    expected[10] = 440.0; // OR11 Florin Rd WB
+    expected[13] = 346.0; // OR14 Fruitridge Rd EB: auxiliary lane into the lane add
+    assert_eq!(accel, expected);
+    assert!(n.on_ramps.iter().all(|r| r.demand_vph.len() == 16));
     assert_eq!(n.off_ramps[0].name, "FR1: Laguna Blvd/Bond Rd");
     assert_eq!(n.off_ramps[0].x_m, 1700.0);
     assert_eq!(n.off_ramps[0].exit_fraction[0], 0.03);
