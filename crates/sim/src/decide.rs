@@ -116,8 +116,11 @@ impl Simulation {
             return self.before_lane_change(s, v, &nb, leader, d);
         }
 
-        // 2. Automated CAV: ACC / CACC / speed regulation (spec 3).
-        if v.automated() {
+        // 2. Automated CAV: ACC / CACC / speed regulation (spec 3); with the spec 6.5 flag,
+        // a CAV that agrees to yield brakes manually (step 3) instead.
+        if v.automated()
+            && !(self.cfg.cav.yield_while_automated && self.agrees_to_a_request(v, &nb))
+        {
             return self.cav_control(s, v, leader, wall);
         }
 
@@ -502,6 +505,14 @@ impl Simulation {
 
     /// Spec 4.5: the nearer adjacent-lane leader in BLC toward this lane, if any (slot,
     /// mandatory). Automated CAVs do not yield (spec 6.5).
+    /// A yield request exists and the driver agrees to it (spec 4.5).
+    fn agrees_to_a_request(&self, v: &Vehicle, nb: &Neighbours) -> bool {
+        self.yield_request(v, nb).is_some_and(|(req, mandatory)| {
+            let r = &self.vehicles[req as usize];
+            lcm::agrees_to_yield(&v.lc, mandatory, pair_uniform(self.cfg.seed, v.id, r.id))
+        })
+    }
+
     fn yield_request(&self, v: &Vehicle, nb: &Neighbours) -> Option<(u32, bool)> {
         let mut best: Option<(u32, bool, f64)> = None;
         for (ld, toward) in [(nb.left_leader, Side::Right), (nb.right_leader, Side::Left)] {
