@@ -345,3 +345,35 @@ fn calibration_writes_the_tradeoff_and_the_thresholds() {
     let md = fs::read_to_string(dir.join("summary.md")).unwrap();
     assert!(md.contains("## Chosen thresholds"), "{md}");
 }
+
+#[test]
+fn capacity_baseline_mean_discharge_leaves_out_the_filling_road() {
+    let out = scratch("capacity");
+    let s = Settings {
+        duration_s: 900.0,
+        ..settings(&out, 2, 1)
+    };
+    let res = run_experiment_with(ExperimentName::Capacity, &s, &simulate).unwrap();
+    assert_eq!(res.outcomes.len(), 9);
+    for o in res.outcomes.iter().filter(|o| o.cell < 5) {
+        // Stage 1: a steady entrance queue discharges evenly, so the mean flow over the
+        // window is close to its highest 5-min flow. With the filling first 5 min in the
+        // window (about 530 veh/h/lane) the mean would be about three quarters of it.
+        let mean = o.fields.get("discharge_flow_vphpl").unwrap();
+        let max = o.fields.get("max_sustained_flow_vphpl").unwrap();
+        assert!(
+            mean <= max && mean > 0.97 * max,
+            "cell {}: {mean} vs {max}",
+            o.cell
+        );
+        assert!(max > 1800.0, "cell {}: capacity {max}", o.cell);
+    }
+    let md = fs::read_to_string(out.join("capacity/summary.md")).unwrap();
+    for part in [
+        "Baseline mean discharge",
+        "PD mean discharge",
+        "With the mean discharge instead of the highest 5-min flow",
+    ] {
+        assert!(md.contains(part), "{part} missing in summary.md:\n{md}");
+    }
+}
