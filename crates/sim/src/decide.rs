@@ -489,9 +489,11 @@ impl Simulation {
 
     /// Exceptions to BLC-Slow [D]: the target-lane follower is yielding to this vehicle (it is
     /// dropping back to make room; slowing down as well would leave both waiting for the other,
-    /// a deadlock seen at standstill), or this vehicle is in an acceleration lane and the
-    /// follower is faster (it passes by itself, and slowing would only widen the speed
-    /// difference the next gap must absorb).
+    /// a deadlock seen at standstill), or the follower is faster (it passes by itself) and
+    /// either this vehicle is in an acceleration lane (slowing would only widen the speed
+    /// difference the next gap must absorb) or it is already below the creep speed (spec 4.3's
+    /// 5 mph): beside a slow gapless string, BLC-Slow would stop it in an open lane and stop
+    /// the whole lane behind it.
     fn keeps_pace(&self, v: &Vehicle, tf: u32) -> bool {
         if tf == NONE {
             return false;
@@ -500,11 +502,11 @@ impl Simulation {
         if f.mode == (Mode::Ycf { to: v.id }) {
             return true;
         }
-        !self.geom.plain && f.v > v.v && self.geom.seg(v.lane, v.x).is_some_and(|s| s.accel)
+        f.v > v.v
+            && (v.v < CREEP_SPEED_MPS
+                || (!self.geom.plain && self.geom.seg(v.lane, v.x).is_some_and(|s| s.accel)))
     }
 
-    /// Spec 4.5: the nearer adjacent-lane leader in BLC toward this lane, if any (slot,
-    /// mandatory). Automated CAVs do not yield (spec 6.5).
     /// A yield request exists and the driver agrees to it (spec 4.5).
     fn agrees_to_a_request(&self, v: &Vehicle, nb: &Neighbours) -> bool {
         self.yield_request(v, nb).is_some_and(|(req, mandatory)| {
@@ -513,6 +515,8 @@ impl Simulation {
         })
     }
 
+    /// Spec 4.5: the nearer adjacent-lane leader in BLC toward this lane, if any (slot,
+    /// mandatory). Automated CAVs do not yield (spec 6.5) unless `cav.yield_while_automated`.
     fn yield_request(&self, v: &Vehicle, nb: &Neighbours) -> Option<(u32, bool)> {
         let mut best: Option<(u32, bool, f64)> = None;
         for (ld, toward) in [(nb.left_leader, Side::Right), (nb.right_leader, Side::Left)] {
@@ -554,6 +558,9 @@ impl Simulation {
         best.map(|(s, m, _)| (s, m))
     }
 }
+
+/// Creep speed of spec 4.3 (5 mph): BLC does not slow a vehicle below it beside faster traffic.
+const CREEP_SPEED_MPS: f64 = 2.23;
 
 /// ρ_jam of the anticipation rule (spec 4.2): 1000/6 veh/km.
 const RHO_JAM_PER_KM: f64 = 1000.0 / 6.0;
