@@ -152,12 +152,20 @@ impl Geometry {
     }
 
     /// The rightmost through lane at `x`.
+    #[inline]
     pub fn rightmost_through(&self, x: f64) -> Option<u32> {
+        if let Some(l) = tabled(&self.right_tab, x) {
+            return Some(l);
+        }
         (0..self.lanes.len() as u32).find(|&l| self.through(l, x))
     }
 
     /// The leftmost through lane at `x` (the PD lane there).
+    #[inline]
     pub fn leftmost_through(&self, x: f64) -> Option<u32> {
+        if let Some(l) = tabled(&self.left_tab, x) {
+            return Some(l);
+        }
         (0..self.lanes.len() as u32)
             .rev()
             .find(|&l| self.through(l, x))
@@ -169,6 +177,20 @@ impl Geometry {
         let &(rx, i) = self.ramps_by_x.get(k)?;
         (rx - x <= range).then_some((i, rx - x))
     }
+}
+
+/// The per-metre table entry for `x`, if the table covers `x` and no segment boundary lies
+/// inside its metre (the answer is then the same everywhere in the metre).
+#[inline]
+fn tabled(tab: &[u8], x: f64) -> Option<u32> {
+    if x >= 0.0 {
+        if let Some(&l) = tab.get(x as usize) {
+            if l != 255 {
+                return Some(u32::from(l));
+            }
+        }
+    }
+    None
 }
 
 fn build(net: &Network, n: usize, length: f64) -> Result<Geometry, String> {
@@ -431,6 +453,18 @@ mod tests {
         assert_eq!(g.next_on_ramp(1500.0, 400.0), None);
         // Through lanes run to the end without a wall.
         assert_eq!(g.wall_ahead(4, 2999.0), None);
+    }
+
+    #[test]
+    fn through_lane_tables_agree_with_the_segment_search() {
+        let g = build(&net(), 5, 3000.0).unwrap();
+        for i in -8..=(3010 * 8) {
+            let x = f64::from(i) / 8.0 + 0.01;
+            let right = (0..5).find(|&l| g.through(l, x));
+            let left = (0..5).rev().find(|&l| g.through(l, x));
+            assert_eq!(g.rightmost_through(x), right, "x = {x}");
+            assert_eq!(g.leftmost_through(x), left, "x = {x}");
+        }
     }
 
     #[test]

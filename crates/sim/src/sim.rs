@@ -10,6 +10,9 @@ use crate::summary::{Output, Summary};
 use crate::vehicle::{Kind, Relaxation, Vehicle, NO_EXIT};
 use platoonsim_model::lanechange::Side;
 
+/// Steps between two renumberings of the vehicle slots (`Simulation::compact`).
+const COMPACT_EVERY_STEPS: u64 = 600;
+
 /// Per-vehicle result of the decide phase (indexed by slot).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Decision {
@@ -202,6 +205,9 @@ impl Simulation {
         self.insert();
         self.observe_detectors();
         self.step += 1;
+        if self.step.is_multiple_of(COMPACT_EVERY_STEPS) {
+            self.compact();
+        }
         if self.step.is_multiple_of(self.agg_steps) {
             for d in &mut self.detectors {
                 d.close_interval();
@@ -471,6 +477,24 @@ impl Simulation {
             d.records(interval, &mut detectors);
         }
         Output { summary, detectors }
+    }
+
+    /// Renumber the slots in lane order, front first (memory locality only: neighbours in a
+    /// lane become neighbours in memory). Nothing depends on slot numbers across steps: every
+    /// slot-indexed array is rebuilt by the next sense phase, identities are vehicle ids, and
+    /// no result is accumulated in slot order.
+    fn compact(&mut self) {
+        let on_road = self.vehicles_in_network();
+        let mut packed = Vec::with_capacity(on_road.max(self.vehicles.len()));
+        for lane in &mut self.lanes {
+            for s in lane.iter_mut() {
+                packed.push(self.vehicles[*s as usize].clone());
+                *s = (packed.len() - 1) as u32;
+            }
+        }
+        self.vehicles = packed;
+        self.free.clear();
+        self.changed_this_step.fill(u64::MAX);
     }
 
     /// Allocate a slot for a new vehicle.
