@@ -109,6 +109,17 @@ impl Geometry {
         build(net, n, cfg.road.length_m)
     }
 
+    /// A cursor over the segments of `lane` for a run of lookups (fastest with `x` not
+    /// increasing from one lookup to the next, as along a front-first lane list).
+    pub fn walk(&self, lane: usize) -> SegWalk<'_> {
+        let segs = self.lanes.get(lane).map_or(&[][..], Vec::as_slice);
+        SegWalk {
+            segs,
+            k: segs.len(),
+            disjoint: segs.windows(2).all(|w| w[0].to <= w[1].from),
+        }
+    }
+
     /// The segment of `lane` that contains `x`.
     #[inline]
     pub fn seg(&self, lane: u32, x: f64) -> Option<&Seg> {
@@ -176,6 +187,33 @@ impl Geometry {
         let k = self.ramps_by_x.partition_point(|&(rx, _)| rx <= x);
         let &(rx, i) = self.ramps_by_x.get(k)?;
         (rx - x <= range).then_some((i, rx - x))
+    }
+}
+
+/// See `Geometry::walk`. Gives the same segment as `Geometry::seg` for every `x`.
+pub struct SegWalk<'a> {
+    segs: &'a [Seg],
+    /// Segments at index ≥ `k` start after the last position looked up.
+    k: usize,
+    disjoint: bool,
+}
+
+impl SegWalk<'_> {
+    /// The segment that contains `x`.
+    #[inline]
+    pub fn at(&mut self, x: f64) -> Option<&Seg> {
+        if !self.disjoint {
+            return self.segs.iter().find(|s| s.contains(x));
+        }
+        if self.segs.get(self.k).is_some_and(|s| s.from <= x) {
+            self.k = self.segs.len(); // x went up: start again from the last segment
+        }
+        while self.k > 0 && self.segs[self.k - 1].from > x {
+            self.k -= 1;
+        }
+        // Sorted and disjoint: only the last segment starting at or before x can contain it.
+        let s = self.segs.get(self.k.checked_sub(1)?)?;
+        s.contains(x).then_some(s)
     }
 }
 
@@ -464,6 +502,25 @@ mod tests {
             let left = (0..5).rev().find(|&l| g.through(l, x));
             assert_eq!(g.rightmost_through(x), right, "x = {x}");
             assert_eq!(g.leftmost_through(x), left, "x = {x}");
+        }
+    }
+
+    #[test]
+    fn segment_walks_agree_with_the_segment_search() {
+        let g = build(&net(), 5, 3000.0).unwrap();
+        let xs: Vec<f64> = (-8..=(3010 * 4)).map(|i| f64::from(i) / 4.0).collect();
+        for lane in 0..6 {
+            let mut down = g.walk(lane);
+            for &x in xs.iter().rev() {
+                assert_eq!(down.at(x), g.seg(lane as u32, x), "lane {lane}, x = {x}");
+            }
+            // Any order (a jump up restarts the walk).
+            let mut mixed = g.walk(lane);
+            for (i, &x) in xs.iter().enumerate().step_by(97) {
+                let y = xs[(i * 7919) % xs.len()];
+                assert_eq!(mixed.at(x), g.seg(lane as u32, x), "lane {lane}, x = {x}");
+                assert_eq!(mixed.at(y), g.seg(lane as u32, y), "lane {lane}, x = {y}");
+            }
         }
     }
 

@@ -49,6 +49,10 @@ pub struct Simulation {
     /// The same-lane leader is a CAV within sensor range (sense phase).
     pub(crate) cav_ahead: Vec<bool>,
     pub(crate) sub_size: Vec<u32>,
+    /// Geometry at each vehicle's step-start position (sense phase).
+    pub(crate) here: Vec<crate::sense::Here>,
+    /// Per lane, parallel to `lanes`: (x, v) of each vehicle at the step start (sense phase).
+    pub(crate) lane_xv: Vec<Vec<(f64, f64)>>,
     pub(crate) string_pred_next: Vec<u64>,
     pub(crate) decisions: Vec<Decision>,
     pub(crate) changed_this_step: Vec<u64>,
@@ -125,6 +129,8 @@ impl Simulation {
             linked: Vec::new(),
             cav_ahead: Vec::new(),
             sub_size: Vec::new(),
+            here: Vec::new(),
+            lane_xv: Vec::new(),
             string_pred_next: Vec::new(),
             decisions: Vec::new(),
             changed_this_step: Vec::new(),
@@ -239,7 +245,8 @@ impl Simulation {
                 }
                 if !self.geom.plain {
                     // A wall is a standing obstacle (network.rs): passing it is a collision.
-                    if let Some(w) = self.geom.wall_ahead(veh.lane, veh.x_prev) {
+                    // (`here` is at the step-start position: x_prev, in this lane.)
+                    if let Some(w) = self.here[s as usize].wall {
                         if veh.x > w {
                             self.collisions += 1;
                             veh.x = (w - 0.01).max(veh.x_prev);
