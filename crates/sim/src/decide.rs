@@ -330,7 +330,7 @@ impl Simulation {
             .avg_speed_ahead(v.lane as usize, nb.idx as usize, v.x, v_des)
             .min(v_des);
         if !self.geom.plain {
-            v_cur /= self.anticipation_factor(v);
+            v_cur /= self.anticipation_factor(s, v);
         }
         // v_ant ≤ v_des, so no side can beat the absolute gain gate: nothing to scan.
         if v_des - v_cur < v.lc.min_speed_gain_mps {
@@ -354,9 +354,13 @@ impl Simulation {
 
     /// Spec 4.2 "Anticipatory": in the two rightmost through lanes within the anticipation
     /// range of an on-ramp, the current-lane speed is divided by 1 + c_inc (ρ_ramp/ρ_jam)/j.
-    fn anticipation_factor(&self, v: &Vehicle) -> f64 {
+    fn anticipation_factor(&self, s: u32, v: &Vehicle) -> f64 {
         let lcd = &self.cfg.lane_change;
-        let Some((ramp, _)) = self.geom.next_on_ramp(v.x, lcd.anticipation_distance_m) else {
+        let k = self.here[s as usize].ramps_upto as usize;
+        let Some((ramp, _)) = self
+            .geom
+            .next_on_ramp_after(k, v.x, lcd.anticipation_distance_m)
+        else {
             return 1.0;
         };
         let Some(right) = self.geom.rightmost_through(v.x) else {

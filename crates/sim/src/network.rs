@@ -184,9 +184,34 @@ impl Geometry {
 
     /// The next on-ramp whose merge point lies in (x, x + range]: (ramp index, distance).
     pub fn next_on_ramp(&self, x: f64, range: f64) -> Option<(usize, f64)> {
-        let k = self.ramps_by_x.partition_point(|&(rx, _)| rx <= x);
+        self.next_on_ramp_after(self.ramps_upto(x), x, range)
+    }
+
+    /// Number of on-ramps whose merge point is at or before `x`.
+    #[inline]
+    pub fn ramps_upto(&self, x: f64) -> usize {
+        self.ramps_by_x.partition_point(|&(rx, _)| rx <= x)
+    }
+
+    /// `next_on_ramp` with `k = ramps_upto(x)` already known.
+    #[inline]
+    pub fn next_on_ramp_after(&self, k: usize, x: f64, range: f64) -> Option<(usize, f64)> {
         let &(rx, i) = self.ramps_by_x.get(k)?;
         (rx - x <= range).then_some((i, rx - x))
+    }
+
+    /// `ramps_upto` for a run of positions, fastest with `x` not increasing between calls:
+    /// `k` is the previous answer (start with the number of ramps).
+    #[inline]
+    pub fn ramps_upto_from(&self, mut k: usize, x: f64) -> usize {
+        let r = &self.ramps_by_x;
+        if k > r.len() || r.get(k).is_some_and(|&(rx, _)| rx <= x) {
+            k = r.len(); // x went up: start again from the last ramp
+        }
+        while k > 0 && r[k - 1].0 > x {
+            k -= 1;
+        }
+        k
     }
 }
 
@@ -513,6 +538,11 @@ mod tests {
             let mut down = g.walk(lane);
             for &x in xs.iter().rev() {
                 assert_eq!(down.at(x), g.seg(lane as u32, x), "lane {lane}, x = {x}");
+            }
+            let mut k = g.ramps_by_x.len();
+            for &x in xs.iter().rev() {
+                k = g.ramps_upto_from(k, x);
+                assert_eq!(k, g.ramps_upto(x), "x = {x}");
             }
             // Any order (a jump up restarts the walk).
             let mut mixed = g.walk(lane);

@@ -47,6 +47,8 @@ pub struct Here {
     /// May change into the lane to the left / to the right here (`Geometry::can_enter`).
     pub enter_left: bool,
     pub enter_right: bool,
+    /// On-ramps with their merge point at or before it (`Geometry::ramps_upto`).
+    pub ramps_upto: u32,
 }
 
 impl Simulation {
@@ -136,6 +138,7 @@ impl Simulation {
                         accel: false,
                         enter_left: l + 1 < n_lanes,
                         enter_right: l > 0,
+                        ramps_upto: 0,
                     };
                 }
                 continue;
@@ -143,14 +146,17 @@ impl Simulation {
             let mut own = self.geom.walk(l);
             let mut left = self.geom.walk(l + 1);
             let mut right = self.geom.walk(l.wrapping_sub(1));
+            let mut ramps = self.geom.ramps_by_x.len();
             for &s in lane {
                 let x = self.vehicles[s as usize].x;
                 let seg = own.at(x);
+                ramps = self.geom.ramps_upto_from(ramps, x);
                 self.here[s as usize] = Here {
                     wall: seg.filter(|g| g.wall).map(|g| g.to),
                     accel: seg.is_some_and(|g| g.accel),
                     enter_left: left.at(x).is_some_and(|g| !g.accel),
                     enter_right: l > 0 && right.at(x).is_some_and(|g| !g.accel),
+                    ramps_upto: ramps as u32,
                 };
             }
         }
