@@ -192,6 +192,17 @@ impl Simulation {
         if v.x < lcd.forbid_zone_m {
             return None;
         }
+        // Anti-oscillation (spec 4.2), first part: no desire at all so soon after a change
+        // (checked before the scans below; `desire` has no side effects).
+        let since = if v.last_lc_step != NEVER {
+            let since = (self.step - v.last_lc_step) as f64 * self.dt;
+            if since < v.lc.min_interval_s {
+                return None;
+            }
+            Some(since)
+        } else {
+            None
+        };
         let mandatory = if self.geom.plain {
             None
         } else {
@@ -236,12 +247,8 @@ impl Simulation {
                 },
             }
         };
-        // Anti-oscillation (spec 4.2).
-        if v.last_lc_step != NEVER {
-            let since = (self.step - v.last_lc_step) as f64 * self.dt;
-            if since < v.lc.min_interval_s {
-                return None;
-            }
+        // Anti-oscillation (spec 4.2), second part: no quick return to the lane just left.
+        if let Some(since) = since {
             if gamma < 1.0
                 && v.last_lc_side == Some(opposite(side))
                 && since < v.lc.return_factor * v.lc.min_interval_s
