@@ -147,8 +147,7 @@ impl Simulation {
             let mut left = self.geom.walk(l + 1);
             let mut right = self.geom.walk(l.wrapping_sub(1));
             let mut ramps = self.geom.ramps_by_x.len();
-            for &s in lane {
-                let x = self.vehicles[s as usize].x;
+            for (&s, &(x, _)) in lane.iter().zip(&self.lane_xv[l]) {
                 let seg = own.at(x);
                 ramps = self.geom.ramps_upto_from(ramps, x);
                 self.here[s as usize] = Here {

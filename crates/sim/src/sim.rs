@@ -488,8 +488,10 @@ impl Simulation {
 
     /// Renumber the slots in lane order, front first (memory locality only: neighbours in a
     /// lane become neighbours in memory). Nothing depends on slot numbers across steps: every
-    /// slot-indexed array is rebuilt by the next sense phase, identities are vehicle ids, and
-    /// no result is accumulated in slot order.
+    /// slot-indexed array is rebuilt by the next sense phase before it is read (insertion reads
+    /// `platoon_pos` only of vehicles that were on the road at that phase: the mainline entrance
+    /// inserts first and on-ramps are listed in downstream order), identities are vehicle ids,
+    /// and no result is accumulated in slot order.
     fn compact(&mut self) {
         let on_road = self.vehicles_in_network();
         let mut packed = Vec::with_capacity(on_road.max(self.vehicles.len()));
