@@ -38,6 +38,7 @@ use serde::{Deserialize, Serialize};
 
 /// One driver's human car-following parameters (already drawn). SI units.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C)] // `length_m` first: the simulator reads it with the position (vehicle.rs)
 pub struct HumanParams {
     /// Own vehicle length L (m).
     pub length_m: f64,

@@ -62,12 +62,12 @@ impl Simulation {
     /// (a standing obstacle, issue 4: vehicles wait at the end of an acceleration lane or a
     /// dropped lane). The flag is true if the wall is the nearer one.
     #[inline]
-    fn leader_or_wall(&self, v: &Vehicle, ld: u32) -> (Option<Leader>, bool) {
+    fn leader_or_wall(&self, s: u32, v: &Vehicle, ld: u32) -> (Option<Leader>, bool) {
         let leader = self.view(v, ld);
         if self.geom.plain {
             return (leader, false);
         }
-        match self.geom.wall_ahead(v.lane, v.x) {
+        match self.here[s as usize].wall {
             Some(w) if leader.is_none_or(|l| w - v.x < l.gap_m) => (
                 Some(Leader {
                     gap_m: w - v.x,
@@ -109,7 +109,7 @@ impl Simulation {
         let v = &self.vehicles[s as usize];
         let nb = self.nb[s as usize];
         let v_des = v.human.desired_speed;
-        let (leader, wall) = self.leader_or_wall(v, nb.leader);
+        let (leader, wall) = self.leader_or_wall(s, v, nb.leader);
 
         // 1. Lane-change desire (takes priority over yielding).
         if let Some(d) = self.desire(s, v, &nb) {
@@ -195,10 +195,21 @@ impl Simulation {
         if v.x < lcd.forbid_zone_m {
             return None;
         }
+        // Anti-oscillation (spec 4.2), first part: no desire at all so soon after a change
+        // (checked before the scans below; `desire` has no side effects).
+        let since = if v.last_lc_step != NEVER {
+            let since = (self.step - v.last_lc_step) as f64 * self.dt;
+            if since < v.lc.min_interval_s {
+                return None;
+            }
+            Some(since)
+        } else {
+            None
+        };
         let mandatory = if self.geom.plain {
             None
         } else {
-            self.mandatory(v)
+            self.mandatory(s, v)
         };
         let is_cav = v.is_cav();
         // A CAV that follows a CAV within sensor range is (or is about to be, "a CAV directly
@@ -218,7 +229,7 @@ impl Simulation {
             }
             (Side::Left, 1.0)
         } else {
-            let [left, right] = self.discretionary(v, nb, follower);
+            let [left, right] = self.discretionary(s, v, nb, follower);
             match mandatory {
                 // γ = γ_m + κ γ_d (same side); the other side's discretionary desire is 0.
                 Some((side, gm)) => {
@@ -239,12 +250,8 @@ impl Simulation {
                 },
             }
         };
-        // Anti-oscillation (spec 4.2).
-        if v.last_lc_step != NEVER {
-            let since = (self.step - v.last_lc_step) as f64 * self.dt;
-            if since < v.lc.min_interval_s {
-                return None;
-            }
+        // Anti-oscillation (spec 4.2), second part: no quick return to the lane just left.
+        if let Some(since) = since {
             if gamma < 1.0
                 && v.last_lc_side == Some(opposite(side))
                 && since < v.lc.return_factor * v.lc.min_interval_s
@@ -268,9 +275,9 @@ impl Simulation {
     /// acceleration lane or a dropped lane; one change toward the side where a lane goes on),
     /// or reaching the rightmost through lane at the driver's off-ramp (N = lanes to cross).
     /// The larger one wins.
-    fn mandatory(&self, v: &Vehicle) -> Option<(Side, f64)> {
+    fn mandatory(&self, s: u32, v: &Vehicle) -> Option<(Side, f64)> {
         let mut best: Option<(Side, f64)> = None;
-        if let Some(w) = self.geom.wall_ahead(v.lane, v.x) {
+        if let Some(w) = self.here[s as usize].wall {
             let probe = (w - 1.0).max(v.x);
             let side = if self.geom.through(v.lane + 1, probe) || v.lane == 0 {
                 Side::Left
@@ -297,7 +304,13 @@ impl Simulation {
     /// Discretionary desires [left, right] (spec 4.2), `None` for a side that cannot be taken
     /// (no lane, an acceleration lane) or when there is nothing to gain. Includes w_CAV (spec
     /// 4.7), the exit constraint η_e and the on-ramp anticipation.
-    fn discretionary(&self, v: &Vehicle, nb: &Neighbours, follower: bool) -> [Option<f64>; 2] {
+    fn discretionary(
+        &self,
+        s: u32,
+        v: &Vehicle,
+        nb: &Neighbours,
+        follower: bool,
+    ) -> [Option<f64>; 2] {
         let lcd = &self.cfg.lane_change;
         let w = if !v.is_cav() {
             1.0
@@ -327,25 +340,20 @@ impl Simulation {
             .avg_speed_ahead(v.lane as usize, nb.idx as usize, v.x, v_des)
             .min(v_des);
         if !self.geom.plain {
-            v_cur /= self.anticipation_factor(v);
+            v_cur /= self.anticipation_factor(s, v);
         }
         // v_ant ≤ v_des, so no side can beat the absolute gain gate: nothing to scan.
         if v_des - v_cur < v.lc.min_speed_gain_mps {
             return [None, None];
         }
+        let here = &self.here[s as usize];
         let mut out = [None, None];
-        for (i, side, ld, eta) in [
-            (0, Side::Left, nb.left_leader, eta_left),
-            (1, Side::Right, nb.right_leader, 1.0),
+        for (i, side, ld, eta, open) in [
+            (0, Side::Left, nb.left_leader, eta_left, here.enter_left),
+            (1, Side::Right, nb.right_leader, 1.0, here.enter_right),
         ] {
-            let target = match side {
-                Side::Left => v.lane + 1,
-                Side::Right => match v.lane.checked_sub(1) {
-                    Some(l) => l,
-                    None => continue,
-                },
-            };
-            if !self.geom.can_enter(target, v.x) {
+            // `Geometry::can_enter` of the lane on that side (none right of lane 0).
+            if !open {
                 continue;
             }
             let v_ant = self.anticipated_speed(v, ld);
@@ -356,9 +364,13 @@ impl Simulation {
 
     /// Spec 4.2 "Anticipatory": in the two rightmost through lanes within the anticipation
     /// range of an on-ramp, the current-lane speed is divided by 1 + c_inc (ρ_ramp/ρ_jam)/j.
-    fn anticipation_factor(&self, v: &Vehicle) -> f64 {
+    fn anticipation_factor(&self, s: u32, v: &Vehicle) -> f64 {
         let lcd = &self.cfg.lane_change;
-        let Some((ramp, _)) = self.geom.next_on_ramp(v.x, lcd.anticipation_distance_m) else {
+        let k = self.here[s as usize].ramps_upto as usize;
+        let Some((ramp, _)) = self
+            .geom
+            .next_on_ramp_after(k, v.x, lcd.anticipation_distance_m)
+        else {
             return 1.0;
         };
         let Some(right) = self.geom.rightmost_through(v.x) else {
@@ -379,17 +391,17 @@ impl Simulation {
     /// `v_empty` if none (spec 2.7 "speeds ahead").
     fn avg_speed_ahead(&self, lane: usize, from: usize, x: f64, v_empty: f64) -> f64 {
         let lcd = &self.cfg.lane_change;
-        let list = &self.lanes[lane];
+        let list = &self.lane_xv[lane];
         let mut sum = 0.0;
         let mut n = 0u32;
         let mut k = from;
         while k > 0 && n < lcd.scan_vehicles {
             k -= 1;
-            let o = &self.vehicles[list[k] as usize];
-            if o.x - x > lcd.scan_distance_m {
+            let (ox, ov) = list[k];
+            if ox - x > lcd.scan_distance_m {
                 break;
             }
-            sum += o.v;
+            sum += ov;
             n += 1;
         }
         if n == 0 {
@@ -463,7 +475,7 @@ impl Simulation {
         } else if d.mandatory {
             if lag_ok {
                 a_cur.min(a_ant.max(h.comfort_decel)) // BLC-Sync
-            } else if d.gamma > v.lc.slow_down_desire && !self.keeps_pace(v, tf) {
+            } else if d.gamma > v.lc.slow_down_desire && !self.keeps_pace(s, v, tf) {
                 // BLC-Slow: drop back to the next gap.
                 a_cur.min(h.comfort_decel)
             } else {
@@ -494,7 +506,7 @@ impl Simulation {
     /// difference the next gap must absorb) or it is already below the creep speed (spec 4.3's
     /// 5 mph): beside a slow gapless string, BLC-Slow would stop it in an open lane and stop
     /// the whole lane behind it.
-    fn keeps_pace(&self, v: &Vehicle, tf: u32) -> bool {
+    fn keeps_pace(&self, s: u32, v: &Vehicle, tf: u32) -> bool {
         if tf == NONE {
             return false;
         }
@@ -502,9 +514,7 @@ impl Simulation {
         if f.mode == (Mode::Ycf { to: v.id }) {
             return true;
         }
-        f.v > v.v
-            && (v.v < CREEP_SPEED_MPS
-                || (!self.geom.plain && self.geom.seg(v.lane, v.x).is_some_and(|s| s.accel)))
+        f.v > v.v && (v.v < CREEP_SPEED_MPS || (!self.geom.plain && self.here[s as usize].accel))
     }
 
     /// A yield request exists and the driver agrees to it (spec 4.5).

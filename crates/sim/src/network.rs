@@ -109,6 +109,17 @@ impl Geometry {
         build(net, n, cfg.road.length_m)
     }
 
+    /// A cursor over the segments of `lane` for a run of lookups (fastest with `x` not
+    /// increasing from one lookup to the next, as along a front-first lane list).
+    pub fn walk(&self, lane: usize) -> SegWalk<'_> {
+        let segs = self.lanes.get(lane).map_or(&[][..], Vec::as_slice);
+        SegWalk {
+            segs,
+            k: segs.len(),
+            disjoint: segs.windows(2).all(|w| w[0].to <= w[1].from),
+        }
+    }
+
     /// The segment of `lane` that contains `x`.
     #[inline]
     pub fn seg(&self, lane: u32, x: f64) -> Option<&Seg> {
@@ -152,12 +163,20 @@ impl Geometry {
     }
 
     /// The rightmost through lane at `x`.
+    #[inline]
     pub fn rightmost_through(&self, x: f64) -> Option<u32> {
+        if let Some(l) = tabled(&self.right_tab, x) {
+            return Some(l);
+        }
         (0..self.lanes.len() as u32).find(|&l| self.through(l, x))
     }
 
     /// The leftmost through lane at `x` (the PD lane there).
+    #[inline]
     pub fn leftmost_through(&self, x: f64) -> Option<u32> {
+        if let Some(l) = tabled(&self.left_tab, x) {
+            return Some(l);
+        }
         (0..self.lanes.len() as u32)
             .rev()
             .find(|&l| self.through(l, x))
@@ -165,10 +184,76 @@ impl Geometry {
 
     /// The next on-ramp whose merge point lies in (x, x + range]: (ramp index, distance).
     pub fn next_on_ramp(&self, x: f64, range: f64) -> Option<(usize, f64)> {
-        let k = self.ramps_by_x.partition_point(|&(rx, _)| rx <= x);
+        self.next_on_ramp_after(self.ramps_upto(x), x, range)
+    }
+
+    /// Number of on-ramps whose merge point is at or before `x`.
+    #[inline]
+    pub fn ramps_upto(&self, x: f64) -> usize {
+        self.ramps_by_x.partition_point(|&(rx, _)| rx <= x)
+    }
+
+    /// `next_on_ramp` with `k = ramps_upto(x)` already known.
+    #[inline]
+    pub fn next_on_ramp_after(&self, k: usize, x: f64, range: f64) -> Option<(usize, f64)> {
         let &(rx, i) = self.ramps_by_x.get(k)?;
         (rx - x <= range).then_some((i, rx - x))
     }
+
+    /// `ramps_upto` for a run of positions, fastest with `x` not increasing between calls:
+    /// `k` is the previous answer (start with the number of ramps).
+    #[inline]
+    pub fn ramps_upto_from(&self, mut k: usize, x: f64) -> usize {
+        let r = &self.ramps_by_x;
+        if k > r.len() || r.get(k).is_some_and(|&(rx, _)| rx <= x) {
+            k = r.len(); // x went up: start again from the last ramp
+        }
+        while k > 0 && r[k - 1].0 > x {
+            k -= 1;
+        }
+        k
+    }
+}
+
+/// See `Geometry::walk`. Gives the same segment as `Geometry::seg` for every `x`.
+pub struct SegWalk<'a> {
+    segs: &'a [Seg],
+    /// Segments at index ≥ `k` start after the last position looked up.
+    k: usize,
+    disjoint: bool,
+}
+
+impl SegWalk<'_> {
+    /// The segment that contains `x`.
+    #[inline]
+    pub fn at(&mut self, x: f64) -> Option<&Seg> {
+        if !self.disjoint {
+            return self.segs.iter().find(|s| s.contains(x));
+        }
+        if self.segs.get(self.k).is_some_and(|s| s.from <= x) {
+            self.k = self.segs.len(); // x went up: start again from the last segment
+        }
+        while self.k > 0 && self.segs[self.k - 1].from > x {
+            self.k -= 1;
+        }
+        // Sorted and disjoint: only the last segment starting at or before x can contain it.
+        let s = self.segs.get(self.k.checked_sub(1)?)?;
+        s.contains(x).then_some(s)
+    }
+}
+
+/// The per-metre table entry for `x`, if the table covers `x` and no segment boundary lies
+/// inside its metre (the answer is then the same everywhere in the metre).
+#[inline]
+fn tabled(tab: &[u8], x: f64) -> Option<u32> {
+    if x >= 0.0 {
+        if let Some(&l) = tab.get(x as usize) {
+            if l != 255 {
+                return Some(u32::from(l));
+            }
+        }
+    }
+    None
 }
 
 fn build(net: &Network, n: usize, length: f64) -> Result<Geometry, String> {
@@ -431,6 +516,42 @@ mod tests {
         assert_eq!(g.next_on_ramp(1500.0, 400.0), None);
         // Through lanes run to the end without a wall.
         assert_eq!(g.wall_ahead(4, 2999.0), None);
+    }
+
+    #[test]
+    fn through_lane_tables_agree_with_the_segment_search() {
+        let g = build(&net(), 5, 3000.0).unwrap();
+        for i in -8..=(3010 * 8) {
+            let x = f64::from(i) / 8.0 + 0.01;
+            let right = (0..5).find(|&l| g.through(l, x));
+            let left = (0..5).rev().find(|&l| g.through(l, x));
+            assert_eq!(g.rightmost_through(x), right, "x = {x}");
+            assert_eq!(g.leftmost_through(x), left, "x = {x}");
+        }
+    }
+
+    #[test]
+    fn segment_walks_agree_with_the_segment_search() {
+        let g = build(&net(), 5, 3000.0).unwrap();
+        let xs: Vec<f64> = (-8..=(3010 * 4)).map(|i| f64::from(i) / 4.0).collect();
+        for lane in 0..6 {
+            let mut down = g.walk(lane);
+            for &x in xs.iter().rev() {
+                assert_eq!(down.at(x), g.seg(lane as u32, x), "lane {lane}, x = {x}");
+            }
+            let mut k = g.ramps_by_x.len();
+            for &x in xs.iter().rev() {
+                k = g.ramps_upto_from(k, x);
+                assert_eq!(k, g.ramps_upto(x), "x = {x}");
+            }
+            // Any order (a jump up restarts the walk).
+            let mut mixed = g.walk(lane);
+            for (i, &x) in xs.iter().enumerate().step_by(97) {
+                let y = xs[(i * 7919) % xs.len()];
+                assert_eq!(mixed.at(x), g.seg(lane as u32, x), "lane {lane}, x = {x}");
+                assert_eq!(mixed.at(y), g.seg(lane as u32, y), "lane {lane}, x = {y}");
+            }
+        }
     }
 
     #[test]

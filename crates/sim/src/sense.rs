@@ -36,6 +36,21 @@ impl Default for Neighbours {
     }
 }
 
+/// Where a vehicle is at the start of the step, by the geometry (network.rs): looked up once
+/// per step by walking each lane's segments along the sorted lane lists.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Here {
+    /// The wall ending its lane segment, if it ends in one (`Geometry::wall_ahead`).
+    pub wall: Option<f64>,
+    /// It is in an acceleration segment.
+    pub accel: bool,
+    /// May change into the lane to the left / to the right here (`Geometry::can_enter`).
+    pub enter_left: bool,
+    pub enter_right: bool,
+    /// On-ramps with their merge point at or before it (`Geometry::ramps_upto`).
+    pub ramps_upto: u32,
+}
+
 impl Simulation {
     /// Phase 1.
     pub(crate) fn sense(&mut self) {
@@ -48,8 +63,17 @@ impl Simulation {
             self.sub_size.resize(n, 1);
             self.string_pred_next.resize(n, crate::vehicle::NEVER);
             self.changed_this_step.resize(n, u64::MAX);
+            self.here.resize(n, Here::default());
         }
         let n_lanes = self.lanes.len();
+        self.lane_xv.resize(n_lanes, Vec::new());
+        for (xv, lane) in self.lane_xv.iter_mut().zip(&self.lanes) {
+            xv.clear();
+            xv.extend(lane.iter().map(|&s| {
+                let v = &self.vehicles[s as usize];
+                (v.x, v.v)
+            }));
+        }
         let range = self.cfg.cav.sensor_range_m;
         for l in 0..n_lanes {
             let lane = &self.lanes[l];
@@ -80,10 +104,10 @@ impl Simulation {
                     continue;
                 }
                 let olane = &self.lanes[other];
+                let ox = &self.lane_xv[other];
                 let mut j = 0usize;
-                for &s in lane {
-                    let x = self.vehicles[s as usize].x;
-                    while j < olane.len() && self.vehicles[olane[j] as usize].x > x {
+                for (&s, &(x, _)) in lane.iter().zip(&self.lane_xv[l]) {
+                    while j < olane.len() && ox[j].0 > x {
                         j += 1;
                     }
                     let ld = if j > 0 { olane[j - 1] } else { NONE };
@@ -99,7 +123,42 @@ impl Simulation {
                 }
             }
         }
+        self.locate();
         self.platoons();
+    }
+
+    /// Fill `here` for every vehicle on the road.
+    fn locate(&mut self) {
+        let n_lanes = self.lanes.len();
+        for (l, lane) in self.lanes.iter().enumerate() {
+            if self.geom.plain {
+                for &s in lane {
+                    self.here[s as usize] = Here {
+                        wall: None,
+                        accel: false,
+                        enter_left: l + 1 < n_lanes,
+                        enter_right: l > 0,
+                        ramps_upto: 0,
+                    };
+                }
+                continue;
+            }
+            let mut own = self.geom.walk(l);
+            let mut left = self.geom.walk(l + 1);
+            let mut right = self.geom.walk(l.wrapping_sub(1));
+            let mut ramps = self.geom.ramps_by_x.len();
+            for (&s, &(x, _)) in lane.iter().zip(&self.lane_xv[l]) {
+                let seg = own.at(x);
+                ramps = self.geom.ramps_upto_from(ramps, x);
+                self.here[s as usize] = Here {
+                    wall: seg.filter(|g| g.wall).map(|g| g.to),
+                    accel: seg.is_some_and(|g| g.accel),
+                    enter_left: left.at(x).is_some_and(|g| !g.accel),
+                    enter_right: l > 0 && right.at(x).is_some_and(|g| !g.accel),
+                    ramps_upto: ramps as u32,
+                };
+            }
+        }
     }
 
     /// CACC strings (spec 3.6) and platoon statistics (spec 5.1.6, 6.15).

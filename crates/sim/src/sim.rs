@@ -10,6 +10,9 @@ use crate::summary::{Output, Summary};
 use crate::vehicle::{Kind, Relaxation, Vehicle, NO_EXIT};
 use platoonsim_model::lanechange::Side;
 
+/// Steps between two renumberings of the vehicle slots (`Simulation::compact`).
+const COMPACT_EVERY_STEPS: u64 = 600;
+
 /// Per-vehicle result of the decide phase (indexed by slot).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Decision {
@@ -46,6 +49,10 @@ pub struct Simulation {
     /// The same-lane leader is a CAV within sensor range (sense phase).
     pub(crate) cav_ahead: Vec<bool>,
     pub(crate) sub_size: Vec<u32>,
+    /// Geometry at each vehicle's step-start position (sense phase).
+    pub(crate) here: Vec<crate::sense::Here>,
+    /// Per lane, parallel to `lanes`: (x, v) of each vehicle at the step start (sense phase).
+    pub(crate) lane_xv: Vec<Vec<(f64, f64)>>,
     pub(crate) string_pred_next: Vec<u64>,
     pub(crate) decisions: Vec<Decision>,
     pub(crate) changed_this_step: Vec<u64>,
@@ -122,6 +129,8 @@ impl Simulation {
             linked: Vec::new(),
             cav_ahead: Vec::new(),
             sub_size: Vec::new(),
+            here: Vec::new(),
+            lane_xv: Vec::new(),
             string_pred_next: Vec::new(),
             decisions: Vec::new(),
             changed_this_step: Vec::new(),
@@ -202,6 +211,9 @@ impl Simulation {
         self.insert();
         self.observe_detectors();
         self.step += 1;
+        if self.step.is_multiple_of(COMPACT_EVERY_STEPS) {
+            self.compact();
+        }
         if self.step.is_multiple_of(self.agg_steps) {
             for d in &mut self.detectors {
                 d.close_interval();
@@ -233,7 +245,8 @@ impl Simulation {
                 }
                 if !self.geom.plain {
                     // A wall is a standing obstacle (network.rs): passing it is a collision.
-                    if let Some(w) = self.geom.wall_ahead(veh.lane, veh.x_prev) {
+                    // (`here` is at the step-start position: x_prev, in this lane.)
+                    if let Some(w) = self.here[s as usize].wall {
                         if veh.x > w {
                             self.collisions += 1;
                             veh.x = (w - 0.01).max(veh.x_prev);
@@ -471,6 +484,26 @@ impl Simulation {
             d.records(interval, &mut detectors);
         }
         Output { summary, detectors }
+    }
+
+    /// Renumber the slots in lane order, front first (memory locality only: neighbours in a
+    /// lane become neighbours in memory). Nothing depends on slot numbers across steps: every
+    /// slot-indexed array is rebuilt by the next sense phase before it is read (insertion reads
+    /// `platoon_pos` only of vehicles that were on the road at that phase: the mainline entrance
+    /// inserts first and on-ramps are listed in downstream order), identities are vehicle ids,
+    /// and no result is accumulated in slot order.
+    fn compact(&mut self) {
+        let on_road = self.vehicles_in_network();
+        let mut packed = Vec::with_capacity(on_road.max(self.vehicles.len()));
+        for lane in &mut self.lanes {
+            for s in lane.iter_mut() {
+                packed.push(self.vehicles[*s as usize].clone());
+                *s = (packed.len() - 1) as u32;
+            }
+        }
+        self.vehicles = packed;
+        self.free.clear();
+        self.changed_this_step.fill(u64::MAX);
     }
 
     /// Allocate a slot for a new vehicle.

@@ -38,41 +38,42 @@ pub const NEVER: u64 = u64::MAX;
 pub const NO_EXIT: u32 = u32::MAX;
 
 /// One vehicle.
+///
+/// Laid out by hand (`repr(C)`, cache-line aligned) for the step's sweeps over the lanes: the
+/// state every phase reads first (64 bytes), then the driving state, then the car-following
+/// parameters (body length first: `rear()`), then the rest.
 #[derive(Clone, Debug)]
+#[repr(C, align(64))]
 pub struct Vehicle {
+    pub x: f64,
+    pub v: f64,
+    pub a: f64,
+    pub x_prev: f64,
     /// Unique, increasing in creation order.
     pub id: u64,
-    pub kind: Kind,
-    /// Step at which it entered the road.
-    pub entered_step: u64,
-    /// Entered during the measurement window: counts in the statistics.
-    pub measured: bool,
-    pub human: HumanParams,
-    pub lc: LaneChangeParams,
-    /// CACC time gap t_C (s); CAVs only (0 for humans).
-    pub cacc_gap_s: f64,
     /// Id of the predecessor whose CACC string this CAV has joined (`NEVER`: it leads its own
     /// string). Membership is sticky: see `sense.rs`.
     pub string_pred: u64,
     /// Effective target time gap of the CAV controller, ramping toward the current setting
     /// (spec 3.5 transitions); 0 before the first setting.
     pub time_gap_s: f64,
-    /// Own random stream (lane choice, yielding draws).
-    pub rng: Stream,
-
-    pub x: f64,
-    pub x_prev: f64,
-    pub v: f64,
-    pub a: f64,
-    pub lane: u32,
+    /// CACC time gap t_C (s); CAVs only (0 for humans).
+    pub cacc_gap_s: f64,
 
     pub mode: Mode,
     pub relax: Relaxation,
+    /// Step of the last lane change.
+    pub last_lc_step: u64,
+    pub lane: u32,
+    /// Index of the off-ramp it leaves by (`NO_EXIT`: the mainline end).
+    pub exit: u32,
+    pub kind: Kind,
     /// CAV controller family (hysteresis state, spec 3.3/3.4).
     pub family: Family,
-    /// Step and side of the last lane change.
-    pub last_lc_step: u64,
+    /// Side of the last lane change.
     pub last_lc_side: Option<Side>,
+    /// Entered during the measurement window: counts in the statistics.
+    pub measured: bool,
     /// Lane changes made.
     pub lane_changes: u32,
     /// Largest platoon this CAV has been in (1 = never), paper definition: a chain of CAVs each
@@ -80,8 +81,13 @@ pub struct Vehicle {
     pub max_platoon: u32,
     /// The same with the spec 6.15 link criterion (follower not in speed regulation, tg ≤ 2 s).
     pub max_platoon_tg2: u32,
-    /// Index of the off-ramp it leaves by (`NO_EXIT`: the mainline end).
-    pub exit: u32,
+
+    pub human: HumanParams,
+    /// Step at which it entered the road.
+    pub entered_step: u64,
+    pub lc: LaneChangeParams,
+    /// Own random stream (lane choice, yielding draws).
+    pub rng: Stream,
 }
 
 impl Vehicle {
@@ -97,5 +103,22 @@ impl Vehicle {
     /// Rear bumper position.
     pub fn rear(&self) -> f64 {
         self.x - self.human.length_m
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::mem::{align_of, offset_of};
+
+    #[test]
+    fn layout_keeps_the_hot_state_together() {
+        assert_eq!(align_of::<Vehicle>(), 64);
+        assert_eq!(offset_of!(Vehicle, x), 0);
+        assert!(offset_of!(Vehicle, cacc_gap_s) < 64);
+        assert_eq!(offset_of!(Vehicle, mode), 64);
+        assert!(offset_of!(Vehicle, max_platoon_tg2) < 128);
+        assert_eq!(offset_of!(Vehicle, human), 128);
+        assert_eq!(offset_of!(HumanParams, length_m), 0);
     }
 }
