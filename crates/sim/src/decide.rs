@@ -118,29 +118,36 @@ impl Simulation {
 
         // 2. Automated CAV: ACC / CACC / speed regulation (spec 3); with the spec 6.5 flag,
         // a CAV that agrees to yield brakes manually (step 3) instead.
-        if v.automated()
-            && !(self.cfg.cav.yield_while_automated && self.agrees_to_a_request(v, &nb))
-        {
-            return self.cav_control(s, v, leader, wall);
-        }
+        let yield_to = if v.automated() {
+            let agreed = self
+                .cfg
+                .cav
+                .yield_while_automated
+                .then(|| self.agreed_request(v, &nb))
+                .flatten();
+            if agreed.is_none() {
+                return self.cav_control(s, v, leader, wall);
+            }
+            agreed
+        } else {
+            self.agreed_request(v, &nb)
+        };
 
         // 3. Human model (humans and CAVs driving manually), possibly yielding.
         let relax = self.relax_now(v);
         let mut target = human::target_accel(&v.human, v.v, v_des, leader, relax);
         let mut mode = Mode::Cf;
-        if let Some((req, mandatory)) = self.yield_request(v, &nb) {
+        if let Some(req) = yield_to {
             let r = &self.vehicles[req as usize];
-            if lcm::agrees_to_yield(&v.lc, mandatory, pair_uniform(self.cfg.seed, v.id, r.id)) {
-                // The virtual leader stands the requester's own (relaxed) jam gap further
-                // back: the yielder leaves the room the requester's gap acceptance needs
-                // (spec 4.3: g0 > d_jam'), otherwise two standing vehicles wait for each other.
-                let virt = Leader {
-                    gap_m: r.rear() - v.x - r.lc.relax_jam * r.human.jam_gap_m,
-                    v_mps: r.v,
-                };
-                target = lcm::yield_accel(&v.human, &v.lc, v.v, v_des, target, virt);
-                mode = Mode::Ycf { to: r.id };
-            }
+            // The virtual leader stands the requester's own (relaxed) jam gap further back:
+            // the yielder leaves the room the requester's gap acceptance needs (spec 4.3:
+            // g0 > d_jam'), otherwise two standing vehicles wait for each other.
+            let virt = Leader {
+                gap_m: r.rear() - v.x - r.lc.relax_jam * r.human.jam_gap_m,
+                v_mps: r.v,
+            };
+            target = lcm::yield_accel(&v.human, &v.lc, v.v, v_des, target, virt);
+            mode = Mode::Ycf { to: r.id };
         }
         Decision {
             accel: human::smooth_accel(v.a, target, v.human.smoothing),
@@ -517,11 +524,12 @@ impl Simulation {
         f.v > v.v && (v.v < CREEP_SPEED_MPS || (!self.geom.plain && self.here[s as usize].accel))
     }
 
-    /// A yield request exists and the driver agrees to it (spec 4.5).
-    fn agrees_to_a_request(&self, v: &Vehicle, nb: &Neighbours) -> bool {
-        self.yield_request(v, nb).is_some_and(|(req, mandatory)| {
+    /// The requester (slot) of a yield request the driver agrees to, if any (spec 4.5).
+    fn agreed_request(&self, v: &Vehicle, nb: &Neighbours) -> Option<u32> {
+        self.yield_request(v, nb).and_then(|(req, mandatory)| {
             let r = &self.vehicles[req as usize];
             lcm::agrees_to_yield(&v.lc, mandatory, pair_uniform(self.cfg.seed, v.id, r.id))
+                .then_some(req)
         })
     }
 
