@@ -1,6 +1,7 @@
 //! Freeway networks (issue 4 item 1): acceleration lanes, lane adds, off-ramps, time-varying
 //! demand. A toy corridor small enough for a test, with every network element once.
 
+use platoonsim_sim::vehicle::Mode;
 use platoonsim_sim::{
     run, Config, DetectorKind, DetectorSpec, LaneExtent, Network, OffRamp, OnRamp, Output,
     Simulation,
@@ -285,4 +286,45 @@ fn an_overloaded_merge_keeps_discharging_from_its_queue() {
     );
     // Three lanes discharging from a merge queue: at least 1,500 veh/h per lane.
     assert!(downstream > 4500.0, "merge discharge {downstream:.0} veh/h");
+}
+
+/// Steps in which some vehicle on a through lane (index ≥ 2 on the toy corridor) stands still in
+/// BLC with no leader within 100 m: stopped in an open lane by its own lane-change wish.
+fn standing_in_open_lane(cfg: Config) -> u64 {
+    let mut sim = Simulation::new(cfg).unwrap();
+    let mut steps = 0;
+    while !sim.finished() {
+        sim.step().unwrap();
+        let mut found = false;
+        for lane in 2..5 {
+            let mut ahead: Option<f64> = None;
+            for v in sim.lane_vehicles(lane) {
+                let open = ahead.is_none_or(|rear| rear - v.x > 100.0);
+                if v.v < 0.1 && open && matches!(v.mode, Mode::Blc { .. }) {
+                    found = true;
+                }
+                ahead = Some(v.rear());
+            }
+        }
+        steps += u64::from(found);
+    }
+    steps
+}
+
+#[test]
+fn a_vehicle_waiting_to_change_lanes_does_not_stop_in_an_open_lane() {
+    // 80 % CAV at 1,800 veh/h/lane: the through lanes carry slow CACC strings that leave no gap
+    // (automated CAVs do not yield, spec 6.5). An exiting vehicle beside them keeps at least the
+    // creep speed (spec 4.3, 5 mph) instead of braking to a stop with empty road ahead, which
+    // stopped its whole lane on SR-99.
+    let mut cfg = toy(0.8, vec![5400.0], 12);
+    cfg.duration_s = 1800.0;
+    let steps = standing_in_open_lane(cfg);
+    // Without the creep floor: 7,736 of the 18,000 steps. A brief stop remains possible when
+    // the target-lane follower has stopped too (the floor applies beside faster traffic only):
+    // at most 10 s in the 30 min.
+    assert!(
+        steps <= 100,
+        "{steps} steps with a vehicle stopped in an open lane"
+    );
 }
