@@ -53,7 +53,6 @@ pub struct Simulation {
     pub(crate) here: Vec<crate::sense::Here>,
     /// Per lane, parallel to `lanes`: (x, v) of each vehicle at the step start (sense phase).
     pub(crate) lane_xv: Vec<Vec<(f64, f64)>>,
-    pub(crate) string_pred_next: Vec<u64>,
     pub(crate) decisions: Vec<Decision>,
     pub(crate) changed_this_step: Vec<u64>,
     pub(crate) change_list: Vec<(u32, Side)>,
@@ -131,7 +130,6 @@ impl Simulation {
             sub_size: Vec::new(),
             here: Vec::new(),
             lane_xv: Vec::new(),
-            string_pred_next: Vec::new(),
             decisions: Vec::new(),
             changed_this_step: Vec::new(),
             change_list: Vec::new(),
