@@ -56,6 +56,8 @@ pub struct Simulation {
     pub(crate) decisions: Vec<Decision>,
     pub(crate) changed_this_step: Vec<u64>,
     pub(crate) change_list: Vec<(u32, Side)>,
+    /// A vehicle reached its off-ramp's position in this step's integrate phase.
+    pub(crate) exit_due: bool,
     /// Mainline entrance first, then one per on-ramp.
     pub(crate) entrances: Vec<Entrance>,
     pub(crate) geom: Geometry,
@@ -133,6 +135,7 @@ impl Simulation {
             decisions: Vec::new(),
             changed_this_step: Vec::new(),
             change_list: Vec::new(),
+            exit_due: false,
             entrances: Entrance::all(&cfg),
             ramp_density: vec![0.0; geom.on_ramps.len()],
             geom,
@@ -252,6 +255,15 @@ impl Simulation {
                         }
                     }
                 }
+                if veh.exit != NO_EXIT
+                    && self
+                        .geom
+                        .off_ramps
+                        .get(veh.exit as usize)
+                        .is_some_and(|r| !(veh.x < r.x))
+                {
+                    self.exit_due = true;
+                }
                 veh.mode = d.mode;
                 veh.family = d.family;
                 veh.time_gap_s = d.time_gap;
@@ -284,7 +296,9 @@ impl Simulation {
                 self.free.push(s);
             }
         }
-        if self.geom.off_ramps.is_empty() {
+        // Only when integrate saw a vehicle at or past its off-ramp (x and exits do not change
+        // between the two phases; vehicles inserted after this phase are integrated first).
+        if !std::mem::take(&mut self.exit_due) {
             return;
         }
         for l in 0..self.lanes.len() {
