@@ -265,12 +265,13 @@ impl Simulation {
                 }
                 sorted &= veh.x <= ahead;
                 ahead = veh.x;
+                // As in exits: not `x < ramp.x` (a NaN position counts too).
                 if veh.exit != NO_EXIT
                     && self
                         .geom
                         .off_ramps
                         .get(veh.exit as usize)
-                        .is_some_and(|r| !(veh.x < r.x))
+                        .is_some_and(|r| veh.x.partial_cmp(&r.x) != Some(std::cmp::Ordering::Less))
                 {
                     self.exit_due = true;
                 }
