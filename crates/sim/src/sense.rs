@@ -61,106 +61,65 @@ impl Simulation {
             self.linked.resize(n, false);
             self.cav_ahead.resize(n, false);
             self.sub_size.resize(n, 1);
-            self.string_pred_next.resize(n, crate::vehicle::NEVER);
             self.changed_this_step.resize(n, u64::MAX);
             self.here.resize(n, Here::default());
         }
         let n_lanes = self.lanes.len();
         self.lane_xv.resize(n_lanes, Vec::new());
-        for (xv, lane) in self.lane_xv.iter_mut().zip(&self.lanes) {
-            xv.clear();
-            xv.extend(lane.iter().map(|&s| {
-                let v = &self.vehicles[s as usize];
-                (v.x, v.v)
-            }));
-        }
-        let range = self.cfg.cav.sensor_range_m;
+        let p = &self.cfg.cav;
+        let range = p.sensor_range_m;
+        let t_far = p.cacc_tg_band_s[1];
+        let slack = p.standstill_gap_m + p.speed_control_min_gap_m;
+        // Pass A, per lane back to front: (x, v) copy, own-lane neighbours, CAV ahead, the
+        // candidate CACC link to the leader (`linked` holds it until pass B) and the size of
+        // the sub-string each vehicle leads under the previous memberships.
         for l in 0..n_lanes {
             let lane = &self.lanes[l];
-            for (k, &s) in lane.iter().enumerate() {
-                let nb = &mut self.nb[s as usize];
-                nb.idx = k as u32;
-                nb.leader = if k > 0 { lane[k - 1] } else { NONE };
-                nb.follower = lane.get(k + 1).copied().unwrap_or(NONE);
-                self.cav_ahead[s as usize] = k > 0 && {
-                    let lv = &self.vehicles[lane[k - 1] as usize];
-                    lv.is_cav() && lv.rear() - self.vehicles[s as usize].x <= range
+            let n = lane.len();
+            let xv = &mut self.lane_xv[l];
+            xv.clear();
+            xv.resize(n, (0.0, 0.0));
+            let mut follower = NONE;
+            let mut f_pred = crate::vehicle::NEVER;
+            let mut f_cand = false;
+            let mut f_size = 0u32;
+            for k in (0..n).rev() {
+                let s = lane[k];
+                let ld = if k > 0 { lane[k - 1] } else { NONE };
+                let v = &self.vehicles[s as usize];
+                xv[k] = (v.x, v.v);
+                let ahead = k > 0 && {
+                    let lv = &self.vehicles[ld as usize];
+                    lv.is_cav() && lv.rear() - v.x <= range
                 };
-            }
-            // Adjacent lanes by a merge sweep: the cursor j points at the first vehicle of the
-            // other lane that is not strictly ahead.
-            for (other, is_left) in [(l + 1, true), (l.wrapping_sub(1), false)] {
-                if other >= n_lanes {
-                    for &s in lane {
-                        let nb = &mut self.nb[s as usize];
-                        if is_left {
-                            nb.left_leader = NONE;
-                            nb.left_follower = NONE;
-                        } else {
-                            nb.right_leader = NONE;
-                            nb.right_follower = NONE;
-                        }
-                    }
-                    continue;
-                }
-                let olane = &self.lanes[other];
-                let ox = &self.lane_xv[other];
-                let mut j = 0usize;
-                for (&s, &(x, _)) in lane.iter().zip(&self.lane_xv[l]) {
-                    while j < olane.len() && ox[j].0 > x {
-                        j += 1;
-                    }
-                    let ld = if j > 0 { olane[j - 1] } else { NONE };
-                    let fo = olane.get(j).copied().unwrap_or(NONE);
-                    let nb = &mut self.nb[s as usize];
-                    if is_left {
-                        nb.left_leader = ld;
-                        nb.left_follower = fo;
-                    } else {
-                        nb.right_leader = ld;
-                        nb.right_follower = fo;
-                    }
-                }
+                let cand = ahead
+                    && v.automated()
+                    && self.vehicles[ld as usize].rear() - v.x <= t_far * v.v + slack;
+                let size = if f_cand && f_pred == v.id {
+                    1 + f_size
+                } else {
+                    1
+                };
+                let si = s as usize;
+                let nb = &mut self.nb[si];
+                nb.idx = k as u32;
+                nb.leader = ld;
+                nb.follower = follower;
+                self.cav_ahead[si] = ahead;
+                self.linked[si] = cand;
+                self.sub_size[si] = size;
+                follower = s;
+                f_pred = v.string_pred;
+                f_cand = cand;
+                f_size = size;
             }
         }
-        self.locate();
         self.platoons();
     }
 
-    /// Fill `here` for every vehicle on the road.
-    fn locate(&mut self) {
-        let n_lanes = self.lanes.len();
-        for (l, lane) in self.lanes.iter().enumerate() {
-            if self.geom.plain {
-                for &s in lane {
-                    self.here[s as usize] = Here {
-                        wall: None,
-                        accel: false,
-                        enter_left: l + 1 < n_lanes,
-                        enter_right: l > 0,
-                        ramps_upto: 0,
-                    };
-                }
-                continue;
-            }
-            let mut own = self.geom.walk(l);
-            let mut left = self.geom.walk(l + 1);
-            let mut right = self.geom.walk(l.wrapping_sub(1));
-            let mut ramps = self.geom.ramps_by_x.len();
-            for (&s, &(x, _)) in lane.iter().zip(&self.lane_xv[l]) {
-                let seg = own.at(x);
-                ramps = self.geom.ramps_upto_from(ramps, x);
-                self.here[s as usize] = Here {
-                    wall: seg.filter(|g| g.wall).map(|g| g.to),
-                    accel: seg.is_some_and(|g| g.accel),
-                    enter_left: left.at(x).is_some_and(|g| !g.accel),
-                    enter_right: l > 0 && right.at(x).is_some_and(|g| !g.accel),
-                    ramps_upto: ramps as u32,
-                };
-            }
-        }
-    }
-
+    /// Pass B, per lane front to back: leaders and followers in the adjacent lanes (merge
+    /// sweeps), `here` (geometry walks), CACC memberships and platoon positions, statistics.
+    ///
     /// CACC strings (spec 3.6) and platoon statistics (spec 5.1.6, 6.15).
     ///
     /// A *candidate link* exists when an automated CAV follows a CAV within sensor range and is
@@ -172,74 +131,95 @@ impl Simulation {
     /// recounting positions every step, spec 3.6.6, moved every follower behind a merge or a
     /// broken link to a new gap at once; the resulting braking waves halved 100 % CAV
     /// capacity.) A member's position is its predecessor's + 1; a string is a platoon.
+    ///
+    /// Statistics (spec 5.1.6). Paper definition [S]: "when a CAV immediately follows
+    /// another CAV, it automatically starts to form a platoon", and P_P ≈ 1 − (1 − p)² "given
+    /// the subject vehicle is a CAV, its leader and/or follower is a CAV": a link is an
+    /// automated CAV directly behind a CAV within sensor range. Strict variant (spec 6.15):
+    /// only string members (not in speed regulation). Runs longer than `max` count as
+    /// platoons of at most `max`.
     fn platoons(&mut self) {
-        let p = &self.cfg.cav;
-        let max = p.max_platoon.max(1);
-        let t_far = p.cacc_tg_band_s[1];
-        let slack = p.standstill_gap_m + p.speed_control_min_gap_m;
-        let vehicles = &self.vehicles;
-        let cav_ahead = &self.cav_ahead;
-        // `ld` is always `f`'s same-lane leader.
-        let candidate = |f: u32, ld: u32| -> bool {
-            let fv = &vehicles[f as usize];
-            cav_ahead[f as usize]
-                && fv.automated()
-                && vehicles[ld as usize].rear() - fv.x <= t_far * fv.v + slack
-        };
-        for l in 0..self.lanes.len() {
+        let max = self.cfg.cav.max_platoon.max(1);
+        let n_lanes = self.lanes.len();
+        let plain = self.geom.plain;
+        for l in 0..n_lanes {
             let lane = &self.lanes[l];
-            let n = lane.len();
-            // Back to front: size of the sub-string each vehicle leads (previous memberships).
-            for k in (0..n).rev() {
-                let s = lane[k] as usize;
-                let mut size = 1;
-                if k + 1 < n {
-                    let f = lane[k + 1];
-                    if vehicles[f as usize].string_pred == vehicles[s].id && candidate(f, lane[k]) {
-                        size += self.sub_size[f as usize];
-                    }
+            let xs = &self.lane_xv[l];
+            let empty: &[u32] = &[];
+            let no_xv: &[(f64, f64)] = &[];
+            let (llane, lx) = if l + 1 < n_lanes {
+                (&self.lanes[l + 1][..], &self.lane_xv[l + 1][..])
+            } else {
+                (empty, no_xv)
+            };
+            let (rlane, rx) = if l > 0 {
+                (&self.lanes[l - 1][..], &self.lane_xv[l - 1][..])
+            } else {
+                (empty, no_xv)
+            };
+            // Merge-sweep cursors: the first vehicle of the other lane that is not strictly
+            // ahead.
+            let (mut jl, mut jr) = (0usize, 0usize);
+            let mut own = self.geom.walk(l);
+            let mut left = self.geom.walk(l + 1);
+            let mut right = self.geom.walk(l.wrapping_sub(1));
+            let mut ramps = self.geom.ramps_by_x.len();
+            let (mut adj_start, mut tg2_start) = (0usize, 0usize);
+            for (k, (&s, &(x, _))) in lane.iter().zip(xs).enumerate() {
+                let si = s as usize;
+                while jl < llane.len() && lx[jl].0 > x {
+                    jl += 1;
                 }
-                self.sub_size[s] = size;
-            }
-            // Front to back: memberships and positions.
-            for k in 0..n {
-                let s = lane[k];
-                let ld = if k > 0 { lane[k - 1] } else { NONE };
+                while jr < rlane.len() && rx[jr].0 > x {
+                    jr += 1;
+                }
+                let nb = &mut self.nb[si];
+                nb.left_leader = if jl > 0 { llane[jl - 1] } else { NONE };
+                nb.left_follower = llane.get(jl).copied().unwrap_or(NONE);
+                nb.right_leader = if jr > 0 { rlane[jr - 1] } else { NONE };
+                nb.right_follower = rlane.get(jr).copied().unwrap_or(NONE);
+                self.here[si] = if plain {
+                    Here {
+                        wall: None,
+                        accel: false,
+                        enter_left: l + 1 < n_lanes,
+                        enter_right: l > 0,
+                        ramps_upto: 0,
+                    }
+                } else {
+                    let seg = own.at(x);
+                    ramps = self.geom.ramps_upto_from(ramps, x);
+                    Here {
+                        wall: seg.filter(|g| g.wall).map(|g| g.to),
+                        accel: seg.is_some_and(|g| g.accel),
+                        enter_left: left.at(x).is_some_and(|g| !g.accel),
+                        enter_right: l > 0 && right.at(x).is_some_and(|g| !g.accel),
+                        ramps_upto: ramps as u32,
+                    }
+                };
+                // Membership and position (`linked` holds the candidate link from pass A).
                 let mut pred_id = crate::vehicle::NEVER;
                 let mut pos = 1;
-                if candidate(s, ld) {
-                    let lpos = self.platoon_pos[ld as usize];
-                    let lid = vehicles[ld as usize].id;
-                    let member = vehicles[s as usize].string_pred == lid;
-                    if (member && lpos < max)
-                        || (!member && lpos + self.sub_size[s as usize] <= max)
-                    {
+                if self.linked[si] {
+                    let ld = lane[k - 1] as usize;
+                    let lpos = self.platoon_pos[ld];
+                    let lid = self.vehicles[ld].id;
+                    let member = self.vehicles[si].string_pred == lid;
+                    if (member && lpos < max) || (!member && lpos + self.sub_size[si] <= max) {
                         pred_id = lid;
                         pos = lpos + 1;
                     }
                 }
-                self.string_pred_next[s as usize] = pred_id;
-                self.platoon_pos[s as usize] = pos;
-                self.linked[s as usize] = pred_id != crate::vehicle::NEVER;
-            }
-        }
-        // Statistics (spec 5.1.6). Paper definition [S]: "when a CAV immediately follows
-        // another CAV, it automatically starts to form a platoon", and P_P ≈ 1 − (1 − p)² "given
-        // the subject vehicle is a CAV, its leader and/or follower is a CAV": a link is an
-        // automated CAV directly behind a CAV within sensor range. Strict variant (spec 6.15):
-        // only string members (not in speed regulation). Runs longer than `max` count as
-        // platoons of at most `max`.
-        for l in 0..self.lanes.len() {
-            let lane = &self.lanes[l];
-            let (mut adj_start, mut tg2_start) = (0usize, 0usize);
-            for (k, &s) in lane.iter().enumerate() {
-                self.vehicles[s as usize].string_pred = self.string_pred_next[s as usize];
-                let adjacent = self.cav_ahead[s as usize] && self.vehicles[s as usize].automated();
+                self.platoon_pos[si] = pos;
+                let linked = pred_id != crate::vehicle::NEVER;
+                self.linked[si] = linked;
+                let adjacent = self.cav_ahead[si] && self.vehicles[si].automated();
+                self.vehicles[si].string_pred = pred_id;
                 if !adjacent || k - adj_start >= max as usize {
                     close_run(&mut self.vehicles, &lane[adj_start..k], false);
                     adj_start = k;
                 }
-                if !self.linked[s as usize] {
+                if !linked {
                     close_run(&mut self.vehicles, &lane[tg2_start..k], true);
                     tg2_start = k;
                 }

@@ -53,10 +53,15 @@ pub struct Simulation {
     pub(crate) here: Vec<crate::sense::Here>,
     /// Per lane, parallel to `lanes`: (x, v) of each vehicle at the step start (sense phase).
     pub(crate) lane_xv: Vec<Vec<(f64, f64)>>,
-    pub(crate) string_pred_next: Vec<u64>,
     pub(crate) decisions: Vec<Decision>,
     pub(crate) changed_this_step: Vec<u64>,
     pub(crate) change_list: Vec<(u32, Side)>,
+    /// A vehicle reached its off-ramp's position in this step's integrate phase.
+    pub(crate) exit_due: bool,
+    /// No lane was unsorted by this step's integrate phase.
+    pub(crate) lanes_sorted: bool,
+    /// Per detector and lane: where the detector's last lane search ended.
+    pub(crate) det_hint: Vec<u32>,
     /// Mainline entrance first, then one per on-ramp.
     pub(crate) entrances: Vec<Entrance>,
     pub(crate) geom: Geometry,
@@ -131,10 +136,12 @@ impl Simulation {
             sub_size: Vec::new(),
             here: Vec::new(),
             lane_xv: Vec::new(),
-            string_pred_next: Vec::new(),
             decisions: Vec::new(),
             changed_this_step: Vec::new(),
             change_list: Vec::new(),
+            exit_due: false,
+            lanes_sorted: false,
+            det_hint: Vec::new(),
             entrances: Entrance::all(&cfg),
             ramp_density: vec![0.0; geom.on_ramps.len()],
             geom,
@@ -227,7 +234,9 @@ impl Simulation {
     /// speed would turn negative.
     fn integrate(&mut self) {
         let dt = self.dt;
+        let mut sorted = true;
         for lane in &self.lanes {
+            let mut ahead = f64::INFINITY;
             for &s in lane {
                 let d = &self.decisions[s as usize];
                 let veh = &mut self.vehicles[s as usize];
@@ -254,6 +263,18 @@ impl Simulation {
                         }
                     }
                 }
+                sorted &= veh.x <= ahead;
+                ahead = veh.x;
+                // As in exits: not `x < ramp.x` (a NaN position counts too).
+                if veh.exit != NO_EXIT
+                    && self
+                        .geom
+                        .off_ramps
+                        .get(veh.exit as usize)
+                        .is_some_and(|r| veh.x.partial_cmp(&r.x) != Some(std::cmp::Ordering::Less))
+                {
+                    self.exit_due = true;
+                }
                 veh.mode = d.mode;
                 veh.family = d.family;
                 veh.time_gap_s = d.time_gap;
@@ -269,6 +290,7 @@ impl Simulation {
             }
             self.vehicle_updates += lane.len() as u64;
         }
+        self.lanes_sorted = sorted;
     }
 
     /// Phase 5a: vehicles whose front passed the road end leave; on a network, vehicles that
@@ -286,7 +308,9 @@ impl Simulation {
                 self.free.push(s);
             }
         }
-        if self.geom.off_ramps.is_empty() {
+        // Only when integrate saw a vehicle at or past its off-ramp (x and exits do not change
+        // between the two phases; vehicles inserted after this phase are integrated first).
+        if !std::mem::take(&mut self.exit_due) {
             return;
         }
         for l in 0..self.lanes.len() {
@@ -321,9 +345,17 @@ impl Simulation {
     }
 
     /// Phase 6: detectors, per lane by a search on the sorted lane list.
+    ///
+    /// The search starts from where it ended in the previous step (`det_hint`): the lanes
+    /// change little between steps. The walk finds the same index as a binary search when the
+    /// lane is sorted (descending x); integrate is the only phase that can unsort a lane (lane
+    /// changes and insertions insert at their sorted position), and if it did, this step
+    /// searches as before.
     fn observe_detectors(&mut self) {
         let dt = self.dt;
-        for det in &mut self.detectors {
+        let n_lanes = self.lanes.len();
+        self.det_hint.resize(self.detectors.len() * n_lanes, 0);
+        for (i, det) in self.detectors.iter_mut().enumerate() {
             let p = det.position_m;
             if det.kind == "off-ramp" {
                 continue;
@@ -334,7 +366,21 @@ impl Simulation {
                 }
                 // Candidates: front now in [p, p + L + travel]; lane is sorted descending.
                 let hi = p + 60.0;
-                let start = lane.partition_point(|&s| self.vehicles[s as usize].x > hi);
+                let ahead = |s: u32| self.vehicles[s as usize].x > hi;
+                let start = if self.lanes_sorted {
+                    let hint = &mut self.det_hint[i * n_lanes + l];
+                    let mut k = (*hint as usize).min(lane.len());
+                    while k > 0 && !ahead(lane[k - 1]) {
+                        k -= 1;
+                    }
+                    while k < lane.len() && ahead(lane[k]) {
+                        k += 1;
+                    }
+                    *hint = k as u32;
+                    k
+                } else {
+                    lane.partition_point(|&s| ahead(s))
+                };
                 for &s in &lane[start..] {
                     let v = &self.vehicles[s as usize];
                     if v.x < p {
