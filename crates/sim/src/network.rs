@@ -203,16 +203,25 @@ impl Geometry {
     /// `ramps_upto` for a run of positions, fastest with `x` not increasing between calls:
     /// `k` is the previous answer (start with the number of ramps).
     #[inline]
-    pub fn ramps_upto_from(&self, mut k: usize, x: f64) -> usize {
+    pub fn ramps_upto_from(&self, k: usize, x: f64) -> usize {
         let r = &self.ramps_by_x;
-        if k > r.len() || r.get(k).is_some_and(|&(rx, _)| rx <= x) {
-            k = r.len(); // x went up: start again from the last ramp
-        }
-        while k > 0 && r[k - 1].0 > x {
-            k -= 1;
-        }
-        k
+        cursor_down(k, r.len(), |i| r[i].0 <= x)
     }
+}
+
+/// The number of items (sorted by start) that start at or before the looked-up position, found
+/// from `k`, the previous answer, by stepping down: fast when positions do not increase between
+/// lookups; a position that went up restarts from the end. `starts_upto(i)`: item `i` starts at
+/// or before the position.
+#[inline]
+fn cursor_down(mut k: usize, len: usize, starts_upto: impl Fn(usize) -> bool) -> usize {
+    if k > len || (k < len && starts_upto(k)) {
+        k = len;
+    }
+    while k > 0 && !starts_upto(k - 1) {
+        k -= 1;
+    }
+    k
 }
 
 /// See `Geometry::walk`. Gives the same segment as `Geometry::seg` for every `x`.
@@ -230,12 +239,8 @@ impl SegWalk<'_> {
         if !self.disjoint {
             return self.segs.iter().find(|s| s.contains(x));
         }
-        if self.segs.get(self.k).is_some_and(|s| s.from <= x) {
-            self.k = self.segs.len(); // x went up: start again from the last segment
-        }
-        while self.k > 0 && self.segs[self.k - 1].from > x {
-            self.k -= 1;
-        }
+        let segs = self.segs;
+        self.k = cursor_down(self.k, segs.len(), |i| segs[i].from <= x);
         // Sorted and disjoint: only the last segment starting at or before x can contain it.
         let s = self.segs.get(self.k.checked_sub(1)?)?;
         s.contains(x).then_some(s)
