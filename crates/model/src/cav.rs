@@ -84,8 +84,12 @@ pub struct CavParams {
     /// Rate at which a CAV's target time gap moves to a new setting (s of gap per s), spec 3.5
     /// "Transitions" (Xiao 2018: over about 15 s, so 0.9 s / 15 s = 0.06). 0 = jump at once.
     pub time_gap_ramp_per_s: f64,
-    /// Spec 6.5 flag: an automated CAV answers yield requests like a human driver (a manual
-    /// brake: it drives manually while it yields, then re-engages). Default false [D].
+    /// Spec 6.5 flag: an automated CAV answers mandatory yield requests (merging, exiting,
+    /// lane-drop changes) through its automation: with the driver's cooperativeness draw it
+    /// follows the requester as a virtual leader like a yielding driver (spec 4.5: relaxed
+    /// parameters, never braking harder than b_c for the yield) and stays automated, so its
+    /// CACC links hold. Default true [D], against the spec's recommendation (open question
+    /// 6.5): without it CAVs lower the capacity of merges (docs/model-choices.md).
     pub yield_while_automated: bool,
 }
 
@@ -114,7 +118,7 @@ impl Default for CavParams {
             sensor_range_m: 250.0,
             time_gap_shares: vec![(0.6, 0.57), (0.7, 0.24), (0.9, 0.07), (1.1, 0.12)],
             time_gap_ramp_per_s: 0.06,
-            yield_while_automated: false,
+            yield_while_automated: true,
         }
     }
 }

@@ -35,6 +35,7 @@
 //! | t_min,LC | `min_interval_s` | 5 | fixed (×`return_factor` = 3 back) | s |
 //! | – | `slow_down_desire` | 0.5 | fixed | – |
 //! | w_CAV | `cav_weight_leader`, `cav_weight_follower` | 0.5, 0 | fixed | – |
+//! | – | `follower_anticipates` | true | a platoon follower upstream of a busy on-ramp uses `cav_weight_leader` [D] | – |
 //! | – | `yield_range_m` | 100 | fixed; farthest yield requester (rear ahead of the driver's front) [D] | m |
 //! | v_ref floor | `min_reference_speed_mps` | 2.3 | fixed | m/s |
 //! | – | `min_speed_gain_mps` | 2.34 (5 mph) | fixed; γ_d = 0 below this gain ([P15-doc] gate) | m/s |
@@ -106,6 +107,10 @@ pub struct LaneChangeDists {
     pub min_speed_gain_mps: f64,
     pub cav_weight_leader: f64,
     pub cav_weight_follower: f64,
+    /// A platoon follower in the anticipation range of a busy on-ramp (spec 4.2
+    /// "Anticipatory") weighs its discretionary desire with `cav_weight_leader` instead of
+    /// `cav_weight_follower` [D]. No effect on a road without on-ramps.
+    pub follower_anticipates: bool,
     /// No lane changes within this distance of an entrance ("forbid zone", spec 4.1) (m).
     pub forbid_zone_m: f64,
     /// Anticipation of on-ramps (spec 4.2 "Anticipatory"): range upstream of a ramp's merge
@@ -153,6 +158,7 @@ impl Default for LaneChangeDists {
             min_speed_gain_mps: 2.34,
             cav_weight_leader: 0.5,
             cav_weight_follower: 0.0,
+            follower_anticipates: true,
             forbid_zone_m: 100.0,
             anticipation_distance_m: 2000.0,
             anticipation_strength: 1.0,

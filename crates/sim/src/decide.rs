@@ -116,22 +116,32 @@ impl Simulation {
             return self.before_lane_change(s, v, &nb, leader, d);
         }
 
-        // 2. Automated CAV: ACC / CACC / speed regulation (spec 3); with the spec 6.5 flag,
-        // a CAV that agrees to yield brakes manually (step 3) instead.
-        let yield_to = if v.automated() {
-            let agreed = self
-                .cfg
-                .cav
-                .yield_while_automated
-                .then(|| self.agreed_request(v, &nb))
-                .flatten();
-            if agreed.is_none() {
-                return self.cav_control(s, v, leader, wall);
+        // 2. Automated CAV: ACC / CACC / speed regulation (spec 3). With the spec 6.5 flag the
+        // automation also answers a mandatory yield request it agrees to: it follows the
+        // requester as a virtual leader as a yielding driver would (spec 4.5), without leaving
+        // automation [D].
+        if v.automated() {
+            let mut d = self.cav_control(s, v, leader, wall);
+            if self.cfg.cav.yield_while_automated {
+                if let Some(req) = self.agreed_request(v, &nb, true) {
+                    let r = &self.vehicles[req as usize];
+                    d.accel = lcm::yield_accel(
+                        &v.human,
+                        &v.lc,
+                        v.v,
+                        v_des,
+                        d.accel,
+                        self.yield_gap(v, r),
+                    );
+                    d.mode = Mode::Ycf {
+                        to: r.id,
+                        auto: true,
+                    };
+                }
             }
-            agreed
-        } else {
-            self.agreed_request(v, &nb)
-        };
+            return d;
+        }
+        let yield_to = self.agreed_request(v, &nb, false);
 
         // 3. Human model (humans and CAVs driving manually), possibly yielding.
         let relax = self.relax_now(v);
@@ -139,15 +149,11 @@ impl Simulation {
         let mut mode = Mode::Cf;
         if let Some(req) = yield_to {
             let r = &self.vehicles[req as usize];
-            // The virtual leader stands the requester's own (relaxed) jam gap further back:
-            // the yielder leaves the room the requester's gap acceptance needs (spec 4.3:
-            // g0 > d_jam'), otherwise two standing vehicles wait for each other.
-            let virt = Leader {
-                gap_m: r.rear() - v.x - r.lc.relax_jam * r.human.jam_gap_m,
-                v_mps: r.v,
+            target = lcm::yield_accel(&v.human, &v.lc, v.v, v_des, target, self.yield_gap(v, r));
+            mode = Mode::Ycf {
+                to: r.id,
+                auto: false,
             };
-            target = lcm::yield_accel(&v.human, &v.lc, v.v, v_des, target, virt);
-            mode = Mode::Ycf { to: r.id };
         }
         Decision {
             accel: human::smooth_accel(v.a, target, v.human.smoothing),
@@ -319,14 +325,31 @@ impl Simulation {
         follower: bool,
     ) -> [Option<f64>; 2] {
         let lcd = &self.cfg.lane_change;
-        let w = if !v.is_cav() {
+        // On-ramp anticipation (spec 4.2): the current-lane speed seen in the two rightmost
+        // lanes upstream of a busy on-ramp.
+        let anticipation = if self.geom.plain {
             1.0
-        } else if follower {
-            lcd.cav_weight_follower
         } else {
-            lcd.cav_weight_leader
+            self.anticipation_factor(s, v)
         };
-        if w <= 0.0 {
+        // A platoon follower has no speed-gain motivation (w_CAV follower), but ahead of a busy
+        // on-ramp it still makes room, moving left with the leader's weight [D]: otherwise, at
+        // high penetration, the strings stay in the merge lane while the lanes beside them run
+        // empty. (Only to the left: the anticipation factor lowers the current lane's speed, so
+        // it would also make the lane nearer the ramp look better.)
+        let (w_left, w_right) = if !v.is_cav() {
+            (1.0, 1.0)
+        } else if follower {
+            let w = lcd.cav_weight_follower;
+            if lcd.follower_anticipates && anticipation > 1.0 {
+                (lcd.cav_weight_leader, w)
+            } else {
+                (w, w)
+            }
+        } else {
+            (lcd.cav_weight_leader, lcd.cav_weight_leader)
+        };
+        if w_left <= 0.0 && w_right <= 0.0 {
             return [None, None];
         }
         // η_e: no discretionary change within E_exit of the exit; a penalty on moving away from
@@ -346,21 +369,33 @@ impl Simulation {
         let mut v_cur = self
             .avg_speed_ahead(v.lane as usize, nb.idx as usize, v.x, v_des)
             .min(v_des);
-        if !self.geom.plain {
-            v_cur /= self.anticipation_factor(s, v);
-        }
+        v_cur /= anticipation;
         // v_ant ≤ v_des, so no side can beat the absolute gain gate: nothing to scan.
         if v_des - v_cur < v.lc.min_speed_gain_mps {
             return [None, None];
         }
         let here = &self.here[s as usize];
         let mut out = [None, None];
-        for (i, side, ld, eta, open) in [
-            (0, Side::Left, nb.left_leader, eta_left, here.enter_left),
-            (1, Side::Right, nb.right_leader, 1.0, here.enter_right),
+        for (i, side, ld, w, eta, open) in [
+            (
+                0,
+                Side::Left,
+                nb.left_leader,
+                w_left,
+                eta_left,
+                here.enter_left,
+            ),
+            (
+                1,
+                Side::Right,
+                nb.right_leader,
+                w_right,
+                1.0,
+                here.enter_right,
+            ),
         ] {
             // `Geometry::can_enter` of the lane on that side (none right of lane 0).
-            if !open {
+            if !open || w <= 0.0 {
                 continue;
             }
             let v_ant = self.anticipated_speed(v, ld);
@@ -518,15 +553,30 @@ impl Simulation {
             return false;
         }
         let f = &self.vehicles[tf as usize];
-        if f.mode == (Mode::Ycf { to: v.id }) {
+        if matches!(f.mode, Mode::Ycf { to, .. } if to == v.id) {
             return true;
         }
         f.v > v.v && (v.v < CREEP_SPEED_MPS || (!self.geom.plain && self.here[s as usize].accel))
     }
 
-    /// The requester (slot) of a yield request the driver agrees to, if any (spec 4.5).
-    fn agreed_request(&self, v: &Vehicle, nb: &Neighbours) -> Option<u32> {
+    /// The virtual leader of a yielder: the requester `r`, standing its own (relaxed) jam gap
+    /// further back, so that the yielder leaves the room the requester's gap acceptance needs
+    /// (spec 4.3: g0 > d_jam'); otherwise two standing vehicles wait for each other.
+    #[inline]
+    fn yield_gap(&self, v: &Vehicle, r: &Vehicle) -> Leader {
+        Leader {
+            gap_m: r.rear() - v.x - r.lc.relax_jam * r.human.jam_gap_m,
+            v_mps: r.v,
+        }
+    }
+
+    /// The requester (slot) of a yield request the driver agrees to, if any (spec 4.5);
+    /// `mandatory_only` for the automation (spec 6.5 flag).
+    fn agreed_request(&self, v: &Vehicle, nb: &Neighbours, mandatory_only: bool) -> Option<u32> {
         self.yield_request(v, nb).and_then(|(req, mandatory)| {
+            if mandatory_only && !mandatory {
+                return None;
+            }
             let r = &self.vehicles[req as usize];
             lcm::agrees_to_yield(&v.lc, mandatory, pair_uniform(self.cfg.seed, v.id, r.id))
                 .then_some(req)

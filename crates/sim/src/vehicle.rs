@@ -19,8 +19,9 @@ pub enum Mode {
     Cf,
     /// Before lane change toward `side`; `mandatory` if the desire is mandatory.
     Blc { side: Side, mandatory: bool },
-    /// Yielding to the vehicle with id `to` (a neighbour in BLC toward this lane).
-    Ycf { to: u64 },
+    /// Yielding to the vehicle with id `to` (a neighbour in BLC toward this lane); `auto` if
+    /// an automated CAV yields through its automation (spec 6.5 flag).
+    Ycf { to: u64, auto: bool },
 }
 
 /// Which relaxation is running (spec 4.6), and since which step.
@@ -93,7 +94,9 @@ pub struct Vehicle {
 impl Vehicle {
     /// A CAV that is not driving manually (spec 3.1): plain car following, no relaxation.
     pub fn automated(&self) -> bool {
-        self.kind == Kind::Cav && self.mode == Mode::Cf && self.relax == Relaxation::None
+        self.kind == Kind::Cav
+            && matches!(self.mode, Mode::Cf | Mode::Ycf { auto: true, .. })
+            && self.relax == Relaxation::None
     }
 
     pub fn is_cav(&self) -> bool {
