@@ -488,6 +488,86 @@ fn series_are_checked_value_by_value_and_by_length() {
 }
 
 #[test]
+fn demand_offset_reads_every_series_later() {
+    let net = |sets: &[&str]| {
+        with_set(SMALL_CORRIDOR, sets)
+            .unwrap()
+            .road
+            .network
+            .unwrap()
+    };
+    // Whole intervals: the first ones are dropped and the last one holds past the end.
+    let n = net(&["network.demand_offset_s=1800"]);
+    assert_eq!(n.interval_s, 1800.0);
+    assert_eq!(n.mainline_vph, vec![3600.0]);
+    assert_eq!(n.on_ramps[0].demand_vph, vec![600.0]);
+    assert_eq!(n.on_ramps[1].demand_vph, vec![500.0]);
+    assert_eq!(n.off_ramps[0].exit_fraction, vec![0.15]);
+    assert_eq!(
+        (n.at(&n.mainline_vph, 0.0), n.at(&n.mainline_vph, 3000.0)),
+        (3600.0, 3600.0)
+    );
+    // Part of an interval: the series are refined to gcd(1800, 600) = 600 s and stay exact.
+    let n = net(&["network.demand_offset_s=600"]);
+    assert_eq!(n.interval_s, 600.0);
+    assert_eq!(n.mainline_vph, vec![3000.0, 3000.0, 3600.0, 3600.0, 3600.0]);
+    assert_eq!(
+        n.off_ramps[0].exit_fraction,
+        vec![0.1, 0.1, 0.15, 0.15, 0.15]
+    );
+    for t in [0.0, 599.0, 1199.0, 1200.0, 2500.0, 4000.0] {
+        let expect = if t + 600.0 < 1800.0 { 3000.0 } else { 3600.0 };
+        assert_eq!(n.at(&n.mainline_vph, t), expect, "t = {t}");
+    }
+    // 0 (the default) leaves the series as written.
+    let plain = net(&[]);
+    assert_eq!(net(&["network.demand_offset_s=0"]), plain);
+    assert_eq!(plain.mainline_vph, vec![3000.0, 3600.0]);
+}
+
+#[test]
+fn demand_offset_is_checked() {
+    let span = "(the span of the demand series: 2 intervals of network.interval_s = 1800 s)";
+    for (v, shown) in [
+        ("-900", "-900"),
+        ("3600", "3600"),
+        ("1e9", "1000000000"),
+        ("nan", "nan"),
+    ] {
+        let set = format!("network.demand_offset_s={v}");
+        let p = corridor_problems(&[set.as_str()]);
+        assert_eq!(
+            p,
+            vec![format!(
+                "network.demand_offset_s = {shown}: must be in [0, 3600) s {span}"
+            )]
+        );
+    }
+    let p = corridor_problems(&["network.demand_offset_s=0.5"]);
+    assert_eq!(
+        p,
+        vec![format!(
+            "network.demand_offset_s = 0.5: must be a whole number of seconds or a multiple of network.interval_s = 1800 s, in [0, 3600) s {span}"
+        )]
+    );
+    // A bad interval is reported once; the offset is then only checked for its sign.
+    let p = corridor_problems(&["network.interval_s=0", "network.demand_offset_s=-1"]);
+    assert!(
+        has(&p, "network.interval_s = 0: must be a finite number > 0"),
+        "{p:?}"
+    );
+    assert!(
+        has(
+            &p,
+            "network.demand_offset_s = -1: must be a finite number >= 0"
+        ),
+        "{p:?}"
+    );
+    // On a scenario without a network the key is unknown like every network key.
+    assert!(with_set(common::SMALL, &["network.demand_offset_s=900"]).is_err());
+}
+
+#[test]
 fn ramp_ids_must_be_unique_and_valid() {
     let p = corridor_problems(&["network.on_ramps[1].id=FR1"]);
     assert_eq!(
