@@ -266,7 +266,7 @@ mod tests {
         let p = paragraph(&config, &out.summary, Path::new("out/run")).replace('\n', " ");
         for part in [
             "sr99:",
-            "40 % CAV, the network's demand x 1.243,",
+            "40 % CAV, the network's demand x 1.210,",
             "Network discharge (off-ramps and the end):",
             "missed exits",
         ] {

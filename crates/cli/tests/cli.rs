@@ -169,9 +169,9 @@ fn show_sr99_prints_the_network_and_takes_the_run_flags() {
     assert_eq!(json["seed"], 4);
     assert_eq!(json["strategy"]["kind"], "pd");
     assert_eq!(json["road"]["lanes"], 6);
-    // --demand-scale times the calibrated base multiplier 1.13 of sr99.
+    // --demand-scale times the calibrated base multiplier 1.10 of sr99.
     let scale = json["road"]["network"]["demand_scale"].as_f64().unwrap();
-    assert!((scale - 1.13 * 1.2).abs() < 1e-12, "{scale}");
+    assert!((scale - 1.10 * 1.2).abs() < 1e-12, "{scale}");
     assert_eq!(json["road"]["network"]["origin_m"], -500.0);
     assert_eq!(
         json["road"]["network"]["on_ramps"]

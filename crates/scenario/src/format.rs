@@ -135,6 +135,8 @@ fn raw_network(n: &Network, config: &Config) -> (RawNetwork, Vec<String>) {
         start_m: Some(o),
         end_m: Some(o + length),
         interval_s: Some(n.interval_s),
+        // The series below are already read at the offset (validation shifts them).
+        demand_offset_s: None,
         mainline_vph: Some(n.mainline_vph.clone()),
         base_demand_multiplier: Some(1.0),
         demand_scale: Some(n.demand_scale),

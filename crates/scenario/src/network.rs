@@ -4,7 +4,8 @@
 //! * lane counts per stretch ↔ the engine's lateral lane extents ([`through_lanes`],
 //!   [`stretches`]);
 //! * ramp ids inside the engine's ramp names ([`engine_name`], [`split_name`]);
-//! * the generated detectors, as in the paper ([`detectors`]).
+//! * the generated detectors, as in the paper ([`detectors`]);
+//! * the demand time offset `network.demand_offset_s` ([`offset_step`], [`offset_series`]).
 //!
 //! Lateral lane convention (see `platoonsim_sim::config::Network`): lanes are numbered from the
 //! right; index 0 is reserved for the acceleration lanes beside the widest section. With M the
@@ -196,6 +197,50 @@ pub fn detectors(
     candidates
 }
 
+/// The interval of the demand series after a time offset of `offset_s` (`network.demand_offset_s`)
+/// on series of `interval_s`: `interval_s` itself if the offset is a whole number of intervals,
+/// otherwise the largest step that divides both (their greatest common divisor in whole seconds),
+/// so that the shifted series are exact. `None` if there is no such step (the offset is not a
+/// multiple of the interval and one of them is not a whole number of seconds).
+pub fn offset_step(interval_s: f64, offset_s: f64) -> Option<f64> {
+    if !(interval_s.is_finite() && interval_s > 0.0 && offset_s.is_finite() && offset_s >= 0.0) {
+        return None;
+    }
+    let k = offset_s / interval_s;
+    if k == k.floor() {
+        return Some(interval_s);
+    }
+    let whole = |v: f64| v == v.floor() && v < 9.0e15;
+    if !(whole(interval_s) && whole(offset_s)) {
+        return None;
+    }
+    let (mut a, mut b) = (interval_s as u64, offset_s as u64);
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    Some(a as f64)
+}
+
+/// One per-interval series read at `t + offset_s` instead of `t`: value `j` of the result covers
+/// `[j·step, (j+1)·step)` of the simulation clock and is the input value of the interval that
+/// contains `offset_s + j·step`. The result spans the input's remaining time, `n·interval_s −
+/// offset_s`; past it the engine holds the last value, so the last input interval holds beyond
+/// the end, as without an offset. `step` comes from [`offset_step`]; an offset at or past the end
+/// of the series gives the last value alone.
+pub fn offset_series(v: &[f64], interval_s: f64, offset_s: f64, step: f64) -> Vec<f64> {
+    if offset_s == 0.0 || v.is_empty() {
+        return v.to_vec();
+    }
+    let span = v.len() as f64 * interval_s - offset_s;
+    let count = (span / step).round().max(1.0) as usize;
+    (0..count)
+        .map(|j| {
+            let k = ((offset_s + j as f64 * step) / interval_s).floor() as usize;
+            v[k.min(v.len() - 1)]
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -332,5 +377,47 @@ mod tests {
         );
         assert_eq!(d[4].kind, DetectorKind::OffRamp { ramp: 0 });
         assert_eq!(d[3].kind, DetectorKind::Mainline);
+    }
+
+    #[test]
+    fn offset_by_whole_intervals_drops_the_first_ones() {
+        assert_eq!(offset_step(900.0, 1800.0), Some(900.0));
+        let v = [1.0, 2.0, 3.0, 4.0];
+        assert_eq!(offset_series(&v, 900.0, 1800.0, 900.0), vec![3.0, 4.0]);
+        assert_eq!(offset_series(&v, 900.0, 0.0, 900.0), v.to_vec());
+        assert_eq!(offset_step(900.0, 0.0), Some(900.0));
+    }
+
+    #[test]
+    fn offset_by_part_of_an_interval_refines_the_step() {
+        // 600 s into 900 s intervals: step gcd(900, 600) = 300 s.
+        assert_eq!(offset_step(900.0, 600.0), Some(300.0));
+        let v = [1.0, 2.0, 3.0];
+        // Clock 0-300 s reads 600-900 s (interval 0), 300-1200 s reads 900-1800 s (interval 1), ...
+        assert_eq!(
+            offset_series(&v, 900.0, 600.0, 300.0),
+            vec![1.0, 2.0, 2.0, 2.0, 3.0, 3.0, 3.0]
+        );
+        assert_eq!(offset_step(900.0, 7.0), Some(1.0));
+        // No exact step: a fractional offset that is not a whole number of intervals.
+        assert_eq!(offset_step(900.0, 0.5), None);
+        assert_eq!(offset_step(0.5, 1.0), Some(0.5));
+        assert_eq!(offset_step(0.5, 0.75), None);
+        assert_eq!(offset_step(900.0, -900.0), None);
+        assert_eq!(offset_step(900.0, f64::NAN), None);
+    }
+
+    #[test]
+    fn offset_series_reads_the_clock_plus_the_offset() {
+        // Property: value at clock t equals the input at t + offset (last value held).
+        let v = [5.0, 7.0, 11.0, 13.0, 17.0];
+        let at = |s: &[f64], i: f64, t: f64| s[((t / i).floor() as usize).min(s.len() - 1)];
+        for offset in [0.0, 100.0, 300.0, 900.0, 1000.0, 2700.0, 4400.0] {
+            let step = offset_step(900.0, offset).unwrap();
+            let w = offset_series(&v, 900.0, offset, step);
+            for t in (0..6000).step_by(50).map(f64::from) {
+                assert_eq!(at(&w, step, t), at(&v, 900.0, t + offset), "{offset} {t}");
+            }
+        }
     }
 }

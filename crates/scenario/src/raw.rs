@@ -98,6 +98,10 @@ pub struct RawNetwork {
     pub end_m: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub interval_s: Option<f64>,
+    /// Demand time offset (s): the simulation clock t reads every demand and exit-fraction
+    /// series at t + offset (default 0; see `docs/network-scenarios.md`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub demand_offset_s: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub mainline_vph: Option<Vec<f64>>,
     #[serde(skip_serializing_if = "Option::is_none")]

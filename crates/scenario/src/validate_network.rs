@@ -5,8 +5,8 @@
 
 use super::{quoted, Checker, Num};
 use crate::network::{
-    default_off_id, default_on_id, engine_name, through_lanes, valid_id, Spacing, Stretch,
-    MAX_LANE_COUNT,
+    default_off_id, default_on_id, engine_name, offset_series, offset_step, through_lanes,
+    valid_id, Spacing, Stretch, MAX_LANE_COUNT,
 };
 use crate::raw::{num, RawNetwork};
 use platoonsim_sim::config::{Network, OffRamp, OnRamp};
@@ -14,6 +14,7 @@ use platoonsim_sim::config::{Network, OffRamp, OnRamp};
 /// Defaults of the optional `[network]` keys.
 pub mod defaults {
     pub const INTERVAL_S: f64 = 900.0;
+    pub const DEMAND_OFFSET_S: f64 = 0.0;
     pub const BASE_DEMAND_MULTIPLIER: f64 = 1.0;
     pub const RAMP_SPEED_KMH: f64 = 90.0;
     pub const ACCEL_LANE_M: f64 = 250.0;
@@ -84,6 +85,49 @@ fn position(c: &mut Checker, field: &str, v: Option<f64>, what: &str) -> Option<
         .then_some(n.v)
 }
 
+/// `network.demand_offset_s`: a whole number of seconds (or a multiple of `network.interval_s`)
+/// in [0, span of the series). Returns the interval of the shifted series if the offset is
+/// valid and not 0 (`None` otherwise, after reporting any problem).
+fn demand_offset(
+    c: &mut Checker,
+    offset: Num,
+    interval: Num,
+    intervals: Option<usize>,
+) -> Option<f64> {
+    let field = "network.demand_offset_s";
+    if !(interval.v.is_finite() && interval.v > 0.0) {
+        // network.interval_s is reported; only the offset's own range can be checked.
+        c.non_negative(field, offset);
+        return None;
+    }
+    let span = intervals.map(|n| n as f64 * interval.v);
+    let range = match span {
+        Some(s) => format!(
+            "in [0, {}) s (the span of the demand series: {} intervals of network.interval_s = {} s)",
+            num(s),
+            intervals.unwrap_or(0),
+            num(interval.v)
+        ),
+        None => "a finite number >= 0".to_string(),
+    };
+    let in_range = offset.v >= 0.0 && span.is_none_or(|s| offset.v < s);
+    if !c.check(field, offset, in_range, format!("must be {range}")) {
+        return None;
+    }
+    let Some(step) = offset_step(interval.v, offset.v) else {
+        c.push(
+            field,
+            offset.shown(),
+            format!(
+                "must be a whole number of seconds or a multiple of network.interval_s = {} s, {range}",
+                num(interval.v)
+            ),
+        );
+        return None;
+    };
+    (offset.v > 0.0 && span.is_some()).then_some(step)
+}
+
 pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -> Checked {
     // --- bounds
     let start = position(
@@ -140,6 +184,8 @@ pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -
         "the demand at the mainline entrance per interval (veh/h, all lanes)",
     );
     let intervals = (!mainline.is_empty()).then_some(mainline.len());
+    let offset = c.opt(n.demand_offset_s, defaults::DEMAND_OFFSET_S);
+    let shift = demand_offset(c, offset, interval, intervals);
     let base = c.opt(n.base_demand_multiplier, defaults::BASE_DEMAND_MULTIPLIER);
     c.non_negative("network.base_demand_multiplier", base);
     let scale = c.opt(
@@ -401,6 +447,21 @@ pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -
         }
     }
 
+    // --- demand time offset: every series is read at clock + offset
+    let (mut mainline, mut on_ramps, mut off_ramps) = (mainline, on_ramps, off_ramps);
+    let mut interval_s = interval.v;
+    if let Some(step) = shift {
+        let f = |v: &[f64]| offset_series(v, interval.v, offset.v, step);
+        mainline = f(&mainline);
+        on_ramps
+            .iter_mut()
+            .for_each(|r| r.demand_vph = f(&r.demand_vph));
+        off_ramps
+            .iter_mut()
+            .for_each(|r| r.exit_fraction = f(&r.exit_fraction));
+        interval_s = step;
+    }
+
     Checked {
         lanes,
         origin,
@@ -411,7 +472,7 @@ pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -
             through_lanes: through,
             on_ramps,
             off_ramps,
-            interval_s: interval.v,
+            interval_s,
             mainline_vph: mainline,
             demand_scale: base.v * scale.v,
             ramp_speed_kmh: ramp_speed.v,

@@ -44,11 +44,14 @@ fn sr99_is_the_corridor_of_the_data() {
     assert_eq!(n.origin_m, -500.0);
     assert_eq!(n.on_ramps.len(), 16);
     assert_eq!(n.off_ramps.len(), 11);
+    // The field's 16 intervals from 05:00, read 30 min later (network.demand_offset_s = 1800):
+    // the run starts with the 05:30 interval and holds the last one (08:45) past 08:30.
     assert_eq!(n.interval_s, 900.0);
-    assert_eq!(n.mainline_vph.len(), 16);
-    assert_eq!(n.mainline_vph[0], 1020.0);
-    // Calibrated base multiplier 1.13 (docs/calibration.md) × the paper's scale 1.00 at 0 %.
-    assert_eq!(n.demand_scale, 1.13);
+    assert_eq!(n.mainline_vph.len(), 14);
+    assert_eq!(n.mainline_vph[0], 2100.0);
+    assert_eq!(n.mainline_vph[13], 2390.0);
+    // Calibrated base multiplier 1.10 (docs/calibration.md) × the paper's scale 1.00 at 0 %.
+    assert_eq!(n.demand_scale, 1.1);
     assert_eq!(n.ramp_speed_kmh, 90.0);
     // HOV lane open to all: 3 lanes, 4 from the Calvine WB on-ramp, 5 from the Fruitridge WB one.
     assert_eq!(
@@ -74,11 +77,12 @@ fn sr99_is_the_corridor_of_the_data() {
     expected[10] = 440.0; // OR11 Florin Rd WB
     expected[13] = 346.0; // OR14 Fruitridge Rd EB: auxiliary lane into the lane add
     assert_eq!(accel, expected);
-    assert!(n.on_ramps.iter().all(|r| r.demand_vph.len() == 16));
+    assert!(n.on_ramps.iter().all(|r| r.demand_vph.len() == 14));
+    assert_eq!(n.on_ramps[0].demand_vph[0], 270.0); // OR1 at 05:30
     assert_eq!(n.off_ramps[0].name, "FR1: Laguna Blvd/Bond Rd");
     assert_eq!(n.off_ramps[0].x_m, 1700.0);
-    assert_eq!(n.off_ramps[0].exit_fraction[0], 0.03);
-    assert!(n.off_ramps.iter().all(|r| r.exit_fraction.len() == 16));
+    assert_eq!(n.off_ramps[0].exit_fraction[0], 0.026); // FR1 at 05:30
+    assert!(n.off_ramps.iter().all(|r| r.exit_fraction.len() == 14));
 
     // Detectors: up/down around every ramp, end, and one per off-ramp.
     let exits: Vec<&str> = c
@@ -146,8 +150,8 @@ fn sr99_demand_scale_follows_the_penetration_unless_given() {
             .unwrap()
             .demand_scale
     };
-    // Engine scale = the calibrated base multiplier 1.13 × the run's scale.
-    let base = 1.13;
+    // Engine scale = the calibrated base multiplier 1.10 × the run's scale.
+    let base = 1.1;
     assert_eq!(at(0.4, None), base * 1.1);
     assert_eq!(at(1.0, None), base * 1.27);
     assert_eq!(at(0.5, None), base * demand_scales::default_at(0.5));
@@ -155,7 +159,7 @@ fn sr99_demand_scale_follows_the_penetration_unless_given() {
     // The base multiplier multiplies the scale.
     let c = from_toml(
         &SR99.replace(
-            "base_demand_multiplier = 1.13",
+            "base_demand_multiplier = 1.10",
             "base_demand_multiplier = 1.5",
         ),
         "t",
@@ -485,6 +489,86 @@ fn series_are_checked_value_by_value_and_by_length() {
         has(&p, "network.interval_s = 0: must be a finite number > 0"),
         "{p:?}"
     );
+}
+
+#[test]
+fn demand_offset_reads_every_series_later() {
+    let net = |sets: &[&str]| {
+        with_set(SMALL_CORRIDOR, sets)
+            .unwrap()
+            .road
+            .network
+            .unwrap()
+    };
+    // Whole intervals: the first ones are dropped and the last one holds past the end.
+    let n = net(&["network.demand_offset_s=1800"]);
+    assert_eq!(n.interval_s, 1800.0);
+    assert_eq!(n.mainline_vph, vec![3600.0]);
+    assert_eq!(n.on_ramps[0].demand_vph, vec![600.0]);
+    assert_eq!(n.on_ramps[1].demand_vph, vec![500.0]);
+    assert_eq!(n.off_ramps[0].exit_fraction, vec![0.15]);
+    assert_eq!(
+        (n.at(&n.mainline_vph, 0.0), n.at(&n.mainline_vph, 3000.0)),
+        (3600.0, 3600.0)
+    );
+    // Part of an interval: the series are refined to gcd(1800, 600) = 600 s and stay exact.
+    let n = net(&["network.demand_offset_s=600"]);
+    assert_eq!(n.interval_s, 600.0);
+    assert_eq!(n.mainline_vph, vec![3000.0, 3000.0, 3600.0, 3600.0, 3600.0]);
+    assert_eq!(
+        n.off_ramps[0].exit_fraction,
+        vec![0.1, 0.1, 0.15, 0.15, 0.15]
+    );
+    for t in [0.0, 599.0, 1199.0, 1200.0, 2500.0, 4000.0] {
+        let expect = if t + 600.0 < 1800.0 { 3000.0 } else { 3600.0 };
+        assert_eq!(n.at(&n.mainline_vph, t), expect, "t = {t}");
+    }
+    // 0 (the default) leaves the series as written.
+    let plain = net(&[]);
+    assert_eq!(net(&["network.demand_offset_s=0"]), plain);
+    assert_eq!(plain.mainline_vph, vec![3000.0, 3600.0]);
+}
+
+#[test]
+fn demand_offset_is_checked() {
+    let span = "(the span of the demand series: 2 intervals of network.interval_s = 1800 s)";
+    for (v, shown) in [
+        ("-900", "-900"),
+        ("3600", "3600"),
+        ("1e9", "1000000000"),
+        ("nan", "nan"),
+    ] {
+        let set = format!("network.demand_offset_s={v}");
+        let p = corridor_problems(&[set.as_str()]);
+        assert_eq!(
+            p,
+            vec![format!(
+                "network.demand_offset_s = {shown}: must be in [0, 3600) s {span}"
+            )]
+        );
+    }
+    let p = corridor_problems(&["network.demand_offset_s=0.5"]);
+    assert_eq!(
+        p,
+        vec![format!(
+            "network.demand_offset_s = 0.5: must be a whole number of seconds or a multiple of network.interval_s = 1800 s, in [0, 3600) s {span}"
+        )]
+    );
+    // A bad interval is reported once; the offset is then only checked for its sign.
+    let p = corridor_problems(&["network.interval_s=0", "network.demand_offset_s=-1"]);
+    assert!(
+        has(&p, "network.interval_s = 0: must be a finite number > 0"),
+        "{p:?}"
+    );
+    assert!(
+        has(
+            &p,
+            "network.demand_offset_s = -1: must be a finite number >= 0"
+        ),
+        "{p:?}"
+    );
+    // On a scenario without a network the key is unknown like every network key.
+    assert!(with_set(common::SMALL, &["network.demand_offset_s=900"]).is_err());
 }
 
 #[test]
