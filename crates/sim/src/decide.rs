@@ -325,24 +325,24 @@ impl Simulation {
         follower: bool,
     ) -> [Option<f64>; 2] {
         let lcd = &self.cfg.lane_change;
-        // On-ramp anticipation (spec 4.2): the current-lane speed seen in the two rightmost
-        // lanes upstream of a busy on-ramp.
-        let anticipation = if self.geom.plain {
-            1.0
-        } else {
-            self.anticipation_factor(s, v)
-        };
         // A platoon follower has no speed-gain motivation (w_CAV follower), but ahead of a busy
-        // on-ramp it still makes room, moving left with the leader's weight [D]: otherwise, at
-        // high penetration, the strings stay in the merge lane while the lanes beside them run
-        // empty. (Only to the left: the anticipation factor lowers the current lane's speed, so
-        // it would also make the lane nearer the ramp look better.)
+        // on-ramp (spec 4.2 "Anticipatory") it still makes room, moving left with the leader's
+        // weight [D]: otherwise, at high penetration, the strings stay in the merge lane while
+        // the lanes beside them run empty. (Only to the left: the anticipation factor lowers the
+        // current lane's speed, so it would also make the lane nearer the ramp look better.)
+        let mut anticipation = None;
         let (w_left, w_right) = if !v.is_cav() {
             (1.0, 1.0)
         } else if follower {
             let w = lcd.cav_weight_follower;
-            if lcd.follower_anticipates && anticipation > 1.0 {
-                (lcd.cav_weight_leader, w)
+            if lcd.follower_anticipates && !self.geom.plain {
+                let f = self.anticipation_factor(s, v);
+                anticipation = Some(f);
+                if f > 1.0 {
+                    (lcd.cav_weight_leader, w)
+                } else {
+                    (w, w)
+                }
             } else {
                 (w, w)
             }
@@ -369,7 +369,9 @@ impl Simulation {
         let mut v_cur = self
             .avg_speed_ahead(v.lane as usize, nb.idx as usize, v.x, v_des)
             .min(v_des);
-        v_cur /= anticipation;
+        if !self.geom.plain {
+            v_cur /= anticipation.unwrap_or_else(|| self.anticipation_factor(s, v));
+        }
         // v_ant ≤ v_des, so no side can beat the absolute gain gate: nothing to scan.
         if v_des - v_cur < v.lc.min_speed_gain_mps {
             return [None, None];
