@@ -51,6 +51,12 @@
 //! | – | `sensor_range_m` | 250 | m | spec 3.9 |
 //! | – | `time_gap_shares` | 0.6:0.57, 0.7:0.24, 0.9:0.07, 1.1:0.12 | s : share | Nowakowski, spec 3.5 |
 //! | – | `time_gap_ramp_per_s` | 0.06 | s/s | spec 3.5 transitions (15 s for 0.9 s) [D: on] |
+//! | – | `yield_while_automated` | true | – | spec 6.5 [D]: automation answers mandatory yield requests |
+//! | – | `yield_to_organizers` | false | – | [D]: … and requests of CAVs joining the PD lane |
+//!
+//! Yielding through the automation (spec 4.5 applied to an automated CAV, [D]):
+//! a = min(a_auto, max(a_virtual, b_c)), a_virtual = the driver's relaxed car-following
+//! acceleration toward the requester standing its relaxed jam gap further back.
 
 use crate::Leader;
 use serde::{Deserialize, Serialize};
@@ -91,6 +97,10 @@ pub struct CavParams {
     /// CACC links hold. Default true [D], against the spec's recommendation (open question
     /// 6.5): without it CAVs lower the capacity of merges (docs/model-choices.md).
     pub yield_while_automated: bool,
+    /// With `yield_while_automated`: an automated CAV also yields, the same way, to a CAV that
+    /// moves toward the PD lane for platoon organization (spec 4.7), i.e. it lets a joining CAV
+    /// in. Default false [D].
+    pub yield_to_organizers: bool,
 }
 
 impl Default for CavParams {
@@ -119,6 +129,7 @@ impl Default for CavParams {
             time_gap_shares: vec![(0.6, 0.57), (0.7, 0.24), (0.9, 0.07), (1.1, 0.12)],
             time_gap_ramp_per_s: 0.06,
             yield_while_automated: true,
+            yield_to_organizers: false,
         }
     }
 }

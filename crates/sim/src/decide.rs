@@ -279,6 +279,21 @@ impl Simulation {
         })
     }
 
+    /// Is `r` (in BLC) moving toward the PD lane for platoon organization (spec 4.7)? The
+    /// same test as in `desire`: a CAV whose organization is active and whose exit is not near
+    /// has no other non-mandatory desire.
+    fn organizes(&self, r: &Vehicle) -> bool {
+        matches!(
+            r.mode,
+            Mode::Blc {
+                side: Side::Left,
+                mandatory: false
+            }
+        ) && r.is_cav()
+            && self.organization_active(r)
+            && !self.exit_within(r, self.cfg.lane_change.anticipation_distance_m)
+    }
+
     /// Is the vehicle's off-ramp within `range` ahead?
     fn exit_within(&self, v: &Vehicle, range: f64) -> bool {
         v.exit != NO_EXIT && self.geom.off_ramps[v.exit as usize].x - v.x < range
@@ -576,10 +591,13 @@ impl Simulation {
     /// `mandatory_only` for the automation (spec 6.5 flag).
     fn agreed_request(&self, v: &Vehicle, nb: &Neighbours, mandatory_only: bool) -> Option<u32> {
         self.yield_request(v, nb).and_then(|(req, mandatory)| {
-            if mandatory_only && !mandatory {
+            let r = &self.vehicles[req as usize];
+            if mandatory_only
+                && !mandatory
+                && !(self.cfg.cav.yield_to_organizers && self.organizes(r))
+            {
                 return None;
             }
-            let r = &self.vehicles[req as usize];
             lcm::agrees_to_yield(&v.lc, mandatory, pair_uniform(self.cfg.seed, v.id, r.id))
                 .then_some(req)
         })

@@ -151,3 +151,35 @@ fn invalid_config_is_an_error_not_a_panic() {
         .unwrap()
         .contains("detectors[0].position_m"));
 }
+
+#[test]
+fn cavs_that_let_joiners_in_fill_the_pd_lane_faster() {
+    // `cav.yield_to_organizers` [D]: automated CAVs yield to a CAV that moves toward the PD
+    // lane, so more organizing CAVs get in: more lane changes and longer platoons (seeds 1-5 at
+    // 2,000 veh/h/lane, 50 % CAV: 0.53 → 0.68 lane changes per vehicle, L̄ 4.97 → 5.88) and, at
+    // this demand, a lower discharge (1,847 → 1,758 veh/h/lane). Off by default.
+    let mut cfg = Config::homogeneous(0.5, 2000.0, 3600.0, 1200.0, 1);
+    cfg.strategy = Strategy::Pd {
+        pd: PdConfig {
+            zone_start_m: 5000.0,
+            zone_end_m: 6000.0,
+            start_s: 1200.0,
+            end_s: 3600.0,
+        },
+    };
+    let off = run(&cfg, None).unwrap().summary;
+    cfg.cav.yield_to_organizers = true;
+    let on = run(&cfg, None).unwrap().summary;
+    eprintln!(
+        "LC/veh {:.3} -> {:.3}, L {:.2} -> {:.2}, Q {:.0} -> {:.0}",
+        off.lane_changes_per_vehicle,
+        on.lane_changes_per_vehicle,
+        off.avg_platoon_length,
+        on.avg_platoon_length,
+        off.discharge_flow_vphpl,
+        on.discharge_flow_vphpl
+    );
+    assert_eq!(on.collisions, 0);
+    assert!(on.lane_changes_per_vehicle > 1.1 * off.lane_changes_per_vehicle);
+    assert!(on.avg_platoon_length > off.avg_platoon_length);
+}
