@@ -78,7 +78,9 @@ impl Simulation {
             let n = lane.len();
             let xv = &mut self.lane_xv[l];
             xv.clear();
-            xv.resize(n, (0.0, 0.0));
+            // One more: a sentinel that is behind every position (the merge sweeps below stop
+            // on it without a length check).
+            xv.resize(n + 1, (f64::NEG_INFINITY, 0.0));
             let mut follower = NONE;
             let mut f_pred = crate::vehicle::NEVER;
             let mut f_cand = false;
@@ -146,7 +148,7 @@ impl Simulation {
             let lane = &self.lanes[l];
             let xs = &self.lane_xv[l];
             let empty: &[u32] = &[];
-            let no_xv: &[(f64, f64)] = &[];
+            let no_xv: &[(f64, f64)] = &[(f64::NEG_INFINITY, 0.0)];
             let (llane, lx) = if l + 1 < n_lanes {
                 (&self.lanes[l + 1][..], &self.lane_xv[l + 1][..])
             } else {
@@ -167,12 +169,8 @@ impl Simulation {
             let (mut adj_start, mut tg2_start) = (0usize, 0usize);
             for (k, (&s, &(x, _))) in lane.iter().zip(xs).enumerate() {
                 let si = s as usize;
-                while jl < llane.len() && lx[jl].0 > x {
-                    jl += 1;
-                }
-                while jr < rlane.len() && rx[jr].0 > x {
-                    jr += 1;
-                }
+                jl = sweep(lx, jl, x);
+                jr = sweep(rx, jr, x);
                 let nb = &mut self.nb[si];
                 nb.left_leader = if jl > 0 { llane[jl - 1] } else { NONE };
                 nb.left_follower = llane.get(jl).copied().unwrap_or(NONE);
@@ -228,6 +226,23 @@ impl Simulation {
             close_run(&mut self.vehicles, &lane[tg2_start..], true);
         }
     }
+}
+
+/// The merge-sweep cursor of another lane for position `x`: from `j`, the index of the first
+/// vehicle of `xv` (front first, ending in a sentinel at −∞) that is not strictly ahead of `x`.
+///
+/// Equal to `while xv[j].0 > x { j += 1 }`; the first two steps are taken without branching
+/// (a step that stops leaves `j` where the loop would have stopped, and so does every later
+/// one): the cursor usually moves by zero, one or two vehicles, at random, and a mispredicted
+/// loop exit cost more than the steps.
+#[inline]
+fn sweep(xv: &[(f64, f64)], mut j: usize, x: f64) -> usize {
+    j += usize::from(xv[j].0 > x);
+    j += usize::from(xv[j].0 > x);
+    while xv[j].0 > x {
+        j += 1;
+    }
+    j
 }
 
 /// A statistical platoon ends: every CAV in it records its size.
