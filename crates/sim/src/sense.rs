@@ -267,16 +267,35 @@ impl Simulation {
 /// The merge-sweep cursor of another lane for position `x`: from `j`, the index of the first
 /// vehicle of `xv` (front first, ending in a sentinel at −∞) that is not strictly ahead of `x`.
 ///
-/// Equal to `while xv[j].0 > x { j += 1 }`; the first two steps are taken without branching
+/// Equal to `while xv[j].0 > x { j += 1 }`. The first two steps are taken without branching
 /// (a step that stops leaves `j` where the loop would have stopped, and so does every later
 /// one): the cursor usually moves by zero, one or two vehicles, at random, and a mispredicted
-/// loop exit cost more than the steps.
+/// loop exit cost more than the steps. Longer runs (the other lane is denser here, or this
+/// lane holds only a few vehicles, as an acceleration lane does) are galloped over and then
+/// bisected: at the step start the lanes are sorted (descending x; `check_invariants` sorts
+/// them, and its finiteness check covers every vehicle but the first, which the two steps have
+/// passed by then), so "ahead of `x`" holds for a prefix of what is left.
 #[inline]
 fn sweep(xv: &[(f64, f64)], mut j: usize, x: f64) -> usize {
     j += usize::from(xv[j].0 > x);
     j += usize::from(xv[j].0 > x);
-    while xv[j].0 > x {
-        j += 1;
+    if xv[j].0 > x {
+        // Galloping: `lo` is ahead, `hi` is not (the sentinel is not).
+        let last = xv.len() - 1;
+        let (mut lo, mut step) = (j, 1);
+        let hi = loop {
+            let p = lo + step;
+            if p >= last {
+                break last;
+            }
+            if xv[p].0 > x {
+                lo = p;
+                step *= 2;
+            } else {
+                break p;
+            }
+        };
+        j = lo + 1 + xv[lo + 1..hi].partition_point(|p| p.0 > x);
     }
     j
 }
