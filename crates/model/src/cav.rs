@@ -333,6 +333,7 @@ pub fn cacc(
 /// v_safe = bτ_r + sqrt(b²τ_r² + v_l² − 2b(g − s_min)) (b < 0), the Krauss form SUMO uses: the
 /// largest speed from which, after τ_r, braking at b stops behind the leader braking at b.
 /// 0 if the radicand is negative; never negative.
+#[inline]
 pub fn safe_speed(p: &CavParams, gap_m: f64, v_leader: f64) -> f64 {
     let b = p.max_decel.min(-MIN_BRAKE_MPS2);
     let tau = p.reaction_s.max(0.0);
@@ -361,6 +362,7 @@ pub fn safety_gap(p: &CavParams, v: f64) -> f64 {
 /// v_new ≤ max(0, v_safe + min(2, max(0, g − s_min))) (spec 3.4 with the \[D\] tolerance below),
 /// which alone may brake harder than b, then v_new ≥ 0. When v > v_des the limits win, so v_new
 /// may stay above v_des for a few steps.
+#[inline]
 pub fn finalize(
     p: &CavParams,
     v: f64,
@@ -406,6 +408,7 @@ pub fn acc_equilibrium_gap(p: &CavParams, time_gap_s: f64, v: f64) -> f64 {
 
 /// Move the effective time gap `current` toward `target` by at most `p.time_gap_ramp_per_s·dt`
 /// (spec 3.5 transitions). A non-positive `current` (no previous setting) jumps to `target`.
+#[inline]
 pub fn ramp_time_gap(p: &CavParams, current: f64, target: f64, dt: f64) -> f64 {
     if current <= 0.0 || p.time_gap_ramp_per_s <= 0.0 {
         return target;

@@ -242,6 +242,7 @@ pub fn mandatory_desire(p: &LaneChangeParams, d_e_m: f64, v: f64, n: u32) -> f64
 /// v_ref = max(v_cur, `min_reference_speed_mps`); γ_d = min(1, max(0, (v_ant − v_ref)/v_ref))·η.
 /// The floor on v_ref keeps the relative gain finite in a jam; if the floor is configured
 /// to 0 and v_cur ≤ 0, any positive v_ant counts as the full gain 1.
+#[inline]
 pub fn discretionary_desire(p: &LaneChangeParams, v_ant: f64, v_cur: f64, side: Side) -> f64 {
     let eta = match side {
         Side::Left => 1.0,
