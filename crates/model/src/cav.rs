@@ -166,12 +166,14 @@ fn bound(x: f64, lo: f64, hi: f64) -> f64 {
 }
 
 /// Speed regulation (spec 3.2): k0 (v_des − v).
+#[inline]
 pub fn speed_regulation(p: &CavParams, v: f64, v_des: f64) -> f64 {
     p.speed_gain * (v_des - v)
 }
 
 /// ACC standstill margin d0(v) = max(s_min, min(75/v − 5, 2)) m (spec 3.3, Xiao 2018 margin
 /// floored at the seed's minimum space gap \[D\]); 2 m (then floored) at v ≤ 0.
+#[inline]
 pub fn acc_standstill_margin(p: &CavParams, v: f64) -> f64 {
     let xiao = if v > 0.0 {
         (75.0 / v - 5.0).min(2.0)
@@ -185,6 +187,7 @@ pub fn acc_standstill_margin(p: &CavParams, v: f64) -> f64 {
 /// spacing; `leader = None` (or beyond the sensor) means speed regulation. The 100/120 m band is
 /// on spacing (front to front); this function has no leader length, so it uses
 /// spacing = net gap + [`ASSUMED_LEADER_LENGTH_M`]. [`acc_with_leader_length`] takes the length.
+#[inline]
 pub fn acc(
     p: &CavParams,
     v: f64,
@@ -206,6 +209,7 @@ pub fn acc(
 
 /// [`acc`] with the leader's length, so that the 100/120 m hysteresis (spec 3.3) is applied to
 /// the true spacing = net gap + `leader_length_m`.
+#[inline]
 pub fn acc_with_leader_length(
     p: &CavParams,
     v: f64,
@@ -272,6 +276,7 @@ pub fn acc_with_leader_length(
 /// safe: at v = 0 a positive gap counts as a large tg, a gap ≤ 0 as a small one. tg > 2 s with
 /// e ≤ 1.66 m (only possible below about 2.3 m/s at t_C = 0.6 s) selects the CACC family \[D\]:
 /// the 1.66 m threshold exists to keep gap control close to a (nearly) stopped leader.
+#[inline]
 pub fn cacc(
     p: &CavParams,
     v: f64,

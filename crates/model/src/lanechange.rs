@@ -213,6 +213,7 @@ impl Default for LaneChangeParams {
 /// "far away in both distance and time" → 0, then "within E_min or T_min" → 1, otherwise the
 /// larger of the distance and time terms, clamped to [0, 1]. A negative `d_e_m` (the point
 /// has been passed) gives 1.
+#[inline]
 pub fn mandatory_desire(p: &LaneChangeParams, d_e_m: f64, v: f64, n: u32) -> f64 {
     if n == 0 {
         return 0.0;
@@ -378,6 +379,7 @@ pub fn accept_lag_gap(
 ///
 /// φ_x(t) = φ_x + (1 − φ_x) t / t_s for 0 ≤ t < t_s, exactly 1 (`Relax::NONE`) from t_s on.
 /// A negative (or NaN) `elapsed_s` counts as 0; t_s ≤ 0 means no relaxation at all.
+#[inline]
 pub fn relax_at(p: &LaneChangeParams, elapsed_s: f64) -> Relax {
     let t = elapsed_s.max(0.0);
     if t >= p.relax_time_s || p.relax_time_s.is_nan() {
@@ -395,6 +397,7 @@ pub fn relax_at(p: &LaneChangeParams, elapsed_s: f64) -> Relax {
 /// Does a driver with cooperativeness ζ agree to yield (spec 4.5)? `u` is the driver's uniform
 /// draw for this request; a discretionary request is granted with probability
 /// ζ · `discretionary_coop_factor`, a mandatory one with probability ζ.
+#[inline]
 pub fn agrees_to_yield(p: &LaneChangeParams, mandatory: bool, u: f64) -> bool {
     let zeta = if mandatory {
         p.cooperativeness
