@@ -53,28 +53,33 @@ pub enum Side {
 }
 
 /// One driver's lane-change parameters (already drawn).
+///
+/// In C order, those read in most steps first (the simulator keeps them in the cache lines it
+/// reads anyway: the engine's `Vehicle` layout), those of lane changes and mandatory desires
+/// after them.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C)]
 pub struct LaneChangeParams {
+    pub min_speed_gain_mps: f64,
+    pub min_reference_speed_mps: f64,
+    pub right_discount: f64,
+    pub threshold: f64,
+    pub min_interval_s: f64,
+    pub return_factor: f64,
+    pub relax_time_s: f64,
+    pub relax_jam: f64,
+    pub mandatory_weight: f64,
+    pub cooperativeness: f64,
+    pub relax_headway: f64,
+    pub relax_reaction: f64,
     pub mandatory_distance_m: f64,
     pub mandatory_time_s: f64,
     pub mandatory_min_distance_m: f64,
     pub mandatory_min_time_s: f64,
-    pub right_discount: f64,
-    pub mandatory_weight: f64,
-    pub threshold: f64,
+    pub discretionary_coop_factor: f64,
     pub sigma_forward: f64,
     pub sigma_backward: f64,
-    pub relax_headway: f64,
-    pub relax_jam: f64,
-    pub relax_reaction: f64,
-    pub relax_time_s: f64,
-    pub cooperativeness: f64,
-    pub discretionary_coop_factor: f64,
-    pub min_interval_s: f64,
-    pub return_factor: f64,
     pub slow_down_desire: f64,
-    pub min_reference_speed_mps: f64,
-    pub min_speed_gain_mps: f64,
 }
 
 /// Scenario-level lane-change parameters with per-driver distributions (spec 4.9).
