@@ -181,12 +181,14 @@ fn bound(x: f64, lo: f64, hi: f64) -> f64 {
 }
 
 /// Speed regulation (spec 3.2): k0 (v_des − v).
+#[inline]
 pub fn speed_regulation(p: &CavParams, v: f64, v_des: f64) -> f64 {
     p.speed_gain * (v_des - v)
 }
 
 /// ACC standstill margin d0(v) = max(s_min, min(75/v − 5, 2)) m (spec 3.3, Xiao 2018 margin
 /// floored at the seed's minimum space gap \[D\]); 2 m (then floored) at v ≤ 0.
+#[inline]
 pub fn acc_standstill_margin(p: &CavParams, v: f64) -> f64 {
     let xiao = if v > 0.0 {
         (75.0 / v - 5.0).min(2.0)
@@ -200,6 +202,7 @@ pub fn acc_standstill_margin(p: &CavParams, v: f64) -> f64 {
 /// spacing; `leader = None` (or beyond the sensor) means speed regulation. The 100/120 m band is
 /// on spacing (front to front); this function has no leader length, so it uses
 /// spacing = net gap + [`ASSUMED_LEADER_LENGTH_M`]. [`acc_with_leader_length`] takes the length.
+#[inline]
 pub fn acc(
     p: &CavParams,
     v: f64,
@@ -221,6 +224,7 @@ pub fn acc(
 
 /// [`acc`] with the leader's length, so that the 100/120 m hysteresis (spec 3.3) is applied to
 /// the true spacing = net gap + `leader_length_m`.
+#[inline]
 pub fn acc_with_leader_length(
     p: &CavParams,
     v: f64,
@@ -287,6 +291,7 @@ pub fn acc_with_leader_length(
 /// safe: at v = 0 a positive gap counts as a large tg, a gap ≤ 0 as a small one. tg > 2 s with
 /// e ≤ 1.66 m (only possible below about 2.3 m/s at t_C = 0.6 s) selects the CACC family \[D\]:
 /// the 1.66 m threshold exists to keep gap control close to a (nearly) stopped leader.
+#[inline]
 pub fn cacc(
     p: &CavParams,
     v: f64,
@@ -348,6 +353,7 @@ pub fn cacc(
 /// v_safe = bτ_r + sqrt(b²τ_r² + v_l² − 2b(g − s_min)) (b < 0), the Krauss form SUMO uses: the
 /// largest speed from which, after τ_r, braking at b stops behind the leader braking at b.
 /// 0 if the radicand is negative; never negative.
+#[inline]
 pub fn safe_speed(p: &CavParams, gap_m: f64, v_leader: f64) -> f64 {
     let b = p.max_decel.min(-MIN_BRAKE_MPS2);
     let tau = p.reaction_s.max(0.0);
@@ -376,6 +382,7 @@ pub fn safety_gap(p: &CavParams, v: f64) -> f64 {
 /// v_new ≤ max(0, v_safe + min(2, max(0, g − s_min))) (spec 3.4 with the \[D\] tolerance below),
 /// which alone may brake harder than b, then v_new ≥ 0. When v > v_des the limits win, so v_new
 /// may stay above v_des for a few steps.
+#[inline]
 pub fn finalize(
     p: &CavParams,
     v: f64,
@@ -421,6 +428,7 @@ pub fn acc_equilibrium_gap(p: &CavParams, time_gap_s: f64, v: f64) -> f64 {
 
 /// Move the effective time gap `current` toward `target` by at most `p.time_gap_ramp_per_s·dt`
 /// (spec 3.5 transitions). A non-positive `current` (no previous setting) jumps to `target`.
+#[inline]
 pub fn ramp_time_gap(p: &CavParams, current: f64, target: f64, dt: f64) -> f64 {
     if current <= 0.0 || p.time_gap_ramp_per_s <= 0.0 {
         return target;

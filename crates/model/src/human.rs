@@ -203,6 +203,7 @@ fn bound(x: f64, lo: f64, hi: f64) -> f64 {
 }
 
 /// Newell term a_N (spec 2.1), with relaxed τ and d_jam, clamped to [b_f, a_M].
+#[inline]
 pub fn newell_accel(p: &HumanParams, v: f64, gap_m: f64, r: Relax) -> f64 {
     let (tau, jam) = newell_params(p, r);
     // spec 2.1: v_N = (s − L − d_jam)/τ with s − L = g (net gap); a_N = (v_N − v)/(τ/2).
@@ -214,6 +215,7 @@ pub fn newell_accel(p: &HumanParams, v: f64, gap_m: f64, r: Relax) -> f64 {
 /// IDM free-road term a_F (spec 2.2) toward desired speed `v_des` (m/s); when v > v_des the
 /// result is bounded below by b_c (shed excess speed gently). `v_des` may differ from
 /// `p.desired_speed` (lane caps, spec 2.7).
+#[inline]
 pub fn free_accel(p: &HumanParams, v: f64, v_des: f64) -> f64 {
     let v = v.max(0.0);
     if v_des <= 0.0 {
@@ -264,6 +266,7 @@ fn pow_exponent(x: f64, delta: f64) -> f64 {
 
 /// Gipps safe-distance term a_G (spec 2.3), Ciuffo form, relaxed τ_r and d_jam; capped above
 /// by a_M, not clamped below (emergency braking may exceed b_f).
+#[inline]
 pub fn gipps_accel(p: &HumanParams, v: f64, leader: Leader, r: Relax) -> f64 {
     let g = gipps_params(p, r);
     let v_g = gipps_speed(&g, v, leader.gap_m, leader.v_mps.max(0.0));
@@ -272,6 +275,7 @@ pub fn gipps_accel(p: &HumanParams, v: f64, leader: Leader, r: Relax) -> f64 {
 }
 
 /// Target acceleration a* = min(a_F, a_N, a_G) (spec 2.4); a_F alone without a leader.
+#[inline]
 pub fn target_accel(p: &HumanParams, v: f64, v_des: f64, leader: Option<Leader>, r: Relax) -> f64 {
     let a_free = free_accel(p, v, v_des);
     match leader {
@@ -283,10 +287,14 @@ pub fn target_accel(p: &HumanParams, v: f64, v_des: f64, leader: Option<Leader>,
 }
 
 /// Acceleration smoothing (spec 2.4): a_prev + (a_target − a_prev)/ω.
+#[inline]
 pub fn smooth_accel(a_prev: f64, a_target: f64, smoothing: f64) -> f64 {
     // ω ≥ 1 (spec 2.4); anything smaller (or NaN) is treated as ω = 1 (no smoothing).
     let omega = smoothing.max(1.0);
-    a_prev + (a_target - a_prev) / omega
+    let d = a_target - a_prev;
+    // ω = 2 (the default): halving is exact, so d · 0.5 is bit for bit d / 2, without the
+    // division's latency.
+    a_prev + if omega == 2.0 { d * 0.5 } else { d / omega }
 }
 
 /// Steady-state (equilibrium) net gap at speed v (leader at the same speed): the smallest gap g

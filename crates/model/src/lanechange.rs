@@ -54,28 +54,33 @@ pub enum Side {
 }
 
 /// One driver's lane-change parameters (already drawn).
+///
+/// In C order, those read in most steps first (the simulator keeps them in the cache lines it
+/// reads anyway: the engine's `Vehicle` layout), those of lane changes and mandatory desires
+/// after them.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C)]
 pub struct LaneChangeParams {
+    pub min_speed_gain_mps: f64,
+    pub min_reference_speed_mps: f64,
+    pub right_discount: f64,
+    pub threshold: f64,
+    pub min_interval_s: f64,
+    pub return_factor: f64,
+    pub relax_time_s: f64,
+    pub relax_jam: f64,
+    pub mandatory_weight: f64,
+    pub cooperativeness: f64,
+    pub relax_headway: f64,
+    pub relax_reaction: f64,
     pub mandatory_distance_m: f64,
     pub mandatory_time_s: f64,
     pub mandatory_min_distance_m: f64,
     pub mandatory_min_time_s: f64,
-    pub right_discount: f64,
-    pub mandatory_weight: f64,
-    pub threshold: f64,
+    pub discretionary_coop_factor: f64,
     pub sigma_forward: f64,
     pub sigma_backward: f64,
-    pub relax_headway: f64,
-    pub relax_jam: f64,
-    pub relax_reaction: f64,
-    pub relax_time_s: f64,
-    pub cooperativeness: f64,
-    pub discretionary_coop_factor: f64,
-    pub min_interval_s: f64,
-    pub return_factor: f64,
     pub slow_down_desire: f64,
-    pub min_reference_speed_mps: f64,
-    pub min_speed_gain_mps: f64,
 }
 
 /// Scenario-level lane-change parameters with per-driver distributions (spec 4.9).
@@ -219,6 +224,7 @@ impl Default for LaneChangeParams {
 /// "far away in both distance and time" → 0, then "within E_min or T_min" → 1, otherwise the
 /// larger of the distance and time terms, clamped to [0, 1]. A negative `d_e_m` (the point
 /// has been passed) gives 1.
+#[inline]
 pub fn mandatory_desire(p: &LaneChangeParams, d_e_m: f64, v: f64, n: u32) -> f64 {
     if n == 0 {
         return 0.0;
@@ -248,6 +254,7 @@ pub fn mandatory_desire(p: &LaneChangeParams, d_e_m: f64, v: f64, n: u32) -> f64
 /// v_ref = max(v_cur, `min_reference_speed_mps`); γ_d = min(1, max(0, (v_ant − v_ref)/v_ref))·η.
 /// The floor on v_ref keeps the relative gain finite in a jam; if the floor is configured
 /// to 0 and v_cur ≤ 0, any positive v_ant counts as the full gain 1.
+#[inline]
 pub fn discretionary_desire(p: &LaneChangeParams, v_ant: f64, v_cur: f64, side: Side) -> f64 {
     let eta = match side {
         Side::Left => 1.0,
@@ -383,6 +390,7 @@ pub fn accept_lag_gap(
 ///
 /// φ_x(t) = φ_x + (1 − φ_x) t / t_s for 0 ≤ t < t_s, exactly 1 (`Relax::NONE`) from t_s on.
 /// A negative (or NaN) `elapsed_s` counts as 0; t_s ≤ 0 means no relaxation at all.
+#[inline]
 pub fn relax_at(p: &LaneChangeParams, elapsed_s: f64) -> Relax {
     let t = elapsed_s.max(0.0);
     if t >= p.relax_time_s || p.relax_time_s.is_nan() {
@@ -400,6 +408,7 @@ pub fn relax_at(p: &LaneChangeParams, elapsed_s: f64) -> Relax {
 /// Does a driver with cooperativeness ζ agree to yield (spec 4.5)? `u` is the driver's uniform
 /// draw for this request; a discretionary request is granted with probability
 /// ζ · `discretionary_coop_factor`, a mandatory one with probability ζ.
+#[inline]
 pub fn agrees_to_yield(p: &LaneChangeParams, mandatory: bool, u: f64) -> bool {
     let zeta = if mandatory {
         p.cooperativeness

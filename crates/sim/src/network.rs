@@ -117,6 +117,9 @@ impl Geometry {
             segs,
             k: segs.len(),
             disjoint: segs.windows(2).all(|w| w[0].to <= w[1].from),
+            lo: f64::INFINITY,
+            hi: f64::NEG_INFINITY,
+            hit: None,
         }
     }
 
@@ -230,20 +233,47 @@ pub struct SegWalk<'a> {
     /// Segments at index ≥ `k` start after the last position looked up.
     k: usize,
     disjoint: bool,
+    /// The answer `hit` holds for every x in [lo, hi) (empty until the first lookup): most
+    /// lookups along a lane list fall in the segment (or gap) of the previous one.
+    lo: f64,
+    hi: f64,
+    hit: Option<&'a Seg>,
 }
 
-impl SegWalk<'_> {
+impl<'a> SegWalk<'a> {
     /// The segment that contains `x`.
     #[inline]
-    pub fn at(&mut self, x: f64) -> Option<&Seg> {
+    pub fn at(&mut self, x: f64) -> Option<&'a Seg> {
+        // (False for a NaN x and while the interval is empty.)
+        if x >= self.lo && x < self.hi {
+            return self.hit;
+        }
+        self.lookup(x)
+    }
+
+    fn lookup(&mut self, x: f64) -> Option<&'a Seg> {
         if !self.disjoint {
             return self.segs.iter().find(|s| s.contains(x));
         }
         let segs = self.segs;
-        self.k = cursor_down(self.k, segs.len(), |i| segs[i].from <= x);
+        let k = cursor_down(self.k, segs.len(), |i| segs[i].from <= x);
+        self.k = k;
         // Sorted and disjoint: only the last segment starting at or before x can contain it.
-        let s = self.segs.get(self.k.checked_sub(1)?)?;
-        s.contains(x).then_some(s)
+        // The answer is the same for every x in that segment, or, if x is past its end, in
+        // the gap up to the next segment's start (then no segment starts in the gap and none
+        // before it reaches into it).
+        let (hit, lo, hi) = match k.checked_sub(1).map(|i| &segs[i]) {
+            Some(s) if s.contains(x) => (Some(s), s.from, s.to),
+            prev => (
+                None,
+                prev.map_or(f64::NEG_INFINITY, |s| s.to.max(s.from)),
+                segs.get(k).map_or(f64::INFINITY, |s| s.from),
+            ),
+        };
+        self.hit = hit;
+        self.lo = lo;
+        self.hi = hi;
+        hit
     }
 }
 
@@ -548,6 +578,10 @@ mod tests {
             for &x in xs.iter().rev() {
                 k = g.ramps_upto_from(k, x);
                 assert_eq!(k, g.ramps_upto(x), "x = {x}");
+            }
+            let mut up = g.walk(lane);
+            for &x in &xs {
+                assert_eq!(up.at(x), g.seg(lane as u32, x), "lane {lane}, x = {x} (up)");
             }
             // Any order (a jump up restarts the walk).
             let mut mixed = g.walk(lane);

@@ -73,12 +73,30 @@ impl Simulation {
         // Pass A, per lane back to front: (x, v) copy, own-lane neighbours, CAV ahead, the
         // candidate CACC link to the leader (`linked` holds it until pass B) and the size of
         // the sub-string each vehicle leads under the previous memberships.
-        for l in 0..n_lanes {
-            let lane = &self.lanes[l];
+        // Local slices: the loop reads and writes these arrays once per vehicle.
+        let Simulation {
+            lanes,
+            lane_xv,
+            vehicles,
+            nb,
+            cav_ahead,
+            linked,
+            sub_size,
+            ..
+        } = self;
+        let vehicles = &vehicles[..];
+        let (nb, cav_ahead, linked, sub_size) = (
+            &mut nb[..],
+            &mut cav_ahead[..],
+            &mut linked[..],
+            &mut sub_size[..],
+        );
+        for (lane, xv) in lanes.iter().zip(lane_xv.iter_mut()) {
             let n = lane.len();
-            let xv = &mut self.lane_xv[l];
             xv.clear();
-            xv.resize(n, (0.0, 0.0));
+            // One more: a sentinel that is behind every position (the merge sweeps below stop
+            // on it without a length check).
+            xv.resize(n + 1, (f64::NEG_INFINITY, 0.0));
             let mut follower = NONE;
             let mut f_pred = crate::vehicle::NEVER;
             let mut f_cand = false;
@@ -86,28 +104,26 @@ impl Simulation {
             for k in (0..n).rev() {
                 let s = lane[k];
                 let ld = if k > 0 { lane[k - 1] } else { NONE };
-                let v = &self.vehicles[s as usize];
+                let v = &vehicles[s as usize];
                 xv[k] = (v.x, v.v);
-                let ahead = k > 0 && {
-                    let lv = &self.vehicles[ld as usize];
-                    lv.is_cav() && lv.rear() - v.x <= range
-                };
+                let lv = (k > 0).then(|| &vehicles[ld as usize]);
+                let ahead = lv.is_some_and(|lv| lv.is_cav() && lv.rear() - v.x <= range);
                 let cand = ahead
                     && v.automated()
-                    && self.vehicles[ld as usize].rear() - v.x <= t_far * v.v + slack;
+                    && lv.is_some_and(|lv| lv.rear() - v.x <= t_far * v.v + slack);
                 let size = if f_cand && f_pred == v.id {
                     1 + f_size
                 } else {
                     1
                 };
                 let si = s as usize;
-                let nb = &mut self.nb[si];
+                let nb = &mut nb[si];
                 nb.idx = k as u32;
                 nb.leader = ld;
                 nb.follower = follower;
-                self.cav_ahead[si] = ahead;
-                self.linked[si] = cand;
-                self.sub_size[si] = size;
+                cav_ahead[si] = ahead;
+                linked[si] = cand;
+                sub_size[si] = size;
                 follower = s;
                 f_pred = v.string_pred;
                 f_cand = cand;
@@ -140,45 +156,62 @@ impl Simulation {
     /// platoons of at most `max`.
     fn platoons(&mut self) {
         let max = self.cfg.cav.max_platoon.max(1);
-        let n_lanes = self.lanes.len();
-        let plain = self.geom.plain;
+        let Simulation {
+            lanes,
+            lane_xv,
+            vehicles,
+            nb,
+            here,
+            linked,
+            platoon_pos,
+            sub_size,
+            cav_ahead,
+            geom,
+            ..
+        } = self;
+        let n_lanes = lanes.len();
+        let plain = geom.plain;
+        let vehicles = &mut vehicles[..];
+        let (nb, here, linked, platoon_pos) = (
+            &mut nb[..],
+            &mut here[..],
+            &mut linked[..],
+            &mut platoon_pos[..],
+        );
+        let (sub_size, cav_ahead) = (&sub_size[..], &cav_ahead[..]);
         for l in 0..n_lanes {
-            let lane = &self.lanes[l];
-            let xs = &self.lane_xv[l];
+            let lane = &lanes[l];
+            let xs = &lane_xv[l];
             let empty: &[u32] = &[];
-            let no_xv: &[(f64, f64)] = &[];
+            let no_xv: &[(f64, f64)] = &[(f64::NEG_INFINITY, 0.0)];
             let (llane, lx) = if l + 1 < n_lanes {
-                (&self.lanes[l + 1][..], &self.lane_xv[l + 1][..])
+                (&lanes[l + 1][..], &lane_xv[l + 1][..])
             } else {
                 (empty, no_xv)
             };
             let (rlane, rx) = if l > 0 {
-                (&self.lanes[l - 1][..], &self.lane_xv[l - 1][..])
+                (&lanes[l - 1][..], &lane_xv[l - 1][..])
             } else {
                 (empty, no_xv)
             };
             // Merge-sweep cursors: the first vehicle of the other lane that is not strictly
             // ahead.
             let (mut jl, mut jr) = (0usize, 0usize);
-            let mut own = self.geom.walk(l);
-            let mut left = self.geom.walk(l + 1);
-            let mut right = self.geom.walk(l.wrapping_sub(1));
-            let mut ramps = self.geom.ramps_by_x.len();
+            let mut own = geom.walk(l);
+            let mut left = geom.walk(l + 1);
+            let mut right = geom.walk(l.wrapping_sub(1));
+            let mut ramps = geom.ramps_by_x.len();
             let (mut adj_start, mut tg2_start) = (0usize, 0usize);
             for (k, (&s, &(x, _))) in lane.iter().zip(xs).enumerate() {
                 let si = s as usize;
-                while jl < llane.len() && lx[jl].0 > x {
-                    jl += 1;
-                }
-                while jr < rlane.len() && rx[jr].0 > x {
-                    jr += 1;
-                }
-                let nb = &mut self.nb[si];
+                jl = sweep(lx, jl, x);
+                jr = sweep(rx, jr, x);
+                let nb = &mut nb[si];
                 nb.left_leader = if jl > 0 { llane[jl - 1] } else { NONE };
                 nb.left_follower = llane.get(jl).copied().unwrap_or(NONE);
                 nb.right_leader = if jr > 0 { rlane[jr - 1] } else { NONE };
                 nb.right_follower = rlane.get(jr).copied().unwrap_or(NONE);
-                self.here[si] = if plain {
+                here[si] = if plain {
                     Here {
                         wall: None,
                         accel: false,
@@ -188,7 +221,7 @@ impl Simulation {
                     }
                 } else {
                     let seg = own.at(x);
-                    ramps = self.geom.ramps_upto_from(ramps, x);
+                    ramps = geom.ramps_upto_from(ramps, x);
                     Here {
                         wall: seg.filter(|g| g.wall).map(|g| g.to),
                         accel: seg.is_some_and(|g| g.accel),
@@ -200,34 +233,71 @@ impl Simulation {
                 // Membership and position (`linked` holds the candidate link from pass A).
                 let mut pred_id = crate::vehicle::NEVER;
                 let mut pos = 1;
-                if self.linked[si] {
+                if linked[si] {
                     let ld = lane[k - 1] as usize;
-                    let lpos = self.platoon_pos[ld];
-                    let lid = self.vehicles[ld].id;
-                    let member = self.vehicles[si].string_pred == lid;
-                    if (member && lpos < max) || (!member && lpos + self.sub_size[si] <= max) {
+                    let lpos = platoon_pos[ld];
+                    let lid = vehicles[ld].id;
+                    let member = vehicles[si].string_pred == lid;
+                    if (member && lpos < max) || (!member && lpos + sub_size[si] <= max) {
                         pred_id = lid;
                         pos = lpos + 1;
                     }
                 }
-                self.platoon_pos[si] = pos;
-                let linked = pred_id != crate::vehicle::NEVER;
-                self.linked[si] = linked;
-                let adjacent = self.cav_ahead[si] && self.vehicles[si].automated();
-                self.vehicles[si].string_pred = pred_id;
+                platoon_pos[si] = pos;
+                let is_linked = pred_id != crate::vehicle::NEVER;
+                linked[si] = is_linked;
+                let v = &mut vehicles[si];
+                let adjacent = cav_ahead[si] && v.automated();
+                v.string_pred = pred_id;
                 if !adjacent || k - adj_start >= max as usize {
-                    close_run(&mut self.vehicles, &lane[adj_start..k], false);
+                    close_run(vehicles, &lane[adj_start..k], false);
                     adj_start = k;
                 }
-                if !linked {
-                    close_run(&mut self.vehicles, &lane[tg2_start..k], true);
+                if !is_linked {
+                    close_run(vehicles, &lane[tg2_start..k], true);
                     tg2_start = k;
                 }
             }
-            close_run(&mut self.vehicles, &lane[adj_start..], false);
-            close_run(&mut self.vehicles, &lane[tg2_start..], true);
+            close_run(vehicles, &lane[adj_start..], false);
+            close_run(vehicles, &lane[tg2_start..], true);
         }
     }
+}
+
+/// The merge-sweep cursor of another lane for position `x`: from `j`, the index of the first
+/// vehicle of `xv` (front first, ending in a sentinel at −∞) that is not strictly ahead of `x`.
+///
+/// Equal to `while xv[j].0 > x { j += 1 }`. The first two steps are taken without branching
+/// (a step that stops leaves `j` where the loop would have stopped, and so does every later
+/// one): the cursor usually moves by zero, one or two vehicles, at random, and a mispredicted
+/// loop exit cost more than the steps. Longer runs (the other lane is denser here, or this
+/// lane holds only a few vehicles, as an acceleration lane does) are galloped over and then
+/// bisected: at the step start the lanes are sorted (descending x; `check_invariants` sorts
+/// them, and its finiteness check covers every vehicle but the first, which the two steps have
+/// passed by then), so "ahead of `x`" holds for a prefix of what is left.
+#[inline]
+fn sweep(xv: &[(f64, f64)], mut j: usize, x: f64) -> usize {
+    j += usize::from(xv[j].0 > x);
+    j += usize::from(xv[j].0 > x);
+    if xv[j].0 > x {
+        // Galloping: `lo` is ahead, `hi` is not (the sentinel is not).
+        let last = xv.len() - 1;
+        let (mut lo, mut step) = (j, 1);
+        let hi = loop {
+            let p = lo + step;
+            if p >= last {
+                break last;
+            }
+            if xv[p].0 > x {
+                lo = p;
+                step *= 2;
+            } else {
+                break p;
+            }
+        };
+        j = lo + 1 + xv[lo + 1..hi].partition_point(|p| p.0 > x);
+    }
+    j
 }
 
 /// A statistical platoon ends: every CAV in it records its size.

@@ -51,7 +51,8 @@ pub struct Simulation {
     pub(crate) sub_size: Vec<u32>,
     /// Geometry at each vehicle's step-start position (sense phase).
     pub(crate) here: Vec<crate::sense::Here>,
-    /// Per lane, parallel to `lanes`: (x, v) of each vehicle at the step start (sense phase).
+    /// Per lane, parallel to `lanes`: (x, v) of each vehicle at the step start (sense phase),
+    /// then a sentinel (−∞, 0).
     pub(crate) lane_xv: Vec<Vec<(f64, f64)>>,
     pub(crate) decisions: Vec<Decision>,
     pub(crate) changed_this_step: Vec<u64>,

@@ -42,7 +42,8 @@ pub const NO_EXIT: u32 = u32::MAX;
 ///
 /// Laid out by hand (`repr(C)`, cache-line aligned) for the step's sweeps over the lanes: the
 /// state every phase reads first (64 bytes), then the driving state, then the car-following
-/// parameters (body length first: `rear()`), then the rest.
+/// parameters (body length first: `rear()`), then the rest (the lane-change parameters begin
+/// with those read in most steps: `LaneChangeParams` is laid out for this).
 #[derive(Clone, Debug)]
 #[repr(C, align(64))]
 pub struct Vehicle {
