@@ -385,7 +385,11 @@ impl Simulation {
             .avg_speed_ahead(v.lane as usize, nb.idx as usize, v.x, v_des)
             .min(v_des);
         if !self.geom.plain {
-            v_cur /= anticipation.unwrap_or_else(|| self.anticipation_factor(s, v));
+            // Mostly 1 (no on-ramp ahead): dividing by 1 changes nothing.
+            let f = anticipation.unwrap_or_else(|| self.anticipation_factor(s, v));
+            if f != 1.0 {
+                v_cur /= f;
+            }
         }
         // v_ant ≤ v_des, so no side can beat the absolute gain gate: nothing to scan.
         if v_des - v_cur < v.lc.min_speed_gain_mps {
