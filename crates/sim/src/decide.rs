@@ -231,10 +231,7 @@ impl Simulation {
         let follower = self.linked[s as usize] || (is_cav && self.cav_ahead[s as usize]);
         // Platoon organization yields to a mandatory need and does not start within the
         // anticipation range of the CAV's own exit [D].
-        let organize = mandatory.is_none()
-            && is_cav
-            && self.organization_active(v)
-            && !self.exit_within(v, lcd.anticipation_distance_m);
+        let organize = mandatory.is_none() && self.may_organize(v);
         let (side, gamma) = if organize {
             let pd_lane = self.geom.leftmost_through(v.x)?;
             if v.lane >= pd_lane {
@@ -279,19 +276,12 @@ impl Simulation {
         })
     }
 
-    /// Is `r` (in BLC) moving toward the PD lane for platoon organization (spec 4.7)? The
-    /// same test as in `desire`: a CAV whose organization is active and whose exit is not near
-    /// has no other non-mandatory desire.
-    fn organizes(&self, r: &Vehicle) -> bool {
-        matches!(
-            r.mode,
-            Mode::Blc {
-                side: Side::Left,
-                mandatory: false
-            }
-        ) && r.is_cav()
-            && self.organization_active(r)
-            && !self.exit_within(r, self.cfg.lane_change.anticipation_distance_m)
+    /// A CAV whose platoon organization is active and whose exit is not near: without a
+    /// mandatory need, its desire is the move toward the PD lane (spec 4.7).
+    fn may_organize(&self, v: &Vehicle) -> bool {
+        v.is_cav()
+            && self.organization_active(v)
+            && !self.exit_within(v, self.cfg.lane_change.anticipation_distance_m)
     }
 
     /// Is the vehicle's off-ramp within `range` ahead?
@@ -591,15 +581,22 @@ impl Simulation {
         }
     }
 
-    /// The requester (slot) of a yield request the driver agrees to, if any (spec 4.5);
-    /// `mandatory_only` for the automation (spec 6.5 flag).
-    fn agreed_request(&self, v: &Vehicle, nb: &Neighbours, mandatory_only: bool) -> Option<u32> {
+    /// The requester (slot) of a yield request the driver agrees to, if any (spec 4.5). The
+    /// automation (`automated`, spec 6.5 flag) answers only mandatory requests, and, with
+    /// `cav.yield_to_organizers`, a CAV moving left toward the PD lane.
+    fn agreed_request(&self, v: &Vehicle, nb: &Neighbours, automated: bool) -> Option<u32> {
         self.yield_request(v, nb).and_then(|(req, mandatory)| {
             let r = &self.vehicles[req as usize];
-            if mandatory_only
-                && !mandatory
-                && !(self.cfg.cav.yield_to_organizers && self.organizes(r))
-            {
+            let joining = || {
+                self.cfg.cav.yield_to_organizers
+                    && r.mode
+                        == (Mode::Blc {
+                            side: Side::Left,
+                            mandatory: false,
+                        })
+                    && self.may_organize(r)
+            };
+            if automated && !mandatory && !joining() {
                 return None;
             }
             lcm::agrees_to_yield(&v.lc, mandatory, pair_uniform(self.cfg.seed, v.id, r.id))
