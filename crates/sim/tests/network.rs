@@ -257,6 +257,18 @@ fn flow_after(out: &Output, detector: &str, from_s: f64) -> f64 {
     n as f64 * 3600.0 / s
 }
 
+/// The toy corridor with ramp A alone loaded (1,200 veh/h; B and C empty), `mainline_vph` on
+/// the mainline, seed 11, 2,400 s.
+fn merge_only(penetration: f64, mainline_vph: f64) -> Config {
+    let mut cfg = toy(penetration, vec![mainline_vph], 11);
+    cfg.duration_s = 2400.0;
+    let net = cfg.road.network.as_mut().unwrap();
+    net.on_ramps[0].demand_vph = vec![1200.0];
+    net.on_ramps[1].demand_vph = vec![0.0];
+    net.on_ramps[2].demand_vph = vec![0.0];
+    cfg
+}
+
 #[test]
 fn an_overloaded_merge_keeps_discharging_from_its_queue() {
     // 3 × 2,000 veh/h on the mainline and 1,200 veh/h on ramp A exceed what the merge can
@@ -264,13 +276,7 @@ fn an_overloaded_merge_keeps_discharging_from_its_queue() {
     // at the lane end beside standing through traffic must still get in (spec 4.5: a driver
     // does not yield to a requester it can no longer let in, it drives on and the next one
     // yields), so the merge discharges at a queue-discharge rate, not a trickle.
-    let mut cfg = toy(0.0, vec![6000.0], 11);
-    cfg.duration_s = 2400.0;
-    let net = cfg.road.network.as_mut().unwrap();
-    net.on_ramps[0].demand_vph = vec![1200.0];
-    net.on_ramps[1].demand_vph = vec![0.0];
-    net.on_ramps[2].demand_vph = vec![0.0];
-    let out = run(&cfg, None).unwrap();
+    let out = run(&merge_only(0.0, 6000.0), None).unwrap();
     let upstream = flow_after(&out, "A-up", 1200.0);
     let downstream = flow_after(&out, "F-up", 1200.0);
     eprintln!(
@@ -291,13 +297,8 @@ fn an_overloaded_merge_keeps_discharging_from_its_queue() {
 /// Discharge downstream of an overloaded merge (3 × 2,333 veh/h on the mainline, 1,200 veh/h
 /// on ramp A; after the first 1,200 s of 2,400 s), see `an_overloaded_merge_…`.
 fn merge_discharge(penetration: f64, automated_yield: bool) -> f64 {
-    let mut cfg = toy(penetration, vec![7000.0], 11);
-    cfg.duration_s = 2400.0;
+    let mut cfg = merge_only(penetration, 7000.0);
     cfg.cav.yield_while_automated = automated_yield;
-    let net = cfg.road.network.as_mut().unwrap();
-    net.on_ramps[0].demand_vph = vec![1200.0];
-    net.on_ramps[1].demand_vph = vec![0.0];
-    net.on_ramps[2].demand_vph = vec![0.0];
     let out = run(&cfg, None).unwrap();
     assert_eq!(out.summary.collisions, 0);
     flow_after(&out, "F-up", 1200.0)

@@ -62,3 +62,13 @@ pub fn structure(r: Result<Config, ScenarioError>) -> (String, String) {
         Ok(_) => panic!("expected a structure error, got a valid config"),
     }
 }
+
+/// A lane stretch of a network.
+pub fn ext(lane: u32, from_m: f64, to_m: f64) -> platoonsim_sim::config::LaneExtent {
+    platoonsim_sim::config::LaneExtent { lane, from_m, to_m }
+}
+
+/// The detector names of a configuration, in order.
+pub fn names(c: &Config) -> Vec<&str> {
+    c.detectors.iter().map(|d| d.name.as_str()).collect()
+}
