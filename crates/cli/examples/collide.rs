@@ -1,19 +1,12 @@
 //! Diagnostic: run a scenario and print every overlapping same-lane pair in the steps where
 //! the collision count rises. `collide SCENARIO T_END [KEY=VALUE ...]`
-use platoonsim_scenario::Overrides;
-use platoonsim_sim::Simulation;
+mod common;
 
 fn main() {
     let a: Vec<String> = std::env::args().skip(1).collect();
     let name = a.first().cloned().unwrap_or_else(|| "sr99".into());
     let t_end: f64 = a.get(1).and_then(|s| s.parse().ok()).unwrap_or(14_400.0);
-    let set = a.iter().skip(2).cloned().collect();
-    let ov = Overrides {
-        set,
-        ..Overrides::default()
-    };
-    let cfg = platoonsim_scenario::load_with(&name, &ov).expect("scenario");
-    let mut sim = Simulation::new(cfg).expect("sim");
+    let mut sim = common::simulation(&name, &a[2.min(a.len())..]);
     let mut seen = 0;
     while sim.time_s() < t_end && !sim.finished() {
         sim.step().expect("step");

@@ -5,19 +5,12 @@
 //! across 5,784 m and 11,800 m. Used for docs/reproduction-notes.md ("Why the Florin queue did
 //! not dissolve"). `qbox SCENARIO [KEY=VALUE ...]` (each a `--set`); the engine coordinate is
 //! the corridor coordinate + 500 m on `sr99`.
-use platoonsim_scenario::Overrides;
-use platoonsim_sim::Simulation;
+mod common;
 
 fn main() {
     let a: Vec<String> = std::env::args().skip(1).collect();
     let name = a.first().cloned().unwrap_or_else(|| "sr99".into());
-    let set = a.iter().skip(1).cloned().collect();
-    let ov = Overrides {
-        set,
-        ..Overrides::default()
-    };
-    let cfg = platoonsim_scenario::load_with(&name, &ov).expect("scenario");
-    let mut sim = Simulation::new(cfg).expect("sim");
+    let mut sim = common::simulation(&name, &a[1.min(a.len())..]);
     let off = 500.0;
     // regions (external m)
     let regs = [

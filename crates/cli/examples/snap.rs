@@ -1,20 +1,13 @@
 //! Diagnostic: run a scenario to time T and print the vehicles of every lane in [x_lo, x_hi].
 //! `snap SCENARIO T X_LO X_HI [--set KEY=VALUE ...]`
-use platoonsim_scenario::Overrides;
-use platoonsim_sim::Simulation;
+mod common;
 
 fn main() {
     let a: Vec<String> = std::env::args().skip(1).collect();
     let name = a.first().cloned().unwrap_or_else(|| "sr99".into());
     let f = |i: usize, d: f64| a.get(i).and_then(|s| s.parse().ok()).unwrap_or(d);
     let (t, x_lo, x_hi) = (f(1, 7200.0), f(2, 0.0), f(3, 1e9));
-    let set = a.iter().skip(4).cloned().collect();
-    let ov = Overrides {
-        set,
-        ..Overrides::default()
-    };
-    let cfg = platoonsim_scenario::load_with(&name, &ov).expect("scenario");
-    let mut sim = Simulation::new(cfg).expect("sim");
+    let mut sim = common::simulation(&name, &a[4.min(a.len())..]);
     while sim.time_s() < t && !sim.finished() {
         sim.step().expect("step");
     }
