@@ -53,6 +53,7 @@
 //! | – | `time_gap_ramp_per_s` | 0.06 | s/s | spec 3.5 transitions (15 s for 0.9 s) [D: on] |
 //! | – | `yield_while_automated` | true | – | spec 6.5 [D]: automation answers mandatory yield requests |
 //! | – | `yield_to_organizers` | false | – | [D]: … and requests of CAVs joining the PD lane |
+//! | – | `organize_while_automated` | true | – | [D]: automation stays on while waiting for a PD-lane gap |
 //!
 //! Yielding through the automation (spec 4.5 applied to an automated CAV, [D]):
 //! a = min(a_auto, max(a_virtual, b_c)), a_virtual = the driver's relaxed car-following
@@ -101,6 +102,14 @@ pub struct CavParams {
     /// moves toward the PD lane for platoon organization (spec 4.7), i.e. it lets a joining CAV
     /// in. Default false [D].
     pub yield_to_organizers: bool,
+    /// A CAV that wants to move toward the PD lane (platoon organization, spec 4.7) stays
+    /// automated while its driver waits for a gap, and hands over only once both gaps are
+    /// acceptable (a platoon follower then splits, spec 3.6.4); while the lag gap is acceptable
+    /// its automation does not accelerate beyond what the target-lane leader allows. Default
+    /// true [D]. False = the PATH rule of spec 3.1: manual from the moment the desire arises,
+    /// which under PD turns every CAV outside the PD lane into a manual vehicle
+    /// (docs/model-choices.md 6.20).
+    pub organize_while_automated: bool,
 }
 
 impl Default for CavParams {
@@ -130,6 +139,7 @@ impl Default for CavParams {
             time_gap_ramp_per_s: 0.06,
             yield_while_automated: true,
             yield_to_organizers: false,
+            organize_while_automated: true,
         }
     }
 }

@@ -11,12 +11,23 @@ use platoonsim_model::human;
 use platoonsim_model::lanechange::{self as lcm, Side};
 use platoonsim_model::{Leader, Relax};
 
+/// Gap acceptance toward the target lane (spec 4.3) and the anticipated acceleration behind
+/// the target-lane leader.
+#[derive(Clone, Copy, Debug)]
+struct Gaps {
+    lead_ok: bool,
+    lag_ok: bool,
+    a_ant: f64,
+}
+
 /// A lane-change desire that passed the threshold.
 #[derive(Clone, Copy, Debug)]
 struct Desire {
     side: Side,
     gamma: f64,
     mandatory: bool,
+    /// The move toward the PD lane of platoon organization (spec 4.7).
+    organize: bool,
 }
 
 impl Simulation {
@@ -113,33 +124,38 @@ impl Simulation {
 
         // 1. Lane-change desire (takes priority over yielding).
         if let Some(d) = self.desire(s, v, &nb) {
-            return self.before_lane_change(s, v, &nb, leader, d);
-        }
-
-        // 2. Automated CAV: ACC / CACC / speed regulation (spec 3). With the spec 6.5 flag the
-        // automation also answers a mandatory yield request it agrees to: it follows the
-        // requester as a virtual leader as a yielding driver would (spec 4.5), without leaving
-        // automation [D].
-        if v.automated() {
-            let mut d = self.cav_control(s, v, leader, wall);
-            if self.cfg.cav.yield_while_automated {
-                if let Some(req) = self.agreed_request(v, &nb, true) {
-                    let r = &self.vehicles[req as usize];
-                    d.accel = lcm::yield_accel(
-                        &v.human,
-                        &v.lc,
-                        v.v,
-                        v_des,
-                        d.accel,
-                        self.yield_gap(v, r),
-                    );
-                    d.mode = Mode::Ycf {
-                        to: r.id,
+            // With `cav.organize_while_automated` [D] a CAV's automation stays engaged while
+            // its driver waits for a gap toward the PD lane: the driver takes over only once
+            // both gaps are acceptable (a leader then changes at once, a follower splits first,
+            // spec 3.6.4). Meanwhile the request stays visible to neighbours (BLC, spec 4.5)
+            // and, while the lag gap is acceptable, the automation holds back as the driver's
+            // discretionary synchronization would (no acceleration beyond what the target-lane
+            // leader allows; it never brakes for it). A driver who took over and lost the gap
+            // hands back once the relaxation has ended.
+            if d.organize && self.cfg.cav.organize_while_automated && v.relax == Relaxation::None {
+                let (blc, g) = self.before_lane_change(s, v, &nb, leader, d);
+                if g.lead_ok && g.lag_ok {
+                    return blc;
+                }
+                let mut a = self.automated_decision(s, v, &nb, leader, wall);
+                if g.lag_ok {
+                    a.accel = a.accel.min(g.a_ant.max(0.0));
+                }
+                if a.mode == Mode::Cf {
+                    a.mode = Mode::Blc {
+                        side: d.side,
+                        mandatory: false,
                         auto: true,
                     };
                 }
+                return a;
             }
-            return d;
+            return self.before_lane_change(s, v, &nb, leader, d).0;
+        }
+
+        // 2. Automated CAV: ACC / CACC / speed regulation (spec 3).
+        if v.automated() {
+            return self.automated_decision(s, v, &nb, leader, wall);
         }
         let yield_to = self.agreed_request(v, &nb, false);
 
@@ -163,6 +179,39 @@ impl Simulation {
             change: None,
             takeover: false,
         }
+    }
+
+    /// An automated CAV's decision: ACC / CACC / speed regulation (spec 3). With the spec 6.5
+    /// flag the automation also answers a mandatory yield request it agrees to: it follows the
+    /// requester as a virtual leader as a yielding driver would (spec 4.5), without leaving
+    /// automation [D].
+    fn automated_decision(
+        &self,
+        s: u32,
+        v: &Vehicle,
+        nb: &Neighbours,
+        leader: Option<Leader>,
+        wall: bool,
+    ) -> Decision {
+        let mut d = self.cav_control(s, v, leader, wall);
+        if self.cfg.cav.yield_while_automated {
+            if let Some(req) = self.agreed_request(v, nb, true) {
+                let r = &self.vehicles[req as usize];
+                d.accel = lcm::yield_accel(
+                    &v.human,
+                    &v.lc,
+                    v.v,
+                    v.human.desired_speed,
+                    d.accel,
+                    self.yield_gap(v, r),
+                );
+                d.mode = Mode::Ycf {
+                    to: r.id,
+                    auto: true,
+                };
+            }
+        }
+        d
     }
 
     /// Automated CAV control (spec 3.9).
@@ -273,6 +322,7 @@ impl Simulation {
             side,
             gamma,
             mandatory: mandatory.is_some(),
+            organize,
         })
     }
 
@@ -479,7 +529,8 @@ impl Simulation {
         avg.min(tl.v).min(v_des)
     }
 
-    /// BLC (spec 4.3): gap acceptance and the before-change behaviour.
+    /// BLC (spec 4.3): gap acceptance and the before-change behaviour; also whether both gaps
+    /// are acceptable now (a follower that must split first does not change yet).
     fn before_lane_change(
         &self,
         s: u32,
@@ -487,7 +538,7 @@ impl Simulation {
         nb: &Neighbours,
         leader: Option<Leader>,
         d: Desire,
-    ) -> Decision {
+    ) -> (Decision, Gaps) {
         let (tl, tf) = match d.side {
             Side::Left => (nb.left_leader, nb.left_follower),
             Side::Right => (nb.right_leader, nb.right_follower),
@@ -539,17 +590,25 @@ impl Simulation {
         } else {
             a_cur
         };
-        Decision {
-            accel: human::smooth_accel(v.a, target, h.smoothing),
-            mode: Mode::Blc {
-                side: d.side,
-                mandatory: d.mandatory,
+        (
+            Decision {
+                accel: human::smooth_accel(v.a, target, h.smoothing),
+                mode: Mode::Blc {
+                    side: d.side,
+                    mandatory: d.mandatory,
+                    auto: false,
+                },
+                family: Family::Speed,
+                time_gap: v.time_gap_s,
+                change: change.then_some(d.side),
+                takeover,
             },
-            family: Family::Speed,
-            time_gap: v.time_gap_s,
-            change: change.then_some(d.side),
-            takeover,
-        }
+            Gaps {
+                lead_ok,
+                lag_ok,
+                a_ant,
+            },
+        )
     }
 
     /// Exceptions to BLC-Slow [D]: the target-lane follower is yielding to this vehicle (it is
@@ -589,11 +648,14 @@ impl Simulation {
             let r = &self.vehicles[req as usize];
             let joining = || {
                 self.cfg.cav.yield_to_organizers
-                    && r.mode
-                        == (Mode::Blc {
+                    && matches!(
+                        r.mode,
+                        Mode::Blc {
                             side: Side::Left,
                             mandatory: false,
-                        })
+                            ..
+                        }
+                    )
                     && self.may_organize(r)
             };
             if automated && !mandatory && !joining() {
@@ -613,7 +675,10 @@ impl Simulation {
                 continue;
             }
             let r = &self.vehicles[ld as usize];
-            let Mode::Blc { side, mandatory } = r.mode else {
+            let Mode::Blc {
+                side, mandatory, ..
+            } = r.mode
+            else {
                 continue;
             };
             if side != toward {

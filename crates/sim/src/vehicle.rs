@@ -17,8 +17,14 @@ pub enum Kind {
 pub enum Mode {
     /// Normal car following.
     Cf,
-    /// Before lane change toward `side`; `mandatory` if the desire is mandatory.
-    Blc { side: Side, mandatory: bool },
+    /// Before lane change toward `side`; `mandatory` if the desire is mandatory; `auto` if a
+    /// CAV's automation stays engaged while its driver waits for a gap toward the PD lane
+    /// (`cav.organize_while_automated`).
+    Blc {
+        side: Side,
+        mandatory: bool,
+        auto: bool,
+    },
     /// Yielding to the vehicle with id `to` (a neighbour in BLC toward this lane); `auto` if
     /// an automated CAV yields through its automation (spec 6.5 flag).
     Ycf { to: u64, auto: bool },
@@ -96,7 +102,10 @@ impl Vehicle {
     /// A CAV that is not driving manually (spec 3.1): plain car following, no relaxation.
     pub fn automated(&self) -> bool {
         self.kind == Kind::Cav
-            && matches!(self.mode, Mode::Cf | Mode::Ycf { auto: true, .. })
+            && matches!(
+                self.mode,
+                Mode::Cf | Mode::Ycf { auto: true, .. } | Mode::Blc { auto: true, .. }
+            )
             && self.relax == Relaxation::None
     }
 
