@@ -31,7 +31,7 @@ fn main() {
             for v in sim.lane_vehicles(l).filter(|v| v.x >= lo && v.x <= hi) {
                 let gap = prev.map(|r| r - v.x).unwrap_or(f64::NAN);
                 println!(
-                    "lane {l} {:>5} {} x {:7.1} v {:5.1} a {:5.2} gap {:5.1} {:?} {:?} exit {}",
+                    "lane {l} {:>5} {} x {:7.1} v {:5.1} a {:5.2} gap {:5.1} {:?} {:?} exit {} {:?} tg {:.2}",
                     v.id,
                     if v.is_cav() { "C" } else { "H" },
                     v.x,
@@ -40,7 +40,9 @@ fn main() {
                     gap,
                     v.mode,
                     v.relax,
-                    v.exit as i64
+                    v.exit as i64,
+                    v.family,
+                    v.time_gap_s
                 );
                 prev = Some(v.rear());
             }
