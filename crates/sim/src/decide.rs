@@ -9,7 +9,7 @@ use crate::vehicle::{Mode, Relaxation, Vehicle, NEVER, NO_EXIT};
 use platoonsim_model::cav::{self, Family};
 use platoonsim_model::human;
 use platoonsim_model::lanechange::{self as lcm, Side};
-use platoonsim_model::{Leader, Relax};
+use platoonsim_model::{bounded, Leader, Relax};
 
 /// A lane-change desire that passed the threshold.
 #[derive(Clone, Copy, Debug)]
@@ -371,9 +371,10 @@ impl Simulation {
         }
         // Speeds are what the driver could achieve: capped at its desired speed.
         let v_des = v_des_of(v);
-        let mut v_cur = self
-            .avg_speed_ahead(v.lane as usize, nb.idx as usize, v.x, v_des)
-            .min(v_des);
+        let mut v_cur = bounded::min(
+            self.avg_speed_ahead(v.lane as usize, nb.idx as usize, v.x, v_des),
+            v_des,
+        );
         if !self.geom.plain {
             // Mostly 1 (no on-ramp ahead): dividing by 1 changes nothing.
             let f = anticipation.unwrap_or_else(|| self.anticipation_factor(s, v));
@@ -476,7 +477,7 @@ impl Simulation {
         }
         let from = self.nb[target_leader as usize].idx as usize + 1;
         let avg = self.avg_speed_ahead(tl.lane as usize, from, v.x, v_des);
-        avg.min(tl.v).min(v_des)
+        bounded::min(avg.min(tl.v), v_des)
     }
 
     /// BLC (spec 4.3): gap acceptance and the before-change behaviour.
