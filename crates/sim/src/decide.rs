@@ -585,7 +585,24 @@ impl Simulation {
     /// The requester (slot) of a yield request the driver agrees to, if any (spec 4.5). The
     /// automation (`automated`, spec 6.5 flag) answers only mandatory requests, and, with
     /// `cav.yield_to_organizers`, a CAV moving left toward the PD lane.
+    ///
+    /// Inlined: most drivers have no adjacent-lane leader in BLC toward their lane, and this
+    /// first test of [`Self::yield_request`] answers them without a call.
+    #[inline]
     fn agreed_request(&self, v: &Vehicle, nb: &Neighbours, automated: bool) -> Option<u32> {
+        let asks = |ld: u32, toward: Side| {
+            ld != NONE
+                && matches!(self.vehicles[ld as usize].mode, Mode::Blc { side, .. } if side == toward)
+        };
+        if !asks(nb.left_leader, Side::Right) && !asks(nb.right_leader, Side::Left) {
+            return None;
+        }
+        self.agreed_request_from(v, nb, automated)
+    }
+
+    /// [`Self::agreed_request`] once a neighbour asks.
+    #[inline(never)]
+    fn agreed_request_from(&self, v: &Vehicle, nb: &Neighbours, automated: bool) -> Option<u32> {
         self.yield_request(v, nb).and_then(|(req, mandatory)| {
             let r = &self.vehicles[req as usize];
             let joining = || {
