@@ -3,6 +3,7 @@
 //! yielding (spec 4.5), and its acceleration: the human model (spec 2) for humans and CAVs
 //! driving manually, CAV control (spec 3) for automated CAVs.
 
+use crate::network::NO_LANE;
 use crate::sense::{Neighbours, NONE};
 use crate::sim::{Decision, Simulation};
 use crate::vehicle::{Mode, Relaxation, Vehicle, NEVER, NO_EXIT};
@@ -420,16 +421,19 @@ impl Simulation {
     /// range of an on-ramp, the current-lane speed is divided by 1 + c_inc (ρ_ramp/ρ_jam)/j.
     fn anticipation_factor(&self, s: u32, v: &Vehicle) -> f64 {
         let lcd = &self.cfg.lane_change;
-        let k = self.here[s as usize].ramps_upto as usize;
+        let here = &self.here[s as usize];
+        let k = here.ramps_upto as usize;
         let Some((ramp, _)) = self
             .geom
             .next_on_ramp_after(k, v.x, lcd.anticipation_distance_m)
         else {
             return 1.0;
         };
-        let Some(right) = self.geom.rightmost_through(v.x) else {
+        // `Geometry::rightmost_through(v.x)`, looked up in the sense phase.
+        if here.right == NO_LANE {
             return 1.0;
-        };
+        }
+        let right = u32::from(here.right);
         if v.lane < right {
             return 1.0;
         }

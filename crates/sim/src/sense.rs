@@ -49,6 +49,9 @@ pub struct Here {
     pub enter_right: bool,
     /// On-ramps with their merge point at or before it (`Geometry::ramps_upto`).
     pub ramps_upto: u32,
+    /// The rightmost through lane there (`Geometry::rightmost_through`; `NO_LANE`: none); not
+    /// looked up on a plain road (0).
+    pub right: u8,
 }
 
 impl Simulation {
@@ -200,6 +203,7 @@ impl Simulation {
             let mut own = geom.walk(l);
             let mut left = geom.walk(l + 1);
             let mut right = geom.walk(l.wrapping_sub(1));
+            let mut rightmost = geom.walk_right();
             let mut ramps = geom.ramps_by_x.len();
             let (mut adj_start, mut tg2_start) = (0usize, 0usize);
             for (k, (&s, &(x, _))) in lane.iter().zip(xs).enumerate() {
@@ -218,6 +222,7 @@ impl Simulation {
                         enter_left: l + 1 < n_lanes,
                         enter_right: l > 0,
                         ramps_upto: 0,
+                        right: 0,
                     }
                 } else {
                     let seg = own.at(x);
@@ -228,6 +233,7 @@ impl Simulation {
                         enter_left: left.at(x).is_some_and(|g| !g.accel),
                         enter_right: l > 0 && right.at(x).is_some_and(|g| !g.accel),
                         ramps_upto: ramps as u32,
+                        right: rightmost.at(x),
                     }
                 };
                 // Membership and position (`linked` holds the candidate link from pass A).
