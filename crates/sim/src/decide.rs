@@ -68,7 +68,7 @@ impl Simulation {
         if self.geom.plain {
             return (leader, false);
         }
-        match self.here[s as usize].wall {
+        match self.sensed[s as usize].here.wall {
             Some(w) if leader.is_none_or(|l| w - v.x < l.gap_m) => (
                 Some(Leader {
                     gap_m: w - v.x,
@@ -108,7 +108,7 @@ impl Simulation {
 
     fn decide_one(&self, s: u32) -> Decision {
         let v = &self.vehicles[s as usize];
-        let nb = self.nb[s as usize];
+        let nb = self.sensed[s as usize].nb;
         let v_des = v.human.desired_speed;
         let (leader, wall) = self.leader_or_wall(s, v, nb.leader);
 
@@ -170,7 +170,7 @@ impl Simulation {
     fn cav_control(&self, s: u32, v: &Vehicle, leader: Option<Leader>, wall: bool) -> Decision {
         let p = &self.cfg.cav;
         let v_des = v.human.desired_speed;
-        let ld = self.nb[s as usize].leader;
+        let ld = self.sensed[s as usize].nb.leader;
         let leader = leader.filter(|l| l.gap_m <= p.sensor_range_m);
         let mut time_gap = v.time_gap_s;
         let cmd = match leader {
@@ -180,7 +180,7 @@ impl Simulation {
                 family: Family::Speed,
             },
             Some(l) if !wall && self.is_cav(ld) => {
-                let target = if !self.linked[s as usize] {
+                let target = if !self.sensed[s as usize].linked {
                     p.inter_platoon_gap_s
                 } else {
                     v.cacc_gap_s
@@ -229,7 +229,8 @@ impl Simulation {
         // A CAV that follows a CAV within sensor range is (or is about to be, "a CAV directly
         // behind another CAV automatically starts to form a platoon" [S]) a platoon follower:
         // no discretionary desire (w_CAV follower, spec 4.7).
-        let follower = self.linked[s as usize] || (is_cav && self.cav_ahead[s as usize]);
+        let follower =
+            self.sensed[s as usize].linked || (is_cav && self.sensed[s as usize].cav_ahead);
         // Platoon organization yields to a mandatory need and does not start within the
         // anticipation range of the CAV's own exit [D].
         let organize = mandatory.is_none() && self.may_organize(v);
@@ -296,7 +297,7 @@ impl Simulation {
     /// The larger one wins.
     fn mandatory(&self, s: u32, v: &Vehicle) -> Option<(Side, f64)> {
         let mut best: Option<(Side, f64)> = None;
-        if let Some(w) = self.here[s as usize].wall {
+        if let Some(w) = self.sensed[s as usize].here.wall {
             let probe = (w - 1.0).max(v.x);
             let side = if self.geom.through(v.lane + 1, probe) || v.lane == 0 {
                 Side::Left
@@ -387,7 +388,7 @@ impl Simulation {
         if v_des - v_cur < v.lc.min_speed_gain_mps {
             return [None, None];
         }
-        let here = &self.here[s as usize];
+        let here = &self.sensed[s as usize].here;
         let mut out = [None, None];
         for (i, side, ld, w, eta, open) in [
             (
@@ -421,7 +422,7 @@ impl Simulation {
     /// range of an on-ramp, the current-lane speed is divided by 1 + c_inc (ρ_ramp/ρ_jam)/j.
     fn anticipation_factor(&self, s: u32, v: &Vehicle) -> f64 {
         let lcd = &self.cfg.lane_change;
-        let here = &self.here[s as usize];
+        let here = &self.sensed[s as usize].here;
         let k = here.ramps_upto as usize;
         let Some((ramp, _)) = self
             .geom
@@ -479,7 +480,7 @@ impl Simulation {
         if tl.x - v.x > self.cfg.lane_change.scan_distance_m {
             return v_des;
         }
-        let from = self.nb[target_leader as usize].idx as usize + 1;
+        let from = self.sensed[target_leader as usize].nb.idx as usize + 1;
         let avg = self.avg_speed_ahead(tl.lane as usize, from, v.x, v_des);
         bounded::min(avg.min(tl.v), v_des)
     }
@@ -526,7 +527,7 @@ impl Simulation {
             lcm::accept_lag_gap(h, &v.lc, v.rear() - f.x, v.v, f.v, a_ant)
         };
         // Only a platoon leader changes lanes: a follower splits first (spec 3.6.4).
-        let must_split = self.linked[s as usize];
+        let must_split = self.sensed[s as usize].linked;
         let change = lead_ok && lag_ok && !must_split;
         let target = if change {
             a_cur
@@ -572,7 +573,8 @@ impl Simulation {
         if matches!(f.mode, Mode::Ycf { to, .. } if to == v.id) {
             return true;
         }
-        f.v > v.v && (v.v < CREEP_SPEED_MPS || (!self.geom.plain && self.here[s as usize].accel))
+        f.v > v.v
+            && (v.v < CREEP_SPEED_MPS || (!self.geom.plain && self.sensed[s as usize].here.accel))
     }
 
     /// The virtual leader of a yielder: the requester `r`, standing its own (relaxed) jam gap
