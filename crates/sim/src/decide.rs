@@ -108,13 +108,13 @@ impl Simulation {
 
     fn decide_one(&self, s: u32) -> Decision {
         let v = &self.vehicles[s as usize];
-        let nb = self.sensed[s as usize].nb;
+        let nb = &self.sensed[s as usize].nb;
         let v_des = v.human.desired_speed;
         let (leader, wall) = self.leader_or_wall(s, v, nb.leader);
 
         // 1. Lane-change desire (takes priority over yielding).
-        if let Some(d) = self.desire(s, v, &nb) {
-            return self.before_lane_change(s, v, &nb, leader, d);
+        if let Some(d) = self.desire(s, v, nb) {
+            return self.before_lane_change(s, v, nb, leader, d);
         }
 
         // 2. Automated CAV: ACC / CACC / speed regulation (spec 3). With the spec 6.5 flag the
@@ -124,7 +124,7 @@ impl Simulation {
         if v.automated() {
             let mut d = self.cav_control(s, v, leader, wall);
             if self.cfg.cav.yield_while_automated {
-                if let Some(req) = self.agreed_request(v, &nb, true) {
+                if let Some(req) = self.agreed_request(v, nb, true) {
                     let r = &self.vehicles[req as usize];
                     d.accel = lcm::yield_accel(
                         &v.human,
@@ -142,7 +142,7 @@ impl Simulation {
             }
             return d;
         }
-        let yield_to = self.agreed_request(v, &nb, false);
+        let yield_to = self.agreed_request(v, nb, false);
 
         // 3. Human model (humans and CAVs driving manually), possibly yielding.
         let relax = self.relax_now(v);

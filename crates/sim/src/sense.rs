@@ -210,6 +210,8 @@ impl Simulation {
             let mut right = geom.walk(l.wrapping_sub(1));
             let mut rightmost = geom.walk_right();
             let mut ramps = geom.ramps_by_x.len();
+            // `ramps` holds for every x in [ramps_lo, ramps_hi) (between two merge points).
+            let (mut ramps_lo, mut ramps_hi) = (f64::INFINITY, f64::NEG_INFINITY);
             let (mut adj_start, mut tg2_start) = (0usize, 0usize);
             for (k, (&s, &(x, _))) in lane.iter().zip(xs).enumerate() {
                 let si = s as usize;
@@ -245,7 +247,12 @@ impl Simulation {
                     }
                 } else {
                     let seg = own.at(x);
-                    ramps = geom.ramps_upto_from(ramps, x);
+                    if !(x >= ramps_lo && x < ramps_hi) {
+                        ramps = geom.ramps_upto_from(ramps, x);
+                        let r = &geom.ramps_by_x;
+                        ramps_lo = ramps.checked_sub(1).map_or(f64::NEG_INFINITY, |i| r[i].0);
+                        ramps_hi = r.get(ramps).map_or(f64::INFINITY, |p| p.0);
+                    }
                     Here {
                         wall: seg.filter(|g| g.wall).map(|g| g.to),
                         accel: seg.is_some_and(|g| g.accel),
