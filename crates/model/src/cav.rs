@@ -59,7 +59,7 @@
 //! a = min(a_auto, max(a_virtual, b_c)), a_virtual = the driver's relaxed car-following
 //! acceleration toward the requester standing its relaxed jam gap further back.
 
-use crate::Leader;
+use crate::{bounded, Leader};
 use serde::{Deserialize, Serialize};
 
 /// CAV controller parameters (shared by all CAVs; the CACC time gap is per vehicle).
@@ -185,9 +185,11 @@ const MIN_BRAKE_MPS2: f64 = 1e-3;
 /// Smallest step (s) accepted by [`finalize`] (guards dt ≤ 0).
 const MIN_DT_S: f64 = 1e-6;
 
-/// `x` clamped to [lo, hi] without panicking when lo > hi (then `lo` wins).
+/// `x` clamped to [lo, hi] without panicking when lo > hi (then `lo` wins). `lo` and `hi` are
+/// parameters, never NaN ([`bounded`]).
+#[inline]
 fn bound(x: f64, lo: f64, hi: f64) -> f64 {
-    x.min(hi).max(lo)
+    bounded::max(bounded::min(x, hi), lo)
 }
 
 /// Speed regulation (spec 3.2): k0 (v_des − v).
@@ -404,7 +406,8 @@ pub fn finalize(
     let dt = dt.max(MIN_DT_S);
     let v = v.max(0.0);
     let a_cmd = if a_cmd.is_nan() { 0.0 } else { a_cmd };
-    let mut a = a_cmd.min((v_des.max(0.0) - v) / dt);
+    // `a_cmd` is not NaN here: a NaN cap gives `a_cmd`, as `a_cmd.min(cap)` would.
+    let mut a = bounded::min((v_des.max(0.0) - v) / dt, a_cmd);
     a = bound(a, p.max_decel, p.max_accel);
     if let Some(l) = leader {
         // spec 3.4 "After the law": if v_new > v_safe + min(2, g): v_new = max(0, v_safe + min(2, g)).

@@ -32,6 +32,7 @@
 //! | ω | `smoothing` | 2 | fixed | – |
 //! | b_c | `comfort_decel` | −2.0 (= 0.5 b_f) | fixed | m/s² |
 
+use crate::bounded;
 use crate::dist::Dist;
 use crate::{Leader, Relax};
 use serde::{Deserialize, Serialize};
@@ -197,9 +198,11 @@ fn gipps_params(p: &HumanParams, r: Relax) -> GippsParams {
     }
 }
 
-/// `x` clamped to [lo, hi] without panicking when lo > hi (then `lo` wins) or on NaN bounds.
+/// `x` clamped to [lo, hi] without panicking when lo > hi (then `lo` wins); a NaN `x` gives
+/// `hi` (then `lo` if larger). `lo` and `hi` are driver parameters, never NaN ([`bounded`]).
+#[inline]
 fn bound(x: f64, lo: f64, hi: f64) -> f64 {
-    x.min(hi).max(lo)
+    bounded::max(bounded::min(x, hi), lo)
 }
 
 /// Newell term a_N (spec 2.1), with relaxed τ and d_jam, clamped to [b_f, a_M].
@@ -230,7 +233,7 @@ pub fn free_accel(p: &HumanParams, v: f64, v_des: f64) -> f64 {
     let a = p.max_accel * (1.0 - pow_exponent(v / v_des, p.free_exponent));
     if v > v_des {
         // [P15-code]: excess speed is shed no harder than the comfortable deceleration b_c.
-        a.max(p.comfort_decel)
+        bounded::max(a, p.comfort_decel)
     } else {
         a
     }
@@ -271,7 +274,7 @@ pub fn gipps_accel(p: &HumanParams, v: f64, leader: Leader, r: Relax) -> f64 {
     let g = gipps_params(p, r);
     let v_g = gipps_speed(&g, v, leader.gap_m, leader.v_mps.max(0.0));
     // spec 2.3: a_G = (v_G − v)/τ_r, capped above by a_M only.
-    ((v_g - v) / g.reaction).min(p.max_accel)
+    bounded::min((v_g - v) / g.reaction, p.max_accel)
 }
 
 /// Target acceleration a* = min(a_F, a_N, a_G) (spec 2.4); a_F alone without a leader.
@@ -280,9 +283,11 @@ pub fn target_accel(p: &HumanParams, v: f64, v_des: f64, leader: Option<Leader>,
     let a_free = free_accel(p, v, v_des);
     match leader {
         None => a_free,
-        Some(l) => a_free
-            .min(newell_accel(p, v, l.gap_m, r))
-            .min(gipps_accel(p, v, l, r)),
+        // Both terms are bounded by parameters, so never NaN ([`bounded`]).
+        Some(l) => bounded::min(
+            bounded::min(a_free, newell_accel(p, v, l.gap_m, r)),
+            gipps_accel(p, v, l, r),
+        ),
     }
 }
 

@@ -51,6 +51,37 @@ impl Relax {
     };
 }
 
+/// `f64::min`/`f64::max` against a bound that is never NaN, as one `minsd`/`maxsd`.
+///
+/// `f64::min(x, b)` must return the other operand when either one is NaN; with two operands
+/// that may both be NaN the compiler emits a comparison, a NaN test and a blend (four to five
+/// instructions with a dependency chain) instead of the one instruction of a plain comparison.
+/// These helpers give the same result as `x.min(b)` / `x.max(b)` for every `x`, NaN included
+/// (a NaN `x` gives `b`), provided `b` is not NaN: a driver parameter (validated finite), or a
+/// value that is itself such a bound. The only other difference is the sign of a zero result
+/// when `x` and `b` are zeros of opposite sign (`f64::min` leaves that unspecified).
+pub mod bounded {
+    /// `x.min(b)` for a `b` that is never NaN (see the module).
+    #[inline(always)]
+    pub fn min(x: f64, b: f64) -> f64 {
+        if x < b {
+            x
+        } else {
+            b
+        }
+    }
+
+    /// `x.max(b)` for a `b` that is never NaN (see the module).
+    #[inline(always)]
+    pub fn max(x: f64, b: f64) -> f64 {
+        if x > b {
+            x
+        } else {
+            b
+        }
+    }
+}
+
 /// Unit conversion helpers.
 pub mod units {
     /// km/h to m/s.

@@ -3,13 +3,14 @@
 //! yielding (spec 4.5), and its acceleration: the human model (spec 2) for humans and CAVs
 //! driving manually, CAV control (spec 3) for automated CAVs.
 
+use crate::network::NO_LANE;
 use crate::sense::{Neighbours, NONE};
 use crate::sim::{Decision, Simulation};
 use crate::vehicle::{Mode, Relaxation, Vehicle, NEVER, NO_EXIT};
 use platoonsim_model::cav::{self, Family};
 use platoonsim_model::human;
 use platoonsim_model::lanechange::{self as lcm, Side};
-use platoonsim_model::{Leader, Relax};
+use platoonsim_model::{bounded, Leader, Relax};
 
 /// Gap acceptance toward the target lane (spec 4.3) and the anticipated acceleration behind
 /// the target-lane leader.
@@ -78,7 +79,7 @@ impl Simulation {
         if self.geom.plain {
             return (leader, false);
         }
-        match self.here[s as usize].wall {
+        match self.sensed[s as usize].here.wall {
             Some(w) if leader.is_none_or(|l| w - v.x < l.gap_m) => (
                 Some(Leader {
                     gap_m: w - v.x,
@@ -118,12 +119,12 @@ impl Simulation {
 
     fn decide_one(&self, s: u32) -> Decision {
         let v = &self.vehicles[s as usize];
-        let nb = self.nb[s as usize];
+        let nb = &self.sensed[s as usize].nb;
         let v_des = v.human.desired_speed;
         let (leader, wall) = self.leader_or_wall(s, v, nb.leader);
 
         // 1. Lane-change desire (takes priority over yielding).
-        if let Some(d) = self.desire(s, v, &nb) {
+        if let Some(d) = self.desire(s, v, nb) {
             // With `cav.organize_while_automated` [D] a CAV's automation stays engaged while
             // its driver waits for a gap toward the PD lane: the driver takes over only once
             // both gaps are acceptable (a leader then changes at once, a follower splits first,
@@ -133,11 +134,11 @@ impl Simulation {
             // leader allows; it never brakes for it). A driver who took over and lost the gap
             // hands back once the relaxation has ended.
             if d.organize && self.cfg.cav.organize_while_automated && v.relax == Relaxation::None {
-                let (blc, g) = self.before_lane_change(s, v, &nb, leader, d);
+                let (blc, g) = self.before_lane_change(s, v, nb, leader, d);
                 if g.lead_ok && g.lag_ok {
                     return blc;
                 }
-                let mut a = self.automated_decision(s, v, &nb, leader, wall);
+                let mut a = self.automated_decision(s, v, nb, leader, wall);
                 if g.lag_ok {
                     a.accel = a.accel.min(g.a_ant.max(0.0));
                 }
@@ -150,14 +151,14 @@ impl Simulation {
                 }
                 return a;
             }
-            return self.before_lane_change(s, v, &nb, leader, d).0;
+            return self.before_lane_change(s, v, nb, leader, d).0;
         }
 
         // 2. Automated CAV: ACC / CACC / speed regulation (spec 3).
         if v.automated() {
-            return self.automated_decision(s, v, &nb, leader, wall);
+            return self.automated_decision(s, v, nb, leader, wall);
         }
-        let yield_to = self.agreed_request(v, &nb, false);
+        let yield_to = self.agreed_request(v, nb, false);
 
         // 3. Human model (humans and CAVs driving manually), possibly yielding.
         let relax = self.relax_now(v);
@@ -218,7 +219,7 @@ impl Simulation {
     fn cav_control(&self, s: u32, v: &Vehicle, leader: Option<Leader>, wall: bool) -> Decision {
         let p = &self.cfg.cav;
         let v_des = v.human.desired_speed;
-        let ld = self.nb[s as usize].leader;
+        let ld = self.sensed[s as usize].nb.leader;
         let leader = leader.filter(|l| l.gap_m <= p.sensor_range_m);
         let mut time_gap = v.time_gap_s;
         let cmd = match leader {
@@ -228,7 +229,7 @@ impl Simulation {
                 family: Family::Speed,
             },
             Some(l) if !wall && self.is_cav(ld) => {
-                let target = if !self.linked[s as usize] {
+                let target = if !self.sensed[s as usize].linked {
                     p.inter_platoon_gap_s
                 } else {
                     v.cacc_gap_s
@@ -277,7 +278,8 @@ impl Simulation {
         // A CAV that follows a CAV within sensor range is (or is about to be, "a CAV directly
         // behind another CAV automatically starts to form a platoon" [S]) a platoon follower:
         // no discretionary desire (w_CAV follower, spec 4.7).
-        let follower = self.linked[s as usize] || (is_cav && self.cav_ahead[s as usize]);
+        let follower =
+            self.sensed[s as usize].linked || (is_cav && self.sensed[s as usize].cav_ahead);
         // Platoon organization yields to a mandatory need and does not start within the
         // anticipation range of the CAV's own exit [D].
         let organize = mandatory.is_none() && self.may_organize(v);
@@ -345,7 +347,7 @@ impl Simulation {
     /// The larger one wins.
     fn mandatory(&self, s: u32, v: &Vehicle) -> Option<(Side, f64)> {
         let mut best: Option<(Side, f64)> = None;
-        if let Some(w) = self.here[s as usize].wall {
+        if let Some(w) = self.sensed[s as usize].here.wall {
             let probe = (w - 1.0).max(v.x);
             let side = if self.geom.through(v.lane + 1, probe) || v.lane == 0 {
                 Side::Left
@@ -421,9 +423,10 @@ impl Simulation {
         }
         // Speeds are what the driver could achieve: capped at its desired speed.
         let v_des = v_des_of(v);
-        let mut v_cur = self
-            .avg_speed_ahead(v.lane as usize, nb.idx as usize, v.x, v_des)
-            .min(v_des);
+        let mut v_cur = bounded::min(
+            self.avg_speed_ahead(v.lane as usize, nb.idx as usize, v.x, v_des),
+            v_des,
+        );
         if !self.geom.plain {
             // Mostly 1 (no on-ramp ahead): dividing by 1 changes nothing.
             let f = anticipation.unwrap_or_else(|| self.anticipation_factor(s, v));
@@ -435,7 +438,7 @@ impl Simulation {
         if v_des - v_cur < v.lc.min_speed_gain_mps {
             return [None, None];
         }
-        let here = &self.here[s as usize];
+        let here = &self.sensed[s as usize].here;
         let mut out = [None, None];
         for (i, side, ld, w, eta, open) in [
             (
@@ -469,16 +472,19 @@ impl Simulation {
     /// range of an on-ramp, the current-lane speed is divided by 1 + c_inc (ρ_ramp/ρ_jam)/j.
     fn anticipation_factor(&self, s: u32, v: &Vehicle) -> f64 {
         let lcd = &self.cfg.lane_change;
-        let k = self.here[s as usize].ramps_upto as usize;
+        let here = &self.sensed[s as usize].here;
+        let k = here.ramps_upto as usize;
         let Some((ramp, _)) = self
             .geom
             .next_on_ramp_after(k, v.x, lcd.anticipation_distance_m)
         else {
             return 1.0;
         };
-        let Some(right) = self.geom.rightmost_through(v.x) else {
+        // `Geometry::rightmost_through(v.x)`, looked up in the sense phase.
+        if here.right == NO_LANE {
             return 1.0;
-        };
+        }
+        let right = u32::from(here.right);
         if v.lane < right {
             return 1.0;
         }
@@ -524,9 +530,9 @@ impl Simulation {
         if tl.x - v.x > self.cfg.lane_change.scan_distance_m {
             return v_des;
         }
-        let from = self.nb[target_leader as usize].idx as usize + 1;
+        let from = self.sensed[target_leader as usize].nb.idx as usize + 1;
         let avg = self.avg_speed_ahead(tl.lane as usize, from, v.x, v_des);
-        avg.min(tl.v).min(v_des)
+        bounded::min(avg.min(tl.v), v_des)
     }
 
     /// BLC (spec 4.3): gap acceptance and the before-change behaviour; also whether both gaps
@@ -572,7 +578,7 @@ impl Simulation {
             lcm::accept_lag_gap(h, &v.lc, v.rear() - f.x, v.v, f.v, a_ant)
         };
         // Only a platoon leader changes lanes: a follower splits first (spec 3.6.4).
-        let must_split = self.linked[s as usize];
+        let must_split = self.sensed[s as usize].linked;
         let change = lead_ok && lag_ok && !must_split;
         let target = if change {
             a_cur
@@ -626,7 +632,8 @@ impl Simulation {
         if matches!(f.mode, Mode::Ycf { to, .. } if to == v.id) {
             return true;
         }
-        f.v > v.v && (v.v < CREEP_SPEED_MPS || (!self.geom.plain && self.here[s as usize].accel))
+        f.v > v.v
+            && (v.v < CREEP_SPEED_MPS || (!self.geom.plain && self.sensed[s as usize].here.accel))
     }
 
     /// The virtual leader of a yielder: the requester `r`, standing its own (relaxed) jam gap
@@ -643,7 +650,24 @@ impl Simulation {
     /// The requester (slot) of a yield request the driver agrees to, if any (spec 4.5). The
     /// automation (`automated`, spec 6.5 flag) answers only mandatory requests, and, with
     /// `cav.yield_to_organizers`, a CAV moving left toward the PD lane.
+    ///
+    /// Inlined: most drivers have no adjacent-lane leader in BLC toward their lane, and this
+    /// first test of [`Self::yield_request`] answers them without a call.
+    #[inline]
     fn agreed_request(&self, v: &Vehicle, nb: &Neighbours, automated: bool) -> Option<u32> {
+        let asks = |ld: u32, toward: Side| {
+            ld != NONE
+                && matches!(self.vehicles[ld as usize].mode, Mode::Blc { side, .. } if side == toward)
+        };
+        if !asks(nb.left_leader, Side::Right) && !asks(nb.right_leader, Side::Left) {
+            return None;
+        }
+        self.agreed_request_from(v, nb, automated)
+    }
+
+    /// [`Self::agreed_request`] once a neighbour asks.
+    #[inline(never)]
+    fn agreed_request_from(&self, v: &Vehicle, nb: &Neighbours, automated: bool) -> Option<u32> {
         self.yield_request(v, nb).and_then(|(req, mandatory)| {
             let r = &self.vehicles[req as usize];
             let joining = || {

@@ -344,7 +344,7 @@ impl Simulation {
         let p = &self.cfg.cav;
         if !self.vehicles[ld as usize].is_cav() {
             p.acc_time_gap_s
-        } else if self.platoon_pos.get(ld as usize).copied().unwrap_or(1) >= p.max_platoon {
+        } else if self.sensed.get(ld as usize).map_or(1, |t| t.platoon_pos) >= p.max_platoon {
             p.inter_platoon_gap_s
         } else {
             veh.cacc_gap_s

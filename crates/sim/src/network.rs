@@ -81,7 +81,15 @@ pub struct Geometry {
     /// segment boundary lies inside the metre (then the lanes are searched).
     right_tab: Vec<u8>,
     left_tab: Vec<u8>,
+    /// The rightmost through lane as a step function (`RightWalk`): the segment ends and starts
+    /// in increasing order, and per piece (before the first, between two, after the last) the
+    /// lane there (`NO_LANE`: none).
+    right_breaks: Vec<f64>,
+    right_pieces: Vec<u8>,
 }
+
+/// "No lane" in the per-metre tables and in `Here::right`.
+pub const NO_LANE: u8 = 255;
 
 impl Geometry {
     /// Build the geometry of `cfg` (a plain road if it has no network).
@@ -104,6 +112,8 @@ impl Geometry {
                 index: Vec::new(),
                 right_tab: Vec::new(),
                 left_tab: Vec::new(),
+                right_breaks: Vec::new(),
+                right_pieces: vec![0],
             });
         };
         build(net, n, cfg.road.length_m)
@@ -120,6 +130,17 @@ impl Geometry {
             lo: f64::INFINITY,
             hi: f64::NEG_INFINITY,
             hit: None,
+        }
+    }
+
+    /// A cursor over the rightmost through lane (fastest with `x` not increasing from one
+    /// lookup to the next).
+    pub fn walk_right(&self) -> RightWalk<'_> {
+        RightWalk {
+            geom: self,
+            lo: f64::INFINITY,
+            hi: f64::NEG_INFINITY,
+            lane: NO_LANE,
         }
     }
 
@@ -277,6 +298,42 @@ impl<'a> SegWalk<'a> {
     }
 }
 
+/// See `Geometry::walk_right`: `at(x)` is `Geometry::rightmost_through(x)` for every `x`, as a
+/// `u8` (`NO_LANE` for `None`).
+pub struct RightWalk<'a> {
+    geom: &'a Geometry,
+    /// The answer `lane` holds for every x in [lo, hi) (empty until the first lookup).
+    lo: f64,
+    hi: f64,
+    lane: u8,
+}
+
+impl RightWalk<'_> {
+    /// The rightmost through lane at `x`.
+    #[inline]
+    pub fn at(&mut self, x: f64) -> u8 {
+        // (False for a NaN x and while the interval is empty.)
+        if x >= self.lo && x < self.hi {
+            return self.lane;
+        }
+        self.lookup(x)
+    }
+
+    fn lookup(&mut self, x: f64) -> u8 {
+        let g = self.geom;
+        if x.is_nan() {
+            return g.rightmost_through(x).map_or(NO_LANE, |l| l as u8);
+        }
+        // Segments are [from, to): between two consecutive ends the answer does not change.
+        let b = &g.right_breaks;
+        let i = b.partition_point(|&e| e <= x);
+        self.lo = if i > 0 { b[i - 1] } else { f64::NEG_INFINITY };
+        self.hi = b.get(i).copied().unwrap_or(f64::INFINITY);
+        self.lane = g.right_pieces[i];
+        self.lane
+    }
+}
+
 /// The per-metre table entry for `x`, if the table covers `x` and no segment boundary lies
 /// inside its metre (the answer is then the same everywhere in the metre).
 #[inline]
@@ -429,6 +486,8 @@ fn build(net: &Network, n: usize, length: f64) -> Result<Geometry, String> {
         index,
         right_tab: Vec::new(),
         left_tab: Vec::new(),
+        right_breaks: Vec::new(),
+        right_pieces: Vec::new(),
     };
     let inside = |m: usize| {
         g.lanes.iter().flatten().any(|s| {
@@ -448,6 +507,21 @@ fn build(net: &Network, n: usize, length: f64) -> Result<Geometry, String> {
     }
     g.right_tab = right;
     g.left_tab = left;
+    let mut breaks: Vec<f64> = g
+        .lanes
+        .iter()
+        .flatten()
+        .flat_map(|s| [s.from, s.to])
+        .filter(|e| e.is_finite())
+        .collect();
+    breaks.sort_by(f64::total_cmp);
+    breaks.dedup();
+    // One probe per piece: below the first end (f64::MIN), then each end itself.
+    g.right_pieces = std::iter::once(f64::MIN)
+        .chain(breaks.iter().copied())
+        .map(|x| g.rightmost_through(x).map_or(NO_LANE, |l| l as u8))
+        .collect();
+    g.right_breaks = breaks;
     Ok(g)
 }
 
@@ -563,6 +637,24 @@ mod tests {
             assert_eq!(g.rightmost_through(x), right, "x = {x}");
             assert_eq!(g.leftmost_through(x), left, "x = {x}");
         }
+        // The step-function walk, down, up and in any order.
+        let xs: Vec<f64> = (-8..=(3010 * 4)).map(|i| f64::from(i) / 4.0).collect();
+        let want = |x: f64| g.rightmost_through(x).map_or(NO_LANE, |l| l as u8);
+        let mut down = g.walk_right();
+        for &x in xs.iter().rev() {
+            assert_eq!(down.at(x), want(x), "x = {x}");
+        }
+        let mut up = g.walk_right();
+        for &x in &xs {
+            assert_eq!(up.at(x), want(x), "x = {x} (up)");
+        }
+        let mut mixed = g.walk_right();
+        for (i, &x) in xs.iter().enumerate().step_by(97) {
+            let y = xs[(i * 7919) % xs.len()];
+            assert_eq!(mixed.at(x), want(x), "x = {x}");
+            assert_eq!(mixed.at(y), want(y), "x = {y}");
+        }
+        assert_eq!(mixed.at(f64::NAN), want(f64::NAN));
     }
 
     #[test]

@@ -49,20 +49,48 @@ pub struct Here {
     pub enter_right: bool,
     /// On-ramps with their merge point at or before it (`Geometry::ramps_upto`).
     pub ramps_upto: u32,
+    /// The rightmost through lane there (`Geometry::rightmost_through`; `NO_LANE`: none); not
+    /// looked up on a plain road (0).
+    pub right: u8,
+}
+
+/// What the sense phase finds for one vehicle (indexed by slot; 64 bytes, one cache line).
+#[derive(Clone, Copy, Debug)]
+#[repr(align(64))]
+pub struct Sensed {
+    pub nb: Neighbours,
+    pub here: Here,
+    /// Position in its CACC string (1: leads it).
+    pub platoon_pos: u32,
+    /// Size of the sub-string it leads under the previous memberships (pass A).
+    pub sub_size: u32,
+    /// Member of its predecessor's CACC string (spec 3.6); the candidate link between the
+    /// two passes.
+    pub linked: bool,
+    /// The same-lane leader is a CAV within sensor range.
+    pub cav_ahead: bool,
+}
+
+impl Default for Sensed {
+    fn default() -> Self {
+        Sensed {
+            nb: Neighbours::default(),
+            here: Here::default(),
+            platoon_pos: 1,
+            sub_size: 1,
+            linked: false,
+            cav_ahead: false,
+        }
+    }
 }
 
 impl Simulation {
     /// Phase 1.
     pub(crate) fn sense(&mut self) {
         let n = self.vehicles.len();
-        if self.nb.len() < n {
-            self.nb.resize(n, Neighbours::default());
-            self.platoon_pos.resize(n, 1);
-            self.linked.resize(n, false);
-            self.cav_ahead.resize(n, false);
-            self.sub_size.resize(n, 1);
+        if self.sensed.len() < n {
+            self.sensed.resize(n, Sensed::default());
             self.changed_this_step.resize(n, u64::MAX);
-            self.here.resize(n, Here::default());
         }
         let n_lanes = self.lanes.len();
         self.lane_xv.resize(n_lanes, Vec::new());
@@ -78,19 +106,11 @@ impl Simulation {
             lanes,
             lane_xv,
             vehicles,
-            nb,
-            cav_ahead,
-            linked,
-            sub_size,
+            sensed,
             ..
         } = self;
         let vehicles = &vehicles[..];
-        let (nb, cav_ahead, linked, sub_size) = (
-            &mut nb[..],
-            &mut cav_ahead[..],
-            &mut linked[..],
-            &mut sub_size[..],
-        );
+        let sensed = &mut sensed[..];
         for (lane, xv) in lanes.iter().zip(lane_xv.iter_mut()) {
             let n = lane.len();
             xv.clear();
@@ -116,14 +136,13 @@ impl Simulation {
                 } else {
                     1
                 };
-                let si = s as usize;
-                let nb = &mut nb[si];
-                nb.idx = k as u32;
-                nb.leader = ld;
-                nb.follower = follower;
-                cav_ahead[si] = ahead;
-                linked[si] = cand;
-                sub_size[si] = size;
+                let t = &mut sensed[s as usize];
+                t.nb.idx = k as u32;
+                t.nb.leader = ld;
+                t.nb.follower = follower;
+                t.cav_ahead = ahead;
+                t.linked = cand;
+                t.sub_size = size;
                 follower = s;
                 f_pred = v.string_pred;
                 f_cand = cand;
@@ -160,25 +179,14 @@ impl Simulation {
             lanes,
             lane_xv,
             vehicles,
-            nb,
-            here,
-            linked,
-            platoon_pos,
-            sub_size,
-            cav_ahead,
+            sensed,
             geom,
             ..
         } = self;
         let n_lanes = lanes.len();
         let plain = geom.plain;
         let vehicles = &mut vehicles[..];
-        let (nb, here, linked, platoon_pos) = (
-            &mut nb[..],
-            &mut here[..],
-            &mut linked[..],
-            &mut platoon_pos[..],
-        );
-        let (sub_size, cav_ahead) = (&sub_size[..], &cav_ahead[..]);
+        let sensed = &mut sensed[..];
         for l in 0..n_lanes {
             let lane = &lanes[l];
             let xs = &lane_xv[l];
@@ -200,54 +208,66 @@ impl Simulation {
             let mut own = geom.walk(l);
             let mut left = geom.walk(l + 1);
             let mut right = geom.walk(l.wrapping_sub(1));
+            let mut rightmost = geom.walk_right();
             let mut ramps = geom.ramps_by_x.len();
+            // `ramps` holds for every x in [ramps_lo, ramps_hi) (between two merge points).
+            let (mut ramps_lo, mut ramps_hi) = (f64::INFINITY, f64::NEG_INFINITY);
             let (mut adj_start, mut tg2_start) = (0usize, 0usize);
             for (k, (&s, &(x, _))) in lane.iter().zip(xs).enumerate() {
                 let si = s as usize;
                 jl = sweep(lx, jl, x);
                 jr = sweep(rx, jr, x);
-                let nb = &mut nb[si];
-                nb.left_leader = if jl > 0 { llane[jl - 1] } else { NONE };
-                nb.left_follower = llane.get(jl).copied().unwrap_or(NONE);
-                nb.right_leader = if jr > 0 { rlane[jr - 1] } else { NONE };
-                nb.right_follower = rlane.get(jr).copied().unwrap_or(NONE);
-                here[si] = if plain {
+                // Membership and position (`linked` holds the candidate link from pass A; the
+                // leader's position is final: it comes first in the lane list).
+                let mut pred_id = crate::vehicle::NEVER;
+                let mut pos = 1;
+                if sensed[si].linked {
+                    let ld = lane[k - 1] as usize;
+                    let lpos = sensed[ld].platoon_pos;
+                    let lid = vehicles[ld].id;
+                    let member = vehicles[si].string_pred == lid;
+                    if (member && lpos < max) || (!member && lpos + sensed[si].sub_size <= max) {
+                        pred_id = lid;
+                        pos = lpos + 1;
+                    }
+                }
+                let t = &mut sensed[si];
+                t.nb.left_leader = if jl > 0 { llane[jl - 1] } else { NONE };
+                t.nb.left_follower = llane.get(jl).copied().unwrap_or(NONE);
+                t.nb.right_leader = if jr > 0 { rlane[jr - 1] } else { NONE };
+                t.nb.right_follower = rlane.get(jr).copied().unwrap_or(NONE);
+                t.here = if plain {
                     Here {
                         wall: None,
                         accel: false,
                         enter_left: l + 1 < n_lanes,
                         enter_right: l > 0,
                         ramps_upto: 0,
+                        right: 0,
                     }
                 } else {
                     let seg = own.at(x);
-                    ramps = geom.ramps_upto_from(ramps, x);
+                    if !(x >= ramps_lo && x < ramps_hi) {
+                        ramps = geom.ramps_upto_from(ramps, x);
+                        let r = &geom.ramps_by_x;
+                        ramps_lo = ramps.checked_sub(1).map_or(f64::NEG_INFINITY, |i| r[i].0);
+                        ramps_hi = r.get(ramps).map_or(f64::INFINITY, |p| p.0);
+                    }
                     Here {
                         wall: seg.filter(|g| g.wall).map(|g| g.to),
                         accel: seg.is_some_and(|g| g.accel),
                         enter_left: left.at(x).is_some_and(|g| !g.accel),
                         enter_right: l > 0 && right.at(x).is_some_and(|g| !g.accel),
                         ramps_upto: ramps as u32,
+                        right: rightmost.at(x),
                     }
                 };
-                // Membership and position (`linked` holds the candidate link from pass A).
-                let mut pred_id = crate::vehicle::NEVER;
-                let mut pos = 1;
-                if linked[si] {
-                    let ld = lane[k - 1] as usize;
-                    let lpos = platoon_pos[ld];
-                    let lid = vehicles[ld].id;
-                    let member = vehicles[si].string_pred == lid;
-                    if (member && lpos < max) || (!member && lpos + sub_size[si] <= max) {
-                        pred_id = lid;
-                        pos = lpos + 1;
-                    }
-                }
-                platoon_pos[si] = pos;
+                t.platoon_pos = pos;
                 let is_linked = pred_id != crate::vehicle::NEVER;
-                linked[si] = is_linked;
+                t.linked = is_linked;
+                let cav_ahead = t.cav_ahead;
                 let v = &mut vehicles[si];
-                let adjacent = cav_ahead[si] && v.automated();
+                let adjacent = cav_ahead && v.automated();
                 v.string_pred = pred_id;
                 if !adjacent || k - adj_start >= max as usize {
                     close_run(vehicles, &lane[adj_start..k], false);
@@ -316,5 +336,13 @@ fn close_run(vehicles: &mut [Vehicle], run: &[u32], strict: bool) {
         if *m < size {
             *m = size;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn sensed_fills_one_cache_line() {
+        assert_eq!(std::mem::size_of::<super::Sensed>(), 64);
     }
 }

@@ -5,7 +5,7 @@ use crate::detector::{Detector, Passage};
 use crate::insert::Entrance;
 use crate::metrics::Metrics;
 use crate::network::Geometry;
-use crate::sense::{Neighbours, NONE};
+use crate::sense::{Sensed, NONE};
 use crate::summary::{Output, Summary};
 use crate::vehicle::{Kind, Relaxation, Vehicle, NO_EXIT};
 use platoonsim_model::lanechange::Side;
@@ -41,16 +41,9 @@ pub struct Simulation {
     pub(crate) free: Vec<u32>,
     /// Per lane (0 = rightmost), vehicle slots sorted front first (descending x).
     pub(crate) lanes: Vec<Vec<u32>>,
-    // Scratch, indexed by slot, rebuilt every step (no allocation once warmed up).
-    pub(crate) nb: Vec<Neighbours>,
-    pub(crate) platoon_pos: Vec<u32>,
-    /// Member of its predecessor's CACC string (spec 3.6).
-    pub(crate) linked: Vec<bool>,
-    /// The same-lane leader is a CAV within sensor range (sense phase).
-    pub(crate) cav_ahead: Vec<bool>,
-    pub(crate) sub_size: Vec<u32>,
-    /// Geometry at each vehicle's step-start position (sense phase).
-    pub(crate) here: Vec<crate::sense::Here>,
+    /// Scratch, indexed by slot, rebuilt every step (no allocation once warmed up): what the
+    /// sense phase found for each vehicle (one cache line per vehicle).
+    pub(crate) sensed: Vec<Sensed>,
     /// Per lane, parallel to `lanes`: (x, v) of each vehicle at the step start (sense phase),
     /// then a sentinel (−∞, 0).
     pub(crate) lane_xv: Vec<Vec<(f64, f64)>>,
@@ -130,12 +123,7 @@ impl Simulation {
             vehicles: Vec::new(),
             free: Vec::new(),
             lanes: vec![Vec::new(); n_lanes],
-            nb: Vec::new(),
-            platoon_pos: Vec::new(),
-            linked: Vec::new(),
-            cav_ahead: Vec::new(),
-            sub_size: Vec::new(),
-            here: Vec::new(),
+            sensed: Vec::new(),
             lane_xv: Vec::new(),
             decisions: Vec::new(),
             changed_this_step: Vec::new(),
@@ -256,7 +244,7 @@ impl Simulation {
                 if !self.geom.plain {
                     // A wall is a standing obstacle (network.rs): passing it is a collision.
                     // (`here` is at the step-start position: x_prev, in this lane.)
-                    if let Some(w) = self.here[s as usize].wall {
+                    if let Some(w) = self.sensed[s as usize].here.wall {
                         if veh.x > w {
                             self.collisions += 1;
                             veh.x = (w - 0.01).max(veh.x_prev);
@@ -536,7 +524,7 @@ impl Simulation {
     /// Renumber the slots in lane order, front first (memory locality only: neighbours in a
     /// lane become neighbours in memory). Nothing depends on slot numbers across steps: every
     /// slot-indexed array is rebuilt by the next sense phase before it is read (insertion reads
-    /// `platoon_pos` only of vehicles that were on the road at that phase: the mainline entrance
+    /// `Sensed::platoon_pos` only of vehicles that were on the road at that phase: the mainline entrance
     /// inserts first and on-ramps are listed in downstream order), identities are vehicle ids,
     /// and no result is accumulated in slot order.
     fn compact(&mut self) {
