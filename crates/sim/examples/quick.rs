@@ -1,7 +1,7 @@
 //! Quick engine run for calibration: `cargo run --release -p platoonsim-sim --example quick --
 //! PEN DEMAND [DURATION] [WARMUP] [SEED] [STRATEGY]` prints the summary as JSON-ish lines.
 
-use platoonsim_sim::{run, Config, PdConfig, Strategy};
+use platoonsim_sim::{run, Config};
 
 fn main() {
     let a: Vec<String> = std::env::args().skip(1).collect();
@@ -15,14 +15,7 @@ fn main() {
     );
     if let Some(s) = a.get(5) {
         if s == "pd" {
-            cfg.strategy = Strategy::Pd {
-                pd: PdConfig {
-                    zone_start_m: 5000.0,
-                    zone_end_m: 6000.0,
-                    start_s: cfg.warmup_s,
-                    end_s: cfg.duration_s,
-                },
-            };
+            cfg = cfg.with_pd();
         }
     }
     if let Ok(theta) = std::env::var("THETA") {

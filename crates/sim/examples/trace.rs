@@ -12,14 +12,7 @@ fn main() {
     let (x_lo, x_hi) = (f(4, 0.0), f(5, 1e9));
     if std::env::var("PD").is_ok() {
         cfg.warmup_s = 1200.0;
-        cfg.strategy = platoonsim_sim::Strategy::Pd {
-            pd: platoonsim_sim::PdConfig {
-                zone_start_m: 5000.0,
-                zone_end_m: 6000.0,
-                start_s: 1200.0,
-                end_s: 1e9,
-            },
-        };
+        cfg = cfg.with_pd();
     }
     let mut sim = Simulation::new(cfg).unwrap();
     while !sim.finished() {

@@ -403,4 +403,18 @@ impl Config {
             lane_change: LaneChangeDists::default(),
         }
     }
+
+    /// The same run with the paper's PD set-up: the PD lane in the road's control section from
+    /// the end of the warm-up to the end of the run.
+    pub fn with_pd(mut self) -> Config {
+        self.strategy = Strategy::Pd {
+            pd: PdConfig {
+                zone_start_m: self.road.control_start_m,
+                zone_end_m: self.road.control_end_m,
+                start_s: self.warmup_s,
+                end_s: self.duration_s,
+            },
+        };
+        self
+    }
 }

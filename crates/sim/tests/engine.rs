@@ -1,24 +1,10 @@
 //! Engine contracts: determinism, conservation, no overlap, no NaN, queueing at the entrance,
 //! and two step sizes (issue 2, "What it must show").
 
-use platoonsim_sim::{run, Config, Output, PdConfig, Simulation, Strategy};
+use platoonsim_sim::{run, Config, Output, Simulation};
 
 fn short(pen: f64, demand: f64, seed: u64) -> Config {
     Config::homogeneous(pen, demand, 900.0, 300.0, seed)
-}
-
-/// The paper's PD set-up on the homogeneous road: the control section (5-6 km) from the end of
-/// the warm-up to the end of the run.
-fn with_pd(mut cfg: Config) -> Config {
-    cfg.strategy = Strategy::Pd {
-        pd: PdConfig {
-            zone_start_m: 5000.0,
-            zone_end_m: 6000.0,
-            start_s: cfg.warmup_s,
-            end_s: cfg.duration_s,
-        },
-    };
-    cfg
 }
 
 fn strip_wall(mut o: Output) -> Output {
@@ -56,7 +42,7 @@ fn vehicles_are_conserved_and_never_overlap() {
     ] {
         let mut cfg = Config::homogeneous(pen, demand, 1800.0, 600.0, 3);
         if strategy {
-            cfg = with_pd(cfg);
+            cfg = cfg.with_pd();
         }
         let s = run(&cfg, None).unwrap().summary;
         assert_eq!(
@@ -166,7 +152,7 @@ fn cavs_that_let_joiners_in_fill_the_pd_lane_faster() {
     // 0.17 → 0.31 lane changes per vehicle, L̄ 3.98 → 4.80; seeds 1-5 at 2,000 veh/h/lane,
     // 50 % CAV, with `organize_while_automated`: L̄ 4.07 → 5.42 and a discharge change against
     // the baseline of -0.1 → -5.0 %, at 2,500 -13.6 → -22.3 %). Off by default.
-    let mut cfg = with_pd(Config::homogeneous(0.5, 2000.0, 3600.0, 1200.0, 1));
+    let mut cfg = Config::homogeneous(0.5, 2000.0, 3600.0, 1200.0, 1).with_pd();
     let off = run(&cfg, None).unwrap().summary;
     cfg.cav.yield_to_organizers = true;
     let on = run(&cfg, None).unwrap().summary;
@@ -192,7 +178,7 @@ fn cavs_that_wait_for_a_pd_gap_automated_cost_less_capacity() {
     // gaps are acceptable. Seeds 1-5, 50 % CAV, 2,500 veh/h/lane (docs/model-choices.md 6.20):
     // discharge change against the baseline -21 % under the PATH rule, -14 % with the flag
     // (paper Table 3: -9.5 %).
-    let mut cfg = with_pd(Config::homogeneous(0.5, 2500.0, 3600.0, 1200.0, 2));
+    let mut cfg = Config::homogeneous(0.5, 2500.0, 3600.0, 1200.0, 2).with_pd();
     let waiting = run(&cfg, None).unwrap().summary;
     cfg.cav.organize_while_automated = false;
     let manual = run(&cfg, None).unwrap().summary;
