@@ -20,6 +20,9 @@
 //!             regulation  0 < e < 0.2 and |Δv| < 0.1 : (0.45, 0.0125)
 //!             avoidance   e < 0                      : (0.45, 0.05)
 //!             closing     otherwise                  : (0.005, 0.05)
+//!               [D] 6.21 (default): "otherwise" only while approaching (Δv < 0); with Δv ≥ 0
+//!               the regulation gains (the single Milanés law of the PATH code); the cap on
+//!               speed regulation follows the same choice
 //!             a = (v(k+1) − v(k)) / 0.1 applied over Δt
 //! safety (3.4, 3.8): v_safe = Gipps speed with τ_r = 0.4 s, θ = 0, b̂ = b, jam gap s_min, at its
 //!             fixed point v = v_G (= Krauss form): v_safe = bτ_r + sqrt(b²τ_r² + v_l² − 2b(g − s_min));
@@ -54,6 +57,7 @@
 //! | – | `yield_while_automated` | true | – | spec 6.5 [D]: automation answers mandatory yield requests |
 //! | – | `yield_to_organizers` | false | – | [D]: … and requests of CAVs joining the PD lane |
 //! | – | `organize_while_automated` | true | – | [D]: automation stays on while waiting for a PD-lane gap |
+//! | – | `cacc_closing_only_approaching` | true | – | [D] 6.21: CACC gap closing only while Δv < 0 |
 //!
 //! Yielding through the automation (spec 4.5 applied to an automated CAV, [D]):
 //! a = min(a_auto, max(a_virtual, b_c)), a_virtual = the driver's relaxed car-following
@@ -110,6 +114,13 @@ pub struct CavParams {
     /// which under PD turns every CAV outside the PD lane into a manual vehicle
     /// (docs/model-choices.md 6.20).
     pub organize_while_automated: bool,
+    /// The CACC gap-closing sub-mode (spec 3.4, Xiao 2017: weak gains for a smooth approach)
+    /// applies only while the follower closes in on its predecessor (Δv < 0). With the gap
+    /// above its target and the predecessor not slower (Δv ≥ 0), e.g. a string leaving a
+    /// queue behind an accelerating leader, the gap-regulation gains apply, as in the single
+    /// Milanés law of the PATH code the seed paper used; the cap on speed regulation uses the
+    /// same choice. Default true [D] (docs/model-choices.md 6.21). False = spec 3.4 as written.
+    pub cacc_closing_only_approaching: bool,
 }
 
 impl Default for CavParams {
@@ -140,6 +151,7 @@ impl Default for CavParams {
             yield_while_automated: true,
             yield_to_organizers: false,
             organize_while_automated: true,
+            cacc_closing_only_approaching: true,
         }
     }
 }
@@ -332,9 +344,12 @@ pub fn cacc(
         // spec 3.4: speed regulation as the speed update v + k0 (v_F − v)Δt, i.e. a = k0 (v_F − v),
         // [D] never above what gap closing toward the leader asks for (at low speed tg > 2 s
         // happens a few metres behind a stopped leader; plain cruise would accelerate into it).
-        let closing = (p.cacc_closing_gains[0] * e
-            + p.cacc_closing_gains[1] * (dv - time_gap_s * a_own))
-            / CACC_CONTROL_INTERVAL_S;
+        let [kp, kd] = if p.cacc_closing_only_approaching && dv >= 0.0 {
+            p.cacc_reg_gains
+        } else {
+            p.cacc_closing_gains
+        };
+        let closing = (kp * e + kd * (dv - time_gap_s * a_own)) / CACC_CONTROL_INTERVAL_S;
         return Command {
             accel: speed_regulation(p, v, v_des).min(closing),
             mode: CavMode::SpeedRegulation,
@@ -345,6 +360,9 @@ pub fn cacc(
         (CavMode::GapRegulation, p.cacc_reg_gains)
     } else if e < 0.0 {
         (CavMode::CollisionAvoidance, p.cacc_avoid_gains)
+    } else if p.cacc_closing_only_approaching && dv >= 0.0 {
+        // [D] 6.21: not approaching, so no reason for the soft approach gains.
+        (CavMode::GapRegulation, p.cacc_reg_gains)
     } else {
         (CavMode::GapClosing, p.cacc_closing_gains)
     };

@@ -209,7 +209,23 @@ fn cacc_sub_modes_and_speed_update() {
     let c = cmd(15.5, 24.5, 0.2);
     assert_eq!(c.mode, CavMode::CollisionAvoidance);
     assert!(close(c.accel, (-0.45 + 0.05 * (-0.5 - 0.12)) / 0.1));
+    // Gap above target, leader not slower: by default (model-choices 6.21) the regulation
+    // gains; as spec 3.4 writes it, gap closing.
     let c = cmd(20.0, 25.0, 0.0);
+    assert_eq!(c.mode, CavMode::GapRegulation);
+    assert!(close(c.accel, 0.45 * 3.5 / 0.1));
+    let c = cmd(20.0, 25.5, 0.5);
+    assert_eq!(c.mode, CavMode::GapRegulation);
+    assert!(close(c.accel, (0.45 * 3.5 + 0.0125 * (0.5 - 0.3)) / 0.1));
+    // Approaching (Δv < 0): gap closing either way.
+    let c = cmd(20.0, 24.0, 0.0);
+    assert_eq!(c.mode, CavMode::GapClosing);
+    assert!(close(c.accel, (0.005 * 3.5 - 0.05) / 0.1));
+    let written = CavParams {
+        cacc_closing_only_approaching: false,
+        ..p.clone()
+    };
+    let c = cacc(&written, v, 0.0, 30.0, leader(20.0, 25.0), 0.6, Family::Gap);
     assert_eq!(c.mode, CavMode::GapClosing);
     assert!(close(c.accel, 0.005 * 3.5 / 0.1));
 }
@@ -251,6 +267,37 @@ fn cacc_time_gap_family_and_hysteresis() {
         Family::Gap,
     );
     assert!(close(c.accel, 0.0) && c.family == Family::Gap);
+}
+
+#[test]
+fn cacc_speed_regulation_cap_follows_the_closing_rule() {
+    // Leaving a queue: 2 m/s, 10 m behind a leader at 3 m/s (tg 5 s, e = 10 − 1.2 − 1.5 =
+    // 7.3 m) → speed family, cruise asks 0.4·(30 − 2) = 11.2 m/s². The cap is the law the gap
+    // family would use: by default (6.21) the regulation gains, as the leader is not slower:
+    // (0.45·7.3 + 0.0125·1)/0.1 = 32.975, so cruise applies; as spec 3.4 writes it, gap
+    // closing: (0.005·7.3 + 0.05·1)/0.1 = 0.865 m/s², which held strings back in queues.
+    let p = p();
+    let c = cacc(&p, 2.0, 0.0, 30.0, leader(10.0, 3.0), 0.6, Family::Gap);
+    assert_eq!(c.mode, CavMode::SpeedRegulation);
+    assert!(close(c.accel, 0.4 * 28.0));
+    let written = CavParams {
+        cacc_closing_only_approaching: false,
+        ..p.clone()
+    };
+    let c = cacc(
+        &written,
+        2.0,
+        0.0,
+        30.0,
+        leader(10.0, 3.0),
+        0.6,
+        Family::Gap,
+    );
+    assert_eq!(c.mode, CavMode::SpeedRegulation);
+    assert!(close(c.accel, (0.005 * 7.3 + 0.05 * 1.0) / 0.1));
+    // Approaching a slower leader, the cap is gap closing in both: 2 m/s behind one at 1 m/s.
+    let c = cacc(&p, 2.0, 0.0, 30.0, leader(10.0, 1.0), 0.6, Family::Gap);
+    assert!(close(c.accel, (0.005 * 7.3 - 0.05) / 0.1));
 }
 
 // ---------- finalize (spec 3.4 "After the law") ----------
