@@ -344,11 +344,7 @@ pub fn cacc(
         // spec 3.4: speed regulation as the speed update v + k0 (v_F − v)Δt, i.e. a = k0 (v_F − v),
         // [D] never above what gap closing toward the leader asks for (at low speed tg > 2 s
         // happens a few metres behind a stopped leader; plain cruise would accelerate into it).
-        let [kp, kd] = if p.cacc_closing_only_approaching && dv >= 0.0 {
-            p.cacc_reg_gains
-        } else {
-            p.cacc_closing_gains
-        };
+        let (_, [kp, kd]) = above_target_law(p, dv);
         let closing = (kp * e + kd * (dv - time_gap_s * a_own)) / CACC_CONTROL_INTERVAL_S;
         return Command {
             accel: speed_regulation(p, v, v_des).min(closing),
@@ -360,11 +356,8 @@ pub fn cacc(
         (CavMode::GapRegulation, p.cacc_reg_gains)
     } else if e < 0.0 {
         (CavMode::CollisionAvoidance, p.cacc_avoid_gains)
-    } else if p.cacc_closing_only_approaching && dv >= 0.0 {
-        // [D] 6.21: not approaching, so no reason for the soft approach gains.
-        (CavMode::GapRegulation, p.cacc_reg_gains)
     } else {
-        (CavMode::GapClosing, p.cacc_closing_gains)
+        above_target_law(p, dv)
     };
     let e_dot = dv - time_gap_s * a_own;
     // v(k+1) = v(k) + kp e + kd ė per 0.1 s → a = (v(k+1) − v(k)) / 0.1.
@@ -372,6 +365,19 @@ pub fn cacc(
         accel: (kp * e + kd * e_dot) / CACC_CONTROL_INTERVAL_S,
         mode,
         family,
+    }
+}
+
+/// Sub-mode and gains (kp, kd) of the CACC law for a gap above its target outside the
+/// regulation band: gap closing (spec 3.4), or with `cacc_closing_only_approaching` [D] 6.21
+/// the regulation gains unless the follower approaches its predecessor (Δv < 0): the soft
+/// closing gains exist for the approach.
+#[inline]
+fn above_target_law(p: &CavParams, dv: f64) -> (CavMode, [f64; 2]) {
+    if p.cacc_closing_only_approaching && dv >= 0.0 {
+        (CavMode::GapRegulation, p.cacc_reg_gains)
+    } else {
+        (CavMode::GapClosing, p.cacc_closing_gains)
     }
 }
 
