@@ -342,8 +342,9 @@ pub fn cacc(
     };
     if family == Family::Speed {
         // spec 3.4: speed regulation as the speed update v + k0 (v_F − v)Δt, i.e. a = k0 (v_F − v),
-        // [D] never above what gap closing toward the leader asks for (at low speed tg > 2 s
-        // happens a few metres behind a stopped leader; plain cruise would accelerate into it).
+        // [D] never above what the gap law above target asks for (gap closing, or regulation
+        // under 6.21 while not approaching): at low speed tg > 2 s happens a few metres behind
+        // a stopped leader, and plain cruise would accelerate into it.
         let (_, [kp, kd]) = above_target_law(p, dv);
         let closing = (kp * e + kd * (dv - time_gap_s * a_own)) / CACC_CONTROL_INTERVAL_S;
         return Command {
