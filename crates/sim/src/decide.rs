@@ -92,7 +92,7 @@ impl Simulation {
     }
 
     /// Density on each on-ramp (its queue plus its acceleration lane) (veh/km), for the
-    /// anticipation rule (spec 4.2).
+    /// anticipation rule (spec 4.2), and from it the rule's factor for j = 1, 2.
     fn update_ramp_density(&mut self) {
         for (i, r) in self.geom.on_ramps.iter().enumerate() {
             let queued = self.entrances[i + 1].waiting();
@@ -104,7 +104,12 @@ impl Simulation {
                 let lo = lane.partition_point(|&o| self.vehicles[o as usize].x >= r.x);
                 lo.saturating_sub(hi)
             };
-            self.ramp_density[i] = (queued + on_accel) as f64 / (r.density_length_m / 1000.0);
+            let density = (queued + on_accel) as f64 / (r.density_length_m / 1000.0);
+            let c = self.cfg.lane_change.anticipation_strength;
+            // The same expression as per vehicle before, so the same bits.
+            self.ramp_factor[i] = [1, 2].map(|j: u32| {
+                1.0 + c * (density / RHO_JAM_PER_KM) / f64::from(j)
+            });
         }
     }
 
@@ -470,6 +475,7 @@ impl Simulation {
 
     /// Spec 4.2 "Anticipatory": in the two rightmost through lanes within the anticipation
     /// range of an on-ramp, the current-lane speed is divided by 1 + c_inc (ρ_ramp/ρ_jam)/j.
+    #[inline]
     fn anticipation_factor(&self, s: u32, v: &Vehicle) -> f64 {
         let lcd = &self.cfg.lane_change;
         let here = &self.sensed[s as usize].here;
@@ -492,7 +498,8 @@ impl Simulation {
         if j > 2 {
             return 1.0;
         }
-        1.0 + lcd.anticipation_strength * (self.ramp_density[ramp] / RHO_JAM_PER_KM) / f64::from(j)
+        // 1 + c_inc (ρ_ramp/ρ_jam)/j, computed once per step (`update_ramp_density`).
+        self.ramp_factor[ramp][(j - 1) as usize]
     }
 
     /// Average speed of the next `n_scan` vehicles within `d_scan` ahead of `x` in `lane`,
