@@ -107,9 +107,8 @@ impl Simulation {
             let density = (queued + on_accel) as f64 / (r.density_length_m / 1000.0);
             let c = self.cfg.lane_change.anticipation_strength;
             // The same expression as per vehicle before, so the same bits.
-            self.ramp_factor[i] = [1, 2].map(|j: u32| {
-                1.0 + c * (density / RHO_JAM_PER_KM) / f64::from(j)
-            });
+            self.ramp_factor[i] =
+                [1, 2].map(|j: u32| 1.0 + c * (density / RHO_JAM_PER_KM) / f64::from(j));
         }
     }
 
