@@ -92,7 +92,7 @@ impl Simulation {
     }
 
     /// Density on each on-ramp (its queue plus its acceleration lane) (veh/km), for the
-    /// anticipation rule (spec 4.2).
+    /// anticipation rule (spec 4.2), and from it the rule's factor for j = 1, 2.
     fn update_ramp_density(&mut self) {
         for (i, r) in self.geom.on_ramps.iter().enumerate() {
             let queued = self.entrances[i + 1].waiting();
@@ -104,7 +104,11 @@ impl Simulation {
                 let lo = lane.partition_point(|&o| self.vehicles[o as usize].x >= r.x);
                 lo.saturating_sub(hi)
             };
-            self.ramp_density[i] = (queued + on_accel) as f64 / (r.density_length_m / 1000.0);
+            let density = (queued + on_accel) as f64 / (r.density_length_m / 1000.0);
+            let c = self.cfg.lane_change.anticipation_strength;
+            // The same expression as per vehicle before, so the same bits.
+            self.ramp_factor[i] =
+                [1, 2].map(|j: u32| 1.0 + c * (density / RHO_JAM_PER_KM) / f64::from(j));
         }
     }
 
@@ -440,11 +444,13 @@ impl Simulation {
         }
         let here = &self.sensed[s as usize].here;
         let mut out = [None, None];
-        for (i, side, ld, w, eta, open) in [
+        let lane = v.lane as usize;
+        for (i, side, target, j, w, eta, open) in [
             (
                 0,
                 Side::Left,
-                nb.left_leader,
+                lane + 1,
+                nb.left_j,
                 w_left,
                 eta_left,
                 here.enter_left,
@@ -452,7 +458,8 @@ impl Simulation {
             (
                 1,
                 Side::Right,
-                nb.right_leader,
+                lane.wrapping_sub(1),
+                nb.right_j,
                 w_right,
                 1.0,
                 here.enter_right,
@@ -462,7 +469,7 @@ impl Simulation {
             if !open || w <= 0.0 {
                 continue;
             }
-            let v_ant = self.anticipated_speed(v, ld);
+            let v_ant = self.anticipated_speed(v, target, j as usize, v_cur);
             out[i] = Some(w * eta * lcm::discretionary_desire(&v.lc, v_ant, v_cur, side));
         }
         out
@@ -470,6 +477,7 @@ impl Simulation {
 
     /// Spec 4.2 "Anticipatory": in the two rightmost through lanes within the anticipation
     /// range of an on-ramp, the current-lane speed is divided by 1 + c_inc (ρ_ramp/ρ_jam)/j.
+    #[inline]
     fn anticipation_factor(&self, s: u32, v: &Vehicle) -> f64 {
         let lcd = &self.cfg.lane_change;
         let here = &self.sensed[s as usize].here;
@@ -492,7 +500,8 @@ impl Simulation {
         if j > 2 {
             return 1.0;
         }
-        1.0 + lcd.anticipation_strength * (self.ramp_density[ramp] / RHO_JAM_PER_KM) / f64::from(j)
+        // 1 + c_inc (ρ_ramp/ρ_jam)/j, computed once per step (`update_ramp_density`).
+        self.ramp_factor[ramp][(j - 1) as usize]
     }
 
     /// Average speed of the next `n_scan` vehicles within `d_scan` ahead of `x` in `lane`,
@@ -520,19 +529,45 @@ impl Simulation {
         }
     }
 
-    /// v_ant = min(v̄_target, v_target-leader) (spec 4.2), scanning from the target leader.
-    fn anticipated_speed(&self, v: &Vehicle, target_leader: u32) -> f64 {
+    /// v_ant = min(v̄_target, v_target-leader) (spec 4.2), scanning from the target leader, in
+    /// lane `target` whose merge-sweep cursor for this vehicle is `j` (the target leader is at
+    /// index j − 1, read from `lane_xv`: the same step-start x and v as its record).
+    ///
+    /// When even min(v_target-leader, v_des), an upper bound of v_ant, gains less than the
+    /// minimum speed gain over `v_cur`, the bound is returned without the scan: the
+    /// discretionary desire is then 0 for the bound as for v_ant (`discretionary_desire`'s first
+    /// test; v_ant ≤ bound and subtracting `v_cur` is monotonic, so v_ant − v_cur < the gain
+    /// too). In queues beside a queue this skips most scans.
+    #[inline]
+    fn anticipated_speed(&self, v: &Vehicle, target: usize, j: usize, v_cur: f64) -> f64 {
         let v_des = v_des_of(v);
-        if target_leader == NONE {
+        if j == 0 {
+            return v_des; // no target leader
+        }
+        let (tl_x, tl_v) = self.lane_xv[target][j - 1];
+        if tl_x - v.x > self.cfg.lane_change.scan_distance_m {
             return v_des;
         }
-        let tl = &self.vehicles[target_leader as usize];
-        if tl.x - v.x > self.cfg.lane_change.scan_distance_m {
-            return v_des;
+        let bound = bounded::min(tl_v, v_des);
+        if bound - v_cur < v.lc.min_speed_gain_mps {
+            return bound;
         }
-        let from = self.sensed[target_leader as usize].nb.idx as usize + 1;
-        let avg = self.avg_speed_ahead(tl.lane as usize, from, v.x, v_des);
-        bounded::min(avg.min(tl.v), v_des)
+        let avg = self.avg_speed_ahead(target, j, v.x, v_des);
+        bounded::min(avg.min(tl_v), v_des)
+    }
+
+    /// The follower (slot) in the lane on `side`, from the merge-sweep cursor (`NONE` if there
+    /// is none, or no lane).
+    fn side_follower(&self, v: &Vehicle, nb: &Neighbours, side: Side) -> u32 {
+        let (lane, j) = match side {
+            Side::Left => (v.lane as usize + 1, nb.left_j),
+            Side::Right => ((v.lane as usize).wrapping_sub(1), nb.right_j),
+        };
+        self.lanes
+            .get(lane)
+            .and_then(|l| l.get(j as usize))
+            .copied()
+            .unwrap_or(NONE)
     }
 
     /// BLC (spec 4.3): gap acceptance and the before-change behaviour; also whether both gaps
@@ -545,10 +580,11 @@ impl Simulation {
         leader: Option<Leader>,
         d: Desire,
     ) -> (Decision, Gaps) {
-        let (tl, tf) = match d.side {
-            Side::Left => (nb.left_leader, nb.left_follower),
-            Side::Right => (nb.right_leader, nb.right_follower),
+        let tl = match d.side {
+            Side::Left => nb.left_leader,
+            Side::Right => nb.right_leader,
         };
+        let tf = self.side_follower(v, nb, d.side);
         let v_des = v.human.desired_speed;
         let h = &v.human;
         // An automated CAV hands over to its driver now ("manual mode from a lane-change desire

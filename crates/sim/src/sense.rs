@@ -15,11 +15,15 @@ pub struct Neighbours {
     pub follower: u32,
     /// Index of the vehicle in its lane list (front first).
     pub idx: u32,
-    /// Leader and follower in the lane to the left (lane + 1) and to the right (lane − 1).
+    /// Leader in the lane to the left (lane + 1) and to the right (lane − 1).
     pub left_leader: u32,
-    pub left_follower: u32,
     pub right_leader: u32,
-    pub right_follower: u32,
+    /// Merge-sweep cursors: the index, in the list of the lane to the left / right, of the
+    /// first vehicle that is not strictly ahead (the follower there, if any; the leader there is
+    /// at the index before). With `Simulation::lane_xv` they give the leader's (x, v) and the
+    /// start of its lane-speed scan without reading its records.
+    pub left_j: u32,
+    pub right_j: u32,
 }
 
 impl Default for Neighbours {
@@ -29,9 +33,9 @@ impl Default for Neighbours {
             follower: NONE,
             idx: 0,
             left_leader: NONE,
-            left_follower: NONE,
             right_leader: NONE,
-            right_follower: NONE,
+            left_j: 0,
+            right_j: 0,
         }
     }
 }
@@ -233,9 +237,9 @@ impl Simulation {
                 }
                 let t = &mut sensed[si];
                 t.nb.left_leader = if jl > 0 { llane[jl - 1] } else { NONE };
-                t.nb.left_follower = llane.get(jl).copied().unwrap_or(NONE);
                 t.nb.right_leader = if jr > 0 { rlane[jr - 1] } else { NONE };
-                t.nb.right_follower = rlane.get(jr).copied().unwrap_or(NONE);
+                t.nb.left_j = jl as u32;
+                t.nb.right_j = jr as u32;
                 t.here = if plain {
                     Here {
                         wall: None,

@@ -61,8 +61,9 @@ pub struct Simulation {
     pub(crate) geom: Geometry,
     /// Ramp speed limit (m/s); ∞ on a plain road.
     pub(crate) ramp_speed_mps: f64,
-    /// Density on each on-ramp (queue + acceleration lane) at the step start (veh/km).
-    pub(crate) ramp_density: Vec<f64>,
+    /// Per on-ramp, the anticipation factor 1 + c_inc (ρ_ramp/ρ_jam)/j for j = 1, 2 (spec 4.2)
+    /// from its density at the step start: computed once per step instead of per vehicle.
+    pub(crate) ramp_factor: Vec<[f64; 2]>,
     pub(crate) missed_exits: u64,
     /// Per off-ramp, the detector that counts it.
     pub(crate) exit_detector: Vec<Option<usize>>,
@@ -132,7 +133,7 @@ impl Simulation {
             lanes_sorted: false,
             det_hint: Vec::new(),
             entrances: Entrance::all(&cfg),
-            ramp_density: vec![0.0; geom.on_ramps.len()],
+            ramp_factor: vec![[1.0; 2]; geom.on_ramps.len()],
             geom,
             ramp_speed_mps,
             missed_exits: 0,
