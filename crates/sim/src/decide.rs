@@ -334,7 +334,7 @@ impl Simulation {
 
     /// A CAV whose platoon organization is active and whose exit is not near: without a
     /// mandatory need, its desire is the move toward the PD lane (spec 4.7).
-    fn may_organize(&self, v: &Vehicle) -> bool {
+    pub(crate) fn may_organize(&self, v: &Vehicle) -> bool {
         v.is_cav()
             && self.organization_active(v)
             && !self.exit_within(v, self.cfg.lane_change.anticipation_distance_m)
@@ -670,106 +670,6 @@ impl Simulation {
         }
         f.v > v.v
             && (v.v < CREEP_SPEED_MPS || (!self.geom.plain && self.sensed[s as usize].here.accel))
-    }
-
-    /// The virtual leader of a yielder: the requester `r`, standing its own (relaxed) jam gap
-    /// further back, so that the yielder leaves the room the requester's gap acceptance needs
-    /// (spec 4.3: g0 > d_jam'); otherwise two standing vehicles wait for each other.
-    #[inline]
-    fn yield_gap(&self, v: &Vehicle, r: &Vehicle) -> Leader {
-        Leader {
-            gap_m: r.rear() - v.x - r.lc.relax_jam * r.human.jam_gap_m,
-            v_mps: r.v,
-        }
-    }
-
-    /// The requester (slot) of a yield request the driver agrees to, if any (spec 4.5). The
-    /// automation (`automated`, spec 6.5 flag) answers only mandatory requests, and, with
-    /// `cav.yield_to_organizers`, a CAV moving left toward the PD lane.
-    ///
-    /// Inlined: most drivers have no adjacent-lane leader in BLC toward their lane, and this
-    /// first test of [`Self::yield_request`] answers them without a call.
-    #[inline]
-    fn agreed_request(&self, v: &Vehicle, nb: &Neighbours, automated: bool) -> Option<u32> {
-        let asks = |ld: u32, toward: Side| {
-            ld != NONE
-                && matches!(self.vehicles[ld as usize].mode, Mode::Blc { side, .. } if side == toward)
-        };
-        if !asks(nb.left_leader, Side::Right) && !asks(nb.right_leader, Side::Left) {
-            return None;
-        }
-        self.agreed_request_from(v, nb, automated)
-    }
-
-    /// [`Self::agreed_request`] once a neighbour asks.
-    #[inline(never)]
-    fn agreed_request_from(&self, v: &Vehicle, nb: &Neighbours, automated: bool) -> Option<u32> {
-        self.yield_request(v, nb).and_then(|(req, mandatory)| {
-            let r = &self.vehicles[req as usize];
-            let joining = || {
-                self.cfg.cav.yield_to_organizers
-                    && matches!(
-                        r.mode,
-                        Mode::Blc {
-                            side: Side::Left,
-                            mandatory: false,
-                            ..
-                        }
-                    )
-                    && self.may_organize(r)
-            };
-            if automated && !mandatory && !joining() {
-                return None;
-            }
-            lcm::agrees_to_yield(&v.lc, mandatory, pair_uniform(self.cfg.seed, v.id, r.id))
-                .then_some(req)
-        })
-    }
-
-    /// Spec 4.5: the nearer adjacent-lane leader in BLC toward this lane, if any (slot,
-    /// mandatory). Automated CAVs do not yield (spec 6.5) unless `cav.yield_while_automated`.
-    fn yield_request(&self, v: &Vehicle, nb: &Neighbours) -> Option<(u32, bool)> {
-        let mut best: Option<(u32, bool, f64)> = None;
-        for (ld, toward) in [(nb.left_leader, Side::Right), (nb.right_leader, Side::Left)] {
-            if ld == NONE {
-                continue;
-            }
-            let r = &self.vehicles[ld as usize];
-            let Mode::Blc {
-                side, mandatory, ..
-            } = r.mode
-            else {
-                continue;
-            };
-            if side != toward {
-                continue;
-            }
-            let dist = r.rear() - v.x;
-            // Too late (spec 4.5) once the requester's rear is behind the driver's front; and
-            // also while it is closer than the requester's own relaxed jam gap: the yielder
-            // cannot back up, so braking could never open the gap the requester's test needs
-            // (spec 4.3 g0 > d_jam'); two standing vehicles side by side would wait for each
-            // other at the end of an acceleration lane. The driver drives on instead and the
-            // next follower receives the request [D].
-            if dist < r.lc.relax_jam * r.human.jam_gap_m {
-                continue;
-            }
-            // The adjacent-lane leader may be far ahead (an empty stretch, or a lane that is
-            // closed in between): only a nearby requester is a request [D].
-            if dist > self.cfg.lane_change.yield_range_m {
-                continue;
-            }
-            // Ignore a request from the lane the driver has just left.
-            if let (Relaxation::Since(_), Some(last)) = (v.relax, v.last_lc_side) {
-                if opposite(last) == opposite(toward) {
-                    continue;
-                }
-            }
-            if best.is_none_or(|(_, _, b)| dist < b) {
-                best = Some((ld, mandatory, dist));
-            }
-        }
-        best.map(|(s, m, _)| (s, m))
     }
 }
 

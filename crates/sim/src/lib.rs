@@ -21,6 +21,7 @@ mod sim;
 mod strategy;
 pub mod summary;
 pub mod vehicle;
+mod yielding;
 
 pub use config::{
     Config, Demand, DetectorKind, DetectorSpec, FlowAwareConfig, LaneExtent, Network, OffRamp,
