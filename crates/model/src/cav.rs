@@ -58,6 +58,7 @@
 //! | – | `yield_to_organizers` | false | – | [D]: … and requests of CAVs joining the PD lane |
 //! | – | `organize_while_automated` | true | – | [D]: automation stays on while waiting for a PD-lane gap |
 //! | – | `cacc_closing_only_approaching` | true | – | [D] 6.21: CACC gap closing only while Δv < 0 |
+//! | – | `organize_regardless_of_speed` | true | – | [S] + [D] 6.22: no a_ant ≥ 0 test for a PD-lane move |
 //!
 //! Yielding through the automation (spec 4.5 applied to an automated CAV, [D]):
 //! a = min(a_auto, max(a_virtual, b_c)), a_virtual = the driver's relaxed car-following
@@ -121,6 +122,14 @@ pub struct CavParams {
     /// Milanés law of the PATH code the seed paper used; the cap on speed regulation uses the
     /// same choice. Default true [D] (docs/model-choices.md 6.21). False = spec 3.4 as written.
     pub cacc_closing_only_approaching: bool,
+    /// A CAV moving toward the PD lane does so "regardless of the speed difference between the
+    /// current lane and the target lanes" (seed paper, spec 4.7): its forward-gap test drops the
+    /// discretionary condition a_ant ≥ 0 (spec 4.3: the changer must not have to brake behind
+    /// its new leader), which is a condition on the target lane's speed. The gap rules stay
+    /// otherwise discretionary: the safety criterion of spec 4.3 applies, and the driver never
+    /// brakes to synchronize or drops back for a gap. Default true [D] (docs/model-choices.md
+    /// 6.22). False = the discretionary rules of spec 4.3 as written.
+    pub organize_regardless_of_speed: bool,
 }
 
 impl Default for CavParams {
@@ -152,6 +161,7 @@ impl Default for CavParams {
             yield_to_organizers: false,
             organize_while_automated: true,
             cacc_closing_only_approaching: true,
+            organize_regardless_of_speed: true,
         }
     }
 }

@@ -603,8 +603,13 @@ impl Simulation {
         let lead_ok = match lead_view {
             None => true,
             Some(l) => {
+                // Discretionary changes must not have to brake behind the new leader (spec
+                // 4.3); a mandatory change, and a move toward the PD lane "regardless of the
+                // speed difference" (`cav.organize_regardless_of_speed` [D] 6.22), need not.
                 lcm::accept_lead_gap(h, &v.lc, l.gap_m, v.v, l.v_mps)
-                    && (d.mandatory || a_ant >= 0.0)
+                    && (d.mandatory
+                        || (d.organize && self.cfg.cav.organize_regardless_of_speed)
+                        || a_ant >= 0.0)
             }
         };
         let lag_ok = if tf == NONE {
