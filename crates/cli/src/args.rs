@@ -322,8 +322,9 @@ pub struct NetworkArgs {
     pub bottleneck_minutes: f64,
 
     /// sr99-demand: also write the scales found into the embedded table file (default:
-    /// crates/scenario/scenarios/sr99_demand_scales.toml of this repository; rebuild to use
-    /// them) or into FILE.
+    /// crates/scenario/scenarios/sr99_demand_scales.toml of this repository) or into FILE;
+    /// calibrate-flow-aware: the chosen thresholds (default:
+    /// crates/scenario/scenarios/flow_aware_thresholds.toml). Rebuild to use them.
     #[arg(long, value_name = "FILE", num_args = 0..=1, require_equals = false)]
     pub write_table: Option<Option<PathBuf>>,
 

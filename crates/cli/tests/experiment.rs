@@ -190,6 +190,43 @@ fn sr99_experiments_run_from_the_command_line() {
     ]);
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("--write-table"));
+
+    // The threshold calibration writes its choice where --write-table says (by default the
+    // table the Flow-Aware defaults are read from).
+    let thresholds = out.join("thresholds.toml");
+    let o = platoonsim(&[
+        "experiment",
+        "calibrate-flow-aware",
+        "--seeds",
+        "1",
+        "--duration",
+        "120",
+        "--warmup",
+        "60",
+        "--flow-thresholds",
+        "2750",
+        "--speed-thresholds",
+        "0",
+        "--tolerance",
+        "100",
+        "--write-table",
+        s(&thresholds),
+        "--out",
+        s(&out),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        stdout(&o).contains("Wrote the chosen Flow-Aware thresholds to"),
+        "{}",
+        stdout(&o)
+    );
+    let text = std::fs::read_to_string(&thresholds).unwrap();
+    assert_eq!(
+        text,
+        std::fs::read_to_string(out.join("calibrate-flow-aware").join("thresholds.toml")).unwrap()
+    );
+    assert_eq!(text.matches("[[penetration]]").count(), 3, "{text}");
 }
 
 #[test]

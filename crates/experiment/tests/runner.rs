@@ -312,9 +312,12 @@ fn sensitivity_files_have_the_expected_shape() {
 #[test]
 fn calibration_writes_the_tradeoff_and_the_thresholds() {
     let out = scratch("calibrate");
+    let table = out.join("written").join("flow_aware_thresholds.toml");
+    fs::create_dir_all(table.parent().unwrap()).unwrap();
     let s = Settings {
         flow_thresholds: vec![1250.0, 2750.0],
         speed_thresholds: vec![0.0],
+        write_table: Some(table.clone()),
         ..settings(&out, 2, 1)
     };
     assert_eq!(ExperimentName::CalibrateFlowAware.total_runs(&s), 3 * 4 * 3);
@@ -337,6 +340,16 @@ fn calibration_writes_the_tradeoff_and_the_thresholds() {
     assert_eq!(tradeoff.lines().count(), 1 + 3 * 2);
     let toml = fs::read_to_string(dir.join("thresholds.toml")).unwrap();
     assert_eq!(toml.matches("[[penetration]]").count(), 3);
+    // --write-table: the same file where the Flow-Aware defaults are read from, in a form the
+    // scenario crate reads back: every feasible row with a pair of the grid.
+    assert_eq!(fs::read_to_string(&table).unwrap(), toml);
+    let rows = platoonsim_scenario::thresholds::parse(&toml).unwrap();
+    assert_eq!(rows.len(), toml.matches("feasible = true").count());
+    for r in &rows {
+        assert!([0.25, 0.5, 0.75].contains(&r.penetration), "{r:?}");
+        assert!([1250.0, 2750.0].contains(&r.flow_threshold_vphpl), "{r:?}");
+        assert_eq!(r.speed_threshold_kmh, 0.0);
+    }
     let runs = fs::read_to_string(dir.join("runs.csv")).unwrap();
     let header = runs.lines().next().unwrap();
     assert!(header.starts_with(

@@ -3,6 +3,8 @@
 //! produces.
 
 const TABLE: &str = include_str!("../scenarios/flow_aware_thresholds.toml");
+/// The embedded table's source in the repository (what `--write-table` replaces).
+pub const TABLE_PATH: &str = "crates/scenario/scenarios/flow_aware_thresholds.toml";
 
 /// One calibrated row.
 #[derive(Clone, Copy, Debug, PartialEq)]

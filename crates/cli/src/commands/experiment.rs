@@ -4,7 +4,7 @@ use crate::args::{ExperimentArgs, GridArgs, NetworkArgs};
 use crate::progress;
 use anyhow::{bail, Context, Result};
 use platoonsim_experiment::{run_experiment, ExperimentName, ExperimentOutput, Settings};
-use platoonsim_scenario::demand_scales;
+use platoonsim_scenario::{demand_scales, thresholds};
 use std::path::{Path, PathBuf};
 
 /// The settings shared by `experiment` and `reproduce`.
@@ -36,8 +36,13 @@ pub fn experiment(args: &ExperimentArgs, quiet: bool) -> Result<()> {
     let out = run_experiment(name, &s).with_context(|| format!("experiment {name} failed"))?;
     print!("{}", describe(&out));
     if let Some(p) = &s.write_table {
+        let what = if name == ExperimentName::CalibrateFlowAware {
+            "the chosen Flow-Aware thresholds"
+        } else {
+            "the demand scales found"
+        };
         println!(
-            "Wrote the demand scales found to {}; rebuild platoonsim to make them the default.",
+            "Wrote {what} to {}; rebuild platoonsim to make them the default.",
             p.display()
         );
     }
@@ -70,34 +75,36 @@ pub fn network(s: &mut Settings, n: &NetworkArgs, name: ExperimentName) -> Resul
     s.bottleneck_minutes = n.bottleneck_minutes;
     s.network_duration_s = n.network_duration;
     if let Some(w) = &n.write_table {
-        if name != ExperimentName::Sr99Demand || n.no_search {
-            bail!("--write-table applies to sr99-demand with a search (not with --no-search)");
-        }
-        s.write_table = Some(table_path(w.as_deref())?);
+        let embedded = match name {
+            ExperimentName::Sr99Demand if !n.no_search => demand_scales::TABLE_PATH,
+            ExperimentName::CalibrateFlowAware => thresholds::TABLE_PATH,
+            _ => bail!(
+                "--write-table applies to calibrate-flow-aware and to sr99-demand with a search \
+                 (not with --no-search)"
+            ),
+        };
+        s.write_table = Some(table_path(w.as_deref(), embedded)?);
     }
     Ok(())
 }
 
 /// Where `--write-table` writes: FILE if given, else the embedded table's source in the
-/// repository (from the current directory, or where this binary was built from).
-fn table_path(given: Option<&Path>) -> Result<PathBuf> {
+/// repository, `embedded` (from the current directory, or where this binary was built from).
+fn table_path(given: Option<&Path>, embedded: &str) -> Result<PathBuf> {
     if let Some(p) = given {
         return Ok(p.to_path_buf());
     }
-    let here = PathBuf::from(demand_scales::TABLE_PATH);
+    let here = PathBuf::from(embedded);
     if here.is_file() {
         return Ok(here);
     }
     let built = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../..")
-        .join(demand_scales::TABLE_PATH);
+        .join(embedded);
     if built.is_file() {
         return Ok(built);
     }
-    bail!(
-        "cannot find {} (run from the repository root, or give --write-table FILE)",
-        demand_scales::TABLE_PATH
-    )
+    bail!("cannot find {embedded} (run from the repository root, or give --write-table FILE)")
 }
 
 /// A few lines about a finished experiment: files, runs, checks.

@@ -148,7 +148,7 @@ pub struct Settings {
     /// … and a bottleneck is active if it stays congested this long (min).
     pub bottleneck_minutes: f64,
     /// `sr99-demand`: also write the scales found into this table file (e.g. the embedded
-    /// table's source, to rebuild with them).
+    /// table's source, to rebuild with them); `calibrate-flow-aware`: the chosen thresholds.
     pub write_table: Option<PathBuf>,
     /// The command line, for the provenance.
     pub arguments: Vec<String>,
@@ -333,6 +333,10 @@ pub fn run_experiment_with(
     };
     if name == ExperimentName::CalibrateFlowAware {
         for (file, bytes) in calibrate::files(settings, &cells, &rows)? {
+            // `thresholds.toml` also goes where the Flow-Aware defaults are read from, if asked.
+            if let (Some(table), "thresholds.toml") = (&settings.write_table, file.as_str()) {
+                write_file(table, &bytes)?;
+            }
             write_file(&dir.join(file), &bytes)?;
         }
     }
