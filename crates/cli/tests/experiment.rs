@@ -191,6 +191,24 @@ fn sr99_experiments_run_from_the_command_line() {
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("--write-table"));
 
+    // A --write-table path that cannot be written is refused before any run.
+    let o = platoonsim(&[
+        "experiment",
+        "calibrate-flow-aware",
+        "--write-table",
+        s(&out.join("no-such-dir").join("t.toml")),
+        "--out",
+        s(&out),
+        "-q",
+    ]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("no-such-dir") && err.contains("does not exist"),
+        "{err}"
+    );
+    assert!(!out.join("calibrate-flow-aware").exists(), "a run was made");
+
     // The threshold calibration writes its choice where --write-table says (by default the
     // table the Flow-Aware defaults are read from).
     let thresholds = out.join("thresholds.toml");

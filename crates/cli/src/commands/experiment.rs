@@ -92,6 +92,18 @@ pub fn network(s: &mut Settings, n: &NetworkArgs, name: ExperimentName) -> Resul
 /// repository, `embedded` (from the current directory, or where this binary was built from).
 fn table_path(given: Option<&Path>, embedded: &str) -> Result<PathBuf> {
     if let Some(p) = given {
+        // Checked now rather than after hours of runs.
+        if p.is_dir() {
+            bail!("--write-table {}: is a directory; give a file", p.display());
+        }
+        let parent = p.parent().filter(|d| !d.as_os_str().is_empty());
+        if parent.is_some_and(|d| !d.is_dir()) {
+            bail!(
+                "--write-table {}: the directory {} does not exist",
+                p.display(),
+                parent.map_or(String::new(), |d| d.display().to_string())
+            );
+        }
         return Ok(p.to_path_buf());
     }
     let here = PathBuf::from(embedded);
