@@ -141,6 +141,9 @@ fn raw_network(n: &Network, config: &Config) -> (RawNetwork, Vec<String>) {
         base_demand_multiplier: Some(1.0),
         demand_scale: Some(n.demand_scale),
         ramp_speed_kmh: Some(n.ramp_speed_kmh),
+        // Off (empty) stays unwritten, as in the files before the key existed.
+        lane_speed_limits_kmh: (!n.lane_speed_limits_kmh.is_empty())
+            .then(|| n.lane_speed_limits_kmh.clone()),
         detectors: RawNetworkDetectors {
             upstream_of_ramps_m: Some(spacing.upstream_of_ramps_m),
             downstream_of_onramps_m: Some(spacing.downstream_of_onramps_m),

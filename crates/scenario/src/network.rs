@@ -356,6 +356,7 @@ mod tests {
             mainline_vph: vec![0.0],
             demand_scale: 1.0,
             ramp_speed_kmh: 90.0,
+            lane_speed_limits_kmh: Vec::new(),
         };
         let on = ["OR1".to_string(), "OR2".to_string()];
         let off = ["FR1".to_string()];

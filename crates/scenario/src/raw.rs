@@ -110,6 +110,8 @@ pub struct RawNetwork {
     pub demand_scale: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ramp_speed_kmh: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lane_speed_limits_kmh: Option<Vec<f64>>,
     #[serde(skip_serializing_if = "RawNetworkDetectors::is_empty")]
     pub detectors: RawNetworkDetectors,
     #[serde(skip_serializing_if = "Vec::is_empty")]

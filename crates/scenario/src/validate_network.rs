@@ -195,6 +195,13 @@ pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -
     c.non_negative("network.demand_scale", scale);
     let ramp_speed = c.opt(n.ramp_speed_kmh, defaults::RAMP_SPEED_KMH);
     c.positive("network.ramp_speed_kmh", ramp_speed);
+    // Lane-based desired-speed caps (spec 2.7): off unless given.
+    let lane_caps = n.lane_speed_limits_kmh.clone().unwrap_or_default();
+    for (i, &cap) in lane_caps.iter().enumerate() {
+        let f = format!("network.lane_speed_limits_kmh[{i}]");
+        let cap = c.opt(Some(cap), cap);
+        c.positive(&f, cap);
+    }
 
     // --- lane stretches: they tile [start_m, end_m) in order
     if n.lanes.is_empty() {
@@ -476,6 +483,7 @@ pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -
             mainline_vph: mainline,
             demand_scale: base.v * scale.v,
             ramp_speed_kmh: ramp_speed.v,
+            lane_speed_limits_kmh: lane_caps,
         },
         on_ids: ids[..n_on].iter().map(|(_, id, _)| id.clone()).collect(),
         off_ids: ids[n_on..].iter().map(|(_, id, _)| id.clone()).collect(),

@@ -143,6 +143,10 @@ fn resolved_network_files_load_back_to_the_same_config() {
         ),
         (SMALL_CORRIDOR.to_string(), vec![]),
         (
+            SMALL_CORRIDOR.to_string(),
+            vec!["network.lane_speed_limits_kmh=[93.6, 98.8, 104]"],
+        ),
+        (
             format!("{SMALL_CORRIDOR}{user}"),
             vec!["strategy.zone_start_m=500"],
         ),
@@ -242,6 +246,33 @@ fn ramps_inside_the_corridor_and_in_order() {
     assert_eq!(
         p,
         vec!["network.on_ramps[0].x_m = nan: must be a finite number"]
+    );
+}
+
+#[test]
+fn lane_speed_caps_are_off_by_default_and_checked() {
+    // Spec 2.7: optional; none unless given, and every cap a positive speed.
+    let c = parse(SMALL_CORRIDOR).unwrap();
+    assert!(c
+        .road
+        .network
+        .as_ref()
+        .unwrap()
+        .lane_speed_limits_kmh
+        .is_empty());
+    assert!(!to_toml(&c).contains("lane_speed_limits_kmh"));
+    let c = with_set(SMALL_CORRIDOR, &["network.lane_speed_limits_kmh=[90, 100]"]).unwrap();
+    assert_eq!(
+        c.road.network.as_ref().unwrap().lane_speed_limits_kmh,
+        vec![90.0, 100.0]
+    );
+    let p = corridor_problems(&["network.lane_speed_limits_kmh=[90, -1, nan]"]);
+    assert_eq!(
+        p,
+        vec![
+            "network.lane_speed_limits_kmh[1] = -1: must be a finite number > 0",
+            "network.lane_speed_limits_kmh[2] = nan: must be a finite number > 0",
+        ]
     );
 }
 

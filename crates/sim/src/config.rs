@@ -45,6 +45,12 @@ pub struct Network {
     pub demand_scale: f64,
     /// Speed limit of the ramps: vehicles enter the acceleration lane at most at this speed (km/h).
     pub ramp_speed_kmh: f64,
+    /// Lane-based desired-speed caps (spec 2.7, km/h): every driver's desired speed in a lane is
+    /// at most the cap of that lane, counted from the rightmost through lane at its position
+    /// (the first entry; an acceleration lane takes it too); the last entry holds for every lane
+    /// further left. Empty: no caps (the default).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub lane_speed_limits_kmh: Vec<f64>,
 }
 
 /// A through lane open on [from_m, to_m) (engine coordinates).
@@ -118,6 +124,13 @@ impl Network {
                 "network.ramp_speed_kmh = {}: must be a finite number > 0",
                 self.ramp_speed_kmh
             ));
+        }
+        for (i, c) in self.lane_speed_limits_kmh.iter().enumerate() {
+            if !(c.is_finite() && *c > 0.0) {
+                return Err(format!(
+                    "network.lane_speed_limits_kmh[{i}] = {c}: must be a finite number > 0"
+                ));
+            }
         }
         series("network.mainline_vph", &self.mainline_vph, f64::MAX)?;
         for (i, e) in self.through_lanes.iter().enumerate() {

@@ -124,7 +124,7 @@ impl Simulation {
     fn decide_one(&self, s: u32) -> Decision {
         let v = &self.vehicles[s as usize];
         let nb = &self.sensed[s as usize].nb;
-        let v_des = v.human.desired_speed;
+        let v_des = self.v_des_in(s, v, v.lane as usize);
         let (leader, wall) = self.leader_or_wall(s, v, nb.leader);
 
         // 1. Lane-change desire (takes priority over yielding).
@@ -206,7 +206,7 @@ impl Simulation {
                     &v.human,
                     &v.lc,
                     v.v,
-                    v.human.desired_speed,
+                    self.v_des_in(s, v, v.lane as usize),
                     d.accel,
                     self.yield_gap(v, r),
                 );
@@ -222,7 +222,7 @@ impl Simulation {
     /// Automated CAV control (spec 3.9).
     fn cav_control(&self, s: u32, v: &Vehicle, leader: Option<Leader>, wall: bool) -> Decision {
         let p = &self.cfg.cav;
-        let v_des = v.human.desired_speed;
+        let v_des = self.v_des_in(s, v, v.lane as usize);
         let ld = self.sensed[s as usize].nb.leader;
         let leader = leader.filter(|l| l.gap_m <= p.sensor_range_m);
         let mut time_gap = v.time_gap_s;
@@ -425,8 +425,9 @@ impl Simulation {
                 eta_left = lcd.exit_lane_penalty;
             }
         }
-        // Speeds are what the driver could achieve: capped at its desired speed.
-        let v_des = v_des_of(v);
+        // Speeds are what the driver could achieve: capped at its desired speed (in that lane,
+        // spec 2.7).
+        let v_des = self.v_des_in(s, v, v.lane as usize);
         let mut v_cur = bounded::min(
             self.avg_speed_ahead(v.lane as usize, nb.idx as usize, v.x, v_des),
             v_des,
@@ -438,8 +439,9 @@ impl Simulation {
                 v_cur /= f;
             }
         }
-        // v_ant ≤ v_des, so no side can beat the absolute gain gate: nothing to scan.
-        if v_des - v_cur < v.lc.min_speed_gain_mps {
+        // v_ant ≤ the driver's desired speed in the target lane ≤ its own desired speed, so no
+        // side can beat the absolute gain gate: nothing to scan.
+        if v_des_of(v) - v_cur < v.lc.min_speed_gain_mps {
             return [None, None];
         }
         let here = &self.sensed[s as usize].here;
@@ -469,7 +471,7 @@ impl Simulation {
             if !open || w <= 0.0 {
                 continue;
             }
-            let v_ant = self.anticipated_speed(v, target, j as usize, v_cur);
+            let v_ant = self.anticipated_speed(s, v, target, j as usize, v_cur);
             out[i] = Some(w * eta * lcm::discretionary_desire(&v.lc, v_ant, v_cur, side));
         }
         out
@@ -539,8 +541,8 @@ impl Simulation {
     /// test; v_ant ≤ bound and subtracting `v_cur` is monotonic, so v_ant − v_cur < the gain
     /// too). In queues beside a queue this skips most scans.
     #[inline]
-    fn anticipated_speed(&self, v: &Vehicle, target: usize, j: usize, v_cur: f64) -> f64 {
-        let v_des = v_des_of(v);
+    fn anticipated_speed(&self, s: u32, v: &Vehicle, target: usize, j: usize, v_cur: f64) -> f64 {
+        let v_des = self.v_des_in(s, v, target);
         if j == 0 {
             return v_des; // no target leader
         }
@@ -585,7 +587,12 @@ impl Simulation {
             Side::Right => nb.right_leader,
         };
         let tf = self.side_follower(v, nb, d.side);
-        let v_des = v.human.desired_speed;
+        let v_des = self.v_des_in(s, v, v.lane as usize);
+        let target = match d.side {
+            Side::Left => v.lane as usize + 1,
+            Side::Right => (v.lane as usize).saturating_sub(1),
+        };
+        let v_des_target = self.v_des_in(s, v, target);
         let h = &v.human;
         // An automated CAV hands over to its driver now ("manual mode from a lane-change desire
         // on", spec 3.1). At a CACC gap of 0.6 s the human model alone would brake hard; the
@@ -599,7 +606,7 @@ impl Simulation {
         };
         let a_cur = human::target_accel(h, v.v, v_des, leader, relax);
         let lead_view = self.view(v, tl);
-        let a_ant = human::target_accel(h, v.v, v_des, lead_view, lcm::gap_relax(&v.lc));
+        let a_ant = human::target_accel(h, v.v, v_des_target, lead_view, lcm::gap_relax(&v.lc));
         let lead_ok = match lead_view {
             None => true,
             Some(l) => {
@@ -684,9 +691,31 @@ const CREEP_SPEED_MPS: f64 = 2.23;
 /// ρ_jam of the anticipation rule (spec 4.2): 1000/6 veh/km.
 const RHO_JAM_PER_KM: f64 = 1000.0 / 6.0;
 
+/// The driver's own desired speed v_F, in no particular lane.
 #[inline]
 fn v_des_of(v: &Vehicle) -> f64 {
     v.human.desired_speed
+}
+
+impl Simulation {
+    /// The desired speed of vehicle `s` in `lane` (spec 2.7): v_F, capped by the lane's speed
+    /// limit when the network has lane-based caps (counted from the rightmost through lane at
+    /// the vehicle's position; an acceleration lane, right of it, takes the first cap). Without
+    /// caps exactly v_F.
+    #[inline]
+    pub(crate) fn v_des_in(&self, s: u32, v: &Vehicle, lane: usize) -> f64 {
+        let caps = &self.lane_caps_mps;
+        if caps.is_empty() {
+            return v_des_of(v);
+        }
+        let right = self.sensed[s as usize].here.right;
+        let rank = if right == NO_LANE {
+            0
+        } else {
+            lane.saturating_sub(right as usize)
+        };
+        bounded::min(v_des_of(v), caps[rank.min(caps.len() - 1)])
+    }
 }
 
 /// The other side.

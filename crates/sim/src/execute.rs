@@ -65,7 +65,7 @@ impl Simulation {
             let a_ant = human::target_accel(
                 &v.human,
                 v.v,
-                v.human.desired_speed,
+                self.v_des_in(s, v, to),
                 lead,
                 lcm::gap_relax(&v.lc),
             );

@@ -219,8 +219,8 @@ impl Simulation {
         let mut used = 0u32; // bit per lane
         let n_entry = self.geom.entry_lanes.len();
         while let Some(head) = self.entrances[e].queue.front() {
-            let v_des = head.human.desired_speed;
             let mut full: u32 = 0;
+            let mut lane_v_des = [0.0f64; 32];
             let mut n_full = 0usize;
             let mut best: Option<(usize, f64)> = None;
             for i in 0..n_entry {
@@ -228,7 +228,12 @@ impl Simulation {
                 if used & (1 << l) != 0 {
                     continue;
                 }
-                if let Some(v) = self.insertion_speed(head, l) {
+                // The desired speed in that lane (spec 2.7 caps; v_F without them).
+                let v_des = self.entry_desired_speed(head, l);
+                lane_v_des[l] = v_des;
+                if let Some(v) =
+                    self.insertion_speed_at(head, 0.0, self.lanes[l].last().copied(), None, v_des)
+                {
                     if v >= v_des {
                         full |= 1 << l;
                         n_full += 1;
@@ -247,7 +252,7 @@ impl Simulation {
                     .filter(|l| full & (1 << l) != 0)
                     .nth(pick)
                     .expect("pick < n_full");
-                (lane, v_des)
+                (lane, lane_v_des[lane])
             } else if let Some(b) = best {
                 b
             } else {
@@ -351,10 +356,18 @@ impl Simulation {
         }
     }
 
-    /// The speed at which `veh` may enter `lane` at x = 0 in steady state, if any.
-    fn insertion_speed(&self, veh: &Vehicle, lane: usize) -> Option<f64> {
-        let ld = self.lanes[lane].last().copied();
-        self.insertion_speed_at(veh, 0.0, ld, None, veh.human.desired_speed)
+    /// The desired speed of `veh` in entry `lane` at x = 0: v_F, capped by the lane's speed
+    /// limit when the network has lane-based caps (spec 2.7, counted from the rightmost through
+    /// lane there), so that it enters in steady state.
+    fn entry_desired_speed(&self, veh: &Vehicle, lane: usize) -> f64 {
+        let v_f = veh.human.desired_speed;
+        let caps = &self.lane_caps_mps;
+        if caps.is_empty() {
+            return v_f;
+        }
+        let right = self.geom.rightmost_through(0.0).map_or(0, |r| r as usize);
+        let rank = lane.saturating_sub(right).min(caps.len() - 1);
+        platoonsim_model::bounded::min(v_f, caps[rank])
     }
 
     /// The speed (at most `v_max`) at which `veh` may enter at `x` behind slot `ld` (and a wall

@@ -592,6 +592,7 @@ mod tests {
             mainline_vph: vec![1000.0],
             demand_scale: 1.0,
             ramp_speed_kmh: 90.0,
+            lane_speed_limits_kmh: Vec::new(),
         }
     }
 

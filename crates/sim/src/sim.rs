@@ -61,6 +61,9 @@ pub struct Simulation {
     pub(crate) geom: Geometry,
     /// Ramp speed limit (m/s); ∞ on a plain road.
     pub(crate) ramp_speed_mps: f64,
+    /// Lane-based desired-speed caps (spec 2.7, m/s) by lane counted from the rightmost through
+    /// lane, the last for every lane further left; empty: none.
+    pub(crate) lane_caps_mps: Vec<f64>,
     /// Per on-ramp, the anticipation factor 1 + c_inc (ρ_ramp/ρ_jam)/j for j = 1, 2 (spec 4.2)
     /// from its density at the step start: computed once per step instead of per vehicle.
     pub(crate) ramp_factor: Vec<[f64; 2]>,
@@ -115,6 +118,9 @@ impl Simulation {
             .network
             .as_ref()
             .map_or(f64::INFINITY, |n| n.ramp_speed_kmh / 3.6);
+        let lane_caps_mps = cfg.road.network.as_ref().map_or(Vec::new(), |n| {
+            n.lane_speed_limits_kmh.iter().map(|c| c / 3.6).collect()
+        });
         Ok(Simulation {
             dt,
             step: 0,
@@ -136,6 +142,7 @@ impl Simulation {
             ramp_factor: vec![[1.0; 2]; geom.on_ramps.len()],
             geom,
             ramp_speed_mps,
+            lane_caps_mps,
             missed_exits: 0,
             exit_detector,
             detectors,

@@ -60,6 +60,7 @@ pub fn toy(penetration: f64, mainline_vph: Vec<f64>, seed: u64) -> Config {
         mainline_vph,
         demand_scale: 1.0,
         ramp_speed_kmh: 90.0,
+        lane_speed_limits_kmh: Vec::new(),
     });
     let m = |name: &str, x: f64| DetectorSpec::mainline(name, x);
     cfg.detectors = vec![
@@ -411,4 +412,71 @@ fn platoon_followers_make_room_ahead_of_a_busy_on_ramp() {
         "{v_with:.0} vs {v_without:.0} km/h"
     );
     assert!(q_with > q_without, "{q_with:.0} vs {q_without:.0} veh/h");
+}
+
+/// Mean speed (km/h) per detector lane at `detector` over the run, count-weighted.
+fn lane_speeds(out: &Output, detector: &str) -> Vec<(String, f64)> {
+    let mut acc: std::collections::BTreeMap<String, (f64, u64)> = Default::default();
+    for r in out
+        .detectors
+        .iter()
+        .filter(|r| r.detector == detector && r.lane != "all")
+    {
+        if let Some(v) = r.speed_kmh {
+            let e = acc.entry(r.lane.clone()).or_default();
+            e.0 += v * r.count as f64;
+            e.1 += r.count;
+        }
+    }
+    acc.into_iter()
+        .map(|(l, (sum, n))| (l, sum / n.max(1) as f64))
+        .collect()
+}
+
+#[test]
+fn lane_speed_caps_keep_slow_traffic_right() {
+    // Spec 2.7: with desired-speed caps rising from the rightmost lane, free-flowing traffic
+    // runs slower on the right and faster on the left; without them every lane runs at the
+    // drivers' own desired speeds (100-120 km/h).
+    let caps = vec![85.0, 95.0, 105.0];
+    let mut capped = toy(0.0, vec![2400.0], 4);
+    capped.road.network.as_mut().unwrap().lane_speed_limits_kmh = caps.clone();
+    let free = toy(0.0, vec![2400.0], 4);
+    let (with, without) = (run(&capped, None).unwrap(), run(&free, None).unwrap());
+    let sw = lane_speeds(&with, "A-up");
+    let so = lane_speeds(&without, "A-up");
+    println!("with caps {sw:?}\nwithout {so:?}");
+    assert_eq!(sw.len(), 3);
+    // Right to left: each lane at most its cap (vehicles that just moved right may still be
+    // slowing down: 1 km/h of slack), and faster than the lane to its right.
+    for (i, (_, v)) in sw.iter().enumerate() {
+        assert!(
+            *v <= caps[i] + 1.0,
+            "lane {i}: {v} km/h above its cap {}",
+            caps[i]
+        );
+        if i > 0 {
+            assert!(
+                *v > sw[i - 1].1,
+                "lane {i} not faster than the lane to its right: {sw:?}"
+            );
+        }
+    }
+    assert!(so.iter().all(|(_, v)| *v > 100.0), "{so:?}");
+    assert_eq!(with.summary.collisions, 0);
+}
+
+#[test]
+fn lane_speed_caps_above_every_desired_speed_change_nothing() {
+    // min(v_F, cap) = v_F exactly when the cap is above every desired speed (at most 120 km/h).
+    let mut capped = toy(0.5, vec![3000.0], 2);
+    capped.road.network.as_mut().unwrap().lane_speed_limits_kmh = vec![130.0, 200.0];
+    let plain = toy(0.5, vec![3000.0], 2);
+    let (a, b) = (run(&capped, None).unwrap(), run(&plain, None).unwrap());
+    assert_eq!(a.detectors, b.detectors);
+    assert_eq!(a.summary.vehicle_updates, b.summary.vehicle_updates);
+    assert_eq!(
+        a.summary.lane_changes_per_vehicle,
+        b.summary.lane_changes_per_vehicle
+    );
 }
