@@ -255,7 +255,7 @@ pub struct ExperimentArgs {
     pub name: ExperimentArg,
 
     /// Seeds per cell (seeds 1..=N); the mean and a 95 % confidence interval are reported.
-    /// Default: 10, or 3 for calibrate-flow-aware.
+    /// Default: 10, or 3 for calibrate-flow-aware and sr99-demand.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub seeds: Option<u32>,
 

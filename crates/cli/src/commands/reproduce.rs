@@ -44,7 +44,7 @@ fn network_note(args: &ReproduceArgs, sr99: &Settings) -> String {
     if args.quick {
         format!(
             "**Quick mode** (to finish within 10 minutes on 2 cores; a 4-hour SR-99 run takes \
-             0.5-3 minutes of one core, more at high penetration and with PD): `sr99` runs {} seed(s) at {} % \
+             25-75 s of one core, the longer ones at high penetration and with PD): `sr99` runs {} seed(s) at {} % \
              CAV only (the baseline at 0 %, and baseline, PD and Flow-Aware PD at 40 %, the \
              cells of the figures), and `sr99-demand` does not search: it evaluates the \
              bottleneck criterion at the table's demand scales of those two penetrations, on \
