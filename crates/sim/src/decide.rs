@@ -704,17 +704,23 @@ impl Simulation {
     /// caps exactly v_F.
     #[inline]
     pub(crate) fn v_des_in(&self, s: u32, v: &Vehicle, lane: usize) -> f64 {
-        let caps = &self.lane_caps_mps;
-        if caps.is_empty() {
-            return v_des_of(v);
+        if self.lane_caps_mps.is_empty() {
+            return v_des_of(v); // no lookup of the vehicle's geometry on the hot path
         }
-        let right = self.sensed[s as usize].here.right;
+        self.lane_capped(v_des_of(v), lane, self.sensed[s as usize].here.right)
+    }
+
+    /// `v_f` capped by the desired-speed cap of `lane` (spec 2.7), the caps counted from the
+    /// rightmost through lane `right` (`NO_LANE`: none there; the first cap). Requires caps.
+    #[inline]
+    pub(crate) fn lane_capped(&self, v_f: f64, lane: usize, right: u8) -> f64 {
+        let caps = &self.lane_caps_mps;
         let rank = if right == NO_LANE {
             0
         } else {
             lane.saturating_sub(right as usize)
         };
-        bounded::min(v_des_of(v), caps[rank.min(caps.len() - 1)])
+        bounded::min(v_f, caps[rank.min(caps.len() - 1)])
     }
 }
 

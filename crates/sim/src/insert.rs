@@ -14,6 +14,7 @@
 //! lost or violating car following.
 
 use crate::config::Config;
+use crate::network::NO_LANE;
 use crate::rng::{Purpose, Stream};
 use crate::sim::Simulation;
 use crate::vehicle::{Kind, Mode, Relaxation, Vehicle, NEVER, NO_EXIT};
@@ -361,13 +362,14 @@ impl Simulation {
     /// lane there), so that it enters in steady state.
     fn entry_desired_speed(&self, veh: &Vehicle, lane: usize) -> f64 {
         let v_f = veh.human.desired_speed;
-        let caps = &self.lane_caps_mps;
-        if caps.is_empty() {
+        if self.lane_caps_mps.is_empty() {
             return v_f;
         }
-        let right = self.geom.rightmost_through(0.0).map_or(0, |r| r as usize);
-        let rank = lane.saturating_sub(right).min(caps.len() - 1);
-        platoonsim_model::bounded::min(v_f, caps[rank])
+        let right = self
+            .geom
+            .rightmost_through(0.0)
+            .map_or(NO_LANE, |r| r as u8);
+        self.lane_capped(v_f, lane, right)
     }
 
     /// The speed (at most `v_max`) at which `veh` may enter at `x` behind slot `ld` (and a wall
