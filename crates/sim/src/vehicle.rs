@@ -96,6 +96,13 @@ pub struct Vehicle {
     pub lc: LaneChangeParams,
     /// Own random stream (lane choice, yielding draws).
     pub rng: Stream,
+
+    // Cold: read only when the vehicle leaves, for the optional trip records (`record.rs`).
+    /// Entrance it came in by: 0 the mainline, i + 1 on-ramp i.
+    pub origin: u32,
+    /// The off-ramp it chose on entry (`NO_EXIT`: the mainline end). Unlike `exit`, kept when it
+    /// misses that off-ramp.
+    pub planned_exit: u32,
 }
 
 impl Vehicle {
@@ -117,12 +124,26 @@ impl Vehicle {
     pub fn rear(&self) -> f64 {
         self.x - self.human.length_m
     }
+
+    /// Short label of the driving mode (trajectory records): `cf`, `blc` or `ycf`, with
+    /// `-auto` appended while a CAV's automation is engaged ([`Vehicle::automated`]).
+    pub fn mode_label(&self) -> &'static str {
+        let auto = self.automated();
+        match (self.mode, auto) {
+            (Mode::Cf, false) => "cf",
+            (Mode::Cf, true) => "cf-auto",
+            (Mode::Blc { .. }, false) => "blc",
+            (Mode::Blc { .. }, true) => "blc-auto",
+            (Mode::Ycf { .. }, false) => "ycf",
+            (Mode::Ycf { .. }, true) => "ycf-auto",
+        }
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::mem::{align_of, offset_of};
+    use std::mem::{align_of, offset_of, size_of};
 
     #[test]
     fn layout_keeps_the_hot_state_together() {
@@ -133,5 +154,11 @@ mod tests {
         assert!(offset_of!(Vehicle, max_platoon_tg2) < 128);
         assert_eq!(offset_of!(Vehicle, human), 128);
         assert_eq!(offset_of!(HumanParams, length_m), 0);
+        // The trip-record fields are cold: after everything else, in the padding of the last
+        // cache line (the record did not grow for them).
+        assert!(offset_of!(Vehicle, origin) > offset_of!(Vehicle, rng));
+        assert!(offset_of!(Vehicle, planned_exit) > offset_of!(Vehicle, rng));
+        let end_of_rng = offset_of!(Vehicle, rng) + size_of::<Stream>();
+        assert_eq!(size_of::<Vehicle>(), end_of_rng.next_multiple_of(64));
     }
 }
