@@ -163,7 +163,7 @@ pub const TRAJECTORY_HEADER: &str = "t_s,id,kind,lane,x_m,v_mps,a_mps2,mode";
 /// sample. `lane` counts lateral positions from the right starting at 1 (one more than the
 /// engine's index: on the homogeneous road the lane numbers of detectors.csv; on a network
 /// position 1 is that of the acceleration lanes); `mode` is
-/// [`platoonsim_sim::vehicle::Vehicle::mode_label`]. Every field is a number or a fixed word,
+/// [`platoonsim_sim::vehicle::ModeLabel::as_str`]. Every field is a number or a fixed word,
 /// so no quoting is needed.
 pub fn write_trajectories(w: &mut dyn Write, rows: &[TrajectoryPoint]) -> std::io::Result<()> {
     writeln!(w, "{TRAJECTORY_HEADER}")?;
@@ -178,7 +178,7 @@ pub fn write_trajectories(w: &mut dyn Write, rows: &[TrajectoryPoint]) -> std::i
             r.x_m,
             r.v_mps,
             r.a_mps2,
-            r.mode
+            r.mode.as_str()
         )?;
     }
     Ok(())
@@ -304,6 +304,7 @@ pub fn wrap(text: &str, width: usize) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use platoonsim_sim::vehicle::ModeLabel;
 
     fn record(speed: Option<f64>) -> DetectorRecord {
         DetectorRecord {
@@ -435,7 +436,7 @@ mod tests {
             x_m: -120.5,
             v_mps: 0.0,
             a_mps2: -1.25,
-            mode: "blc",
+            mode: ModeLabel::Blc,
         };
         let mut bytes = Vec::new();
         write_trajectories(&mut bytes, &[point]).unwrap();

@@ -7,7 +7,7 @@
 //! off, the cost is one branch per vehicle that leaves and one per step.
 
 use crate::config::Config;
-use crate::vehicle::{Kind, Vehicle, NO_EXIT};
+use crate::vehicle::{Kind, ModeLabel, Vehicle, NO_EXIT};
 
 /// What to record besides the summary and the detectors.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -115,21 +115,22 @@ pub struct Trip {
     pub measured: bool,
 }
 
-/// One vehicle at one sample time.
+/// One vehicle at one sample time (48 bytes: a long recording is held in memory until the end
+/// of the run).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TrajectoryPoint {
     /// Simulated time (s).
     pub t_s: f64,
     pub id: u64,
-    pub kind: Kind,
-    /// Lateral lane index, 0 = rightmost position of the road (the engine's numbering).
-    pub lane: u32,
     /// Front position, output coordinate (m).
     pub x_m: f64,
     pub v_mps: f64,
+    /// The acceleration applied in the last step (m/s²).
     pub a_mps2: f64,
-    /// [`Vehicle::mode_label`].
-    pub mode: &'static str,
+    /// Lateral lane index, 0 = rightmost position of the road (the engine's numbering).
+    pub lane: u32,
+    pub kind: Kind,
+    pub mode: ModeLabel,
 }
 
 /// Simulated time of step `step`: `step / n` when a second is a whole number n of steps (so
@@ -281,6 +282,11 @@ mod tests {
         assert_eq!(period_steps(f64::NAN, 0.1), None);
         assert_eq!(period_steps(f64::INFINITY, 0.1), None);
         assert_eq!(period_steps(0.25, 0.05), Some(5));
+    }
+
+    #[test]
+    fn a_trajectory_point_is_small() {
+        assert_eq!(std::mem::size_of::<TrajectoryPoint>(), 48);
     }
 
     #[test]

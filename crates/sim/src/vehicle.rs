@@ -125,18 +125,50 @@ impl Vehicle {
         self.x - self.human.length_m
     }
 
-    /// Short label of the driving mode (trajectory records): `cf`, `blc` or `ycf`, with
-    /// `-auto` appended while a CAV's automation is engaged ([`Vehicle::automated`]).
-    pub fn mode_label(&self) -> &'static str {
+    /// The driving mode for the records ([`ModeLabel`]).
+    pub fn mode_label(&self) -> ModeLabel {
         let auto = self.automated();
         match (self.mode, auto) {
-            (Mode::Cf, false) => "cf",
-            (Mode::Cf, true) => "cf-auto",
-            (Mode::Blc { .. }, false) => "blc",
-            (Mode::Blc { .. }, true) => "blc-auto",
-            (Mode::Ycf { .. }, false) => "ycf",
-            (Mode::Ycf { .. }, true) => "ycf-auto",
+            (Mode::Cf, false) => ModeLabel::Cf,
+            (Mode::Cf, true) => ModeLabel::CfAuto,
+            (Mode::Blc { .. }, false) => ModeLabel::Blc,
+            (Mode::Blc { .. }, true) => ModeLabel::BlcAuto,
+            (Mode::Ycf { .. }, false) => ModeLabel::Ycf,
+            (Mode::Ycf { .. }, true) => ModeLabel::YcfAuto,
         }
+    }
+}
+
+/// The driving mode as the trajectory records give it: the [`Mode`] variant, and whether a
+/// CAV's automation is engaged ([`Vehicle::automated`]; never for a human driver).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModeLabel {
+    Cf,
+    CfAuto,
+    Blc,
+    BlcAuto,
+    Ycf,
+    YcfAuto,
+}
+
+impl ModeLabel {
+    /// `cf`, `blc` or `ycf`, with `-auto` appended while automated.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ModeLabel::Cf => "cf",
+            ModeLabel::CfAuto => "cf-auto",
+            ModeLabel::Blc => "blc",
+            ModeLabel::BlcAuto => "blc-auto",
+            ModeLabel::Ycf => "ycf",
+            ModeLabel::YcfAuto => "ycf-auto",
+        }
+    }
+
+    pub fn automated(self) -> bool {
+        matches!(
+            self,
+            ModeLabel::CfAuto | ModeLabel::BlcAuto | ModeLabel::YcfAuto
+        )
     }
 }
 
