@@ -270,13 +270,12 @@ impl Simulation {
             }
             self.update_flow_aware();
         }
-        self.check_invariants()?;
         if let Some(t) = self.rec.trajectories.as_mut() {
             if t.due(self.step) {
                 t.sample(self.step, &self.vehicles, &self.lanes);
             }
         }
-        Ok(())
+        self.check_invariants()
     }
 
     /// Phase 3: v' = max(0, v + aΔt); x' = x + ½(v + v')Δt, or the stopping point when the
