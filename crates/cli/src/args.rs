@@ -4,7 +4,8 @@ use anyhow::{bail, Result};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use platoonsim_experiment::ExperimentName;
 use platoonsim_scenario::{demand_scale_set, Overrides, ScenarioError, StrategyKind};
-use platoonsim_sim::Config;
+use platoonsim_sim::record::period_steps;
+use platoonsim_sim::{Config, Recording, TrajectorySpec};
 use std::path::PathBuf;
 
 /// Microscopic freeway simulator for CACC platoons in mixed human/CAV traffic (Woo &
@@ -24,7 +25,8 @@ pub struct Cli {
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Simulate one scenario; write summary.json, detectors.csv, scenario.json and
-    /// scenario.toml to the output directory and print a short summary.
+    /// scenario.toml (and on request trips.csv, trajectories.csv) to the output directory and
+    /// print a short summary.
     Run(RunArgs),
     /// Measure the engine's speed (vehicle updates per second) on the built-in homogeneous road
     /// at 50 % CAV and 2,500 veh/h/lane.
@@ -154,9 +156,118 @@ pub struct RunArgs {
     #[command(flatten)]
     pub scenario: ScenarioArgs,
 
-    /// Output directory (created if missing; existing files in it are replaced).
+    /// Output directory (created if missing; existing files in it are replaced, and a
+    /// trips.csv or trajectories.csv of an earlier run is removed unless this run writes one).
     #[arg(long, value_name = "DIR", default_value = "out/run")]
     pub out: PathBuf,
+
+    /// Also write trips.csv: one row per vehicle that entered the road (entrance, exit, times,
+    /// travel time, lane changes, largest platoon). Does not change the simulation.
+    #[arg(long)]
+    pub trips: bool,
+
+    /// Also write trajectories.csv: lane, position, speed, acceleration and driving mode of
+    /// every vehicle on the road every PERIOD_S seconds of simulated time (a positive multiple
+    /// of the time step run.dt_s, 0.1 s by default). Large: a 4-hour corridor run sampled every
+    /// second gives tens of millions of rows; narrow it with --trajectory-window and
+    /// --trajectory-x. Does not change the simulation.
+    #[arg(long, value_name = "PERIOD_S", allow_negative_numbers = true)]
+    pub trajectories: Option<f64>,
+
+    /// With --trajectories: only the samples at simulated times T0 <= t <= T1 (seconds).
+    #[arg(
+        long,
+        value_name = "T0,T1",
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        requires = "trajectories"
+    )]
+    pub trajectory_window: Option<Vec<f64>>,
+
+    /// With --trajectories: only the vehicles whose front is at X0 <= x <= X1 (metres, in the
+    /// coordinate of detectors.csv's position_m).
+    #[arg(
+        long,
+        value_name = "X0,X1",
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        requires = "trajectories"
+    )]
+    pub trajectory_x: Option<Vec<f64>>,
+}
+
+impl RunArgs {
+    /// What to record besides the standard outputs (--trips, --trajectories and its windows),
+    /// checked against the loaded scenario. Errors name the flag, the value and what is allowed.
+    pub fn recording(&self, config: &Config) -> Result<Recording> {
+        let mut rec = Recording {
+            trips: self.trips,
+            trajectories: None,
+        };
+        let Some(period_s) = self.trajectories else {
+            return Ok(rec);
+        };
+        let dt = config.dt_s;
+        if period_steps(period_s, dt).is_none() {
+            bail!(
+                "invalid --trajectories {period_s}: the sampling period (s) must be a positive \
+                 multiple of the time step run.dt_s = {dt} s"
+            );
+        }
+        let window_s = match pair(&self.trajectory_window) {
+            None => None,
+            Some((text, Some((t0, t1)))) if t0 >= 0.0 && t0 < t1 => {
+                if t0 >= config.duration_s {
+                    bail!(
+                        "invalid --trajectory-window {text}: T0 must be before the end of the \
+                         run (run.duration_s = {} s)",
+                        config.duration_s
+                    );
+                }
+                Some((t0, t1))
+            }
+            Some((text, _)) => bail!(
+                "invalid --trajectory-window {text}: expected T0,T1 with 0 <= T0 < T1 (seconds \
+                 of simulated time)"
+            ),
+        };
+        let x_m = match pair(&self.trajectory_x) {
+            None => None,
+            Some((text, Some((x0, x1)))) if x0 < x1 => {
+                let origin = config.road.network.as_ref().map_or(0.0, |n| n.origin_m);
+                let end = origin + config.road.length_m;
+                if x1 < origin || x0 > end {
+                    bail!(
+                        "invalid --trajectory-x {text}: the range must overlap the road, which \
+                         spans {origin} to {end} m in this coordinate"
+                    );
+                }
+                Some((x0, x1))
+            }
+            Some((text, _)) => bail!(
+                "invalid --trajectory-x {text}: expected X0,X1 with X0 < X1 (metres, in the \
+                 coordinate of detectors.csv's position_m)"
+            ),
+        };
+        rec.trajectories = Some(TrajectorySpec {
+            period_s,
+            window_s,
+            x_m,
+        });
+        Ok(rec)
+    }
+}
+
+/// A two-number flag value: its text as given (numbers joined by commas) and the pair if it is
+/// two finite numbers.
+fn pair(v: &Option<Vec<f64>>) -> Option<(String, Option<(f64, f64)>)> {
+    let v = v.as_ref()?;
+    let text = v.iter().map(f64::to_string).collect::<Vec<_>>().join(",");
+    let p = match v[..] {
+        [a, b] if a.is_finite() && b.is_finite() => Some((a, b)),
+        _ => None,
+    };
+    Some((text, p))
 }
 
 #[derive(Debug, Args)]
@@ -414,6 +525,83 @@ mod tests {
             ]
         );
         assert_eq!(run.out, PathBuf::from("out/run"));
+    }
+
+    fn run_args(extra: &[&str]) -> RunArgs {
+        let mut argv = vec!["platoonsim", "run", "homogeneous"];
+        argv.extend_from_slice(extra);
+        let Command::Run(run) = Cli::try_parse_from(argv).unwrap().command else {
+            panic!()
+        };
+        run
+    }
+
+    #[test]
+    fn recording_flags() {
+        let config = Config::homogeneous(0.5, 2000.0, 600.0, 120.0, 1);
+        let rec = |extra: &[&str]| run_args(extra).recording(&config);
+        assert_eq!(rec(&[]).unwrap(), Recording::default());
+        assert!(rec(&["--trips"]).unwrap().trips);
+        let r = rec(&[
+            "--trajectories",
+            "0.5",
+            "--trajectory-window",
+            "10,20",
+            "--trajectory-x=-5,100",
+        ])
+        .unwrap();
+        assert!(!r.trips);
+        assert_eq!(
+            r.trajectories,
+            Some(TrajectorySpec {
+                period_s: 0.5,
+                window_s: Some((10.0, 20.0)),
+                x_m: Some((-5.0, 100.0)),
+            })
+        );
+        for (extra, expected) in [
+            (&["--trajectories", "0"][..], "invalid --trajectories 0: the sampling period (s) must be a positive multiple of the time step run.dt_s = 0.1 s"),
+            (&["--trajectories", "0.15"], "invalid --trajectories 0.15:"),
+            (&["--trajectories", "-1"], "invalid --trajectories -1:"),
+            (&["--trajectories", "NaN"], "invalid --trajectories NaN:"),
+            (
+                &["--trajectories", "1", "--trajectory-window", "5,1"],
+                "invalid --trajectory-window 5,1: expected T0,T1 with 0 <= T0 < T1",
+            ),
+            (&["--trajectories", "1", "--trajectory-window", "5"], "invalid --trajectory-window 5:"),
+            (&["--trajectories", "1", "--trajectory-window", "1,2,3"], "invalid --trajectory-window 1,2,3:"),
+            (&["--trajectories", "1", "--trajectory-window", "-1,2"], "invalid --trajectory-window -1,2:"),
+            (
+                &["--trajectories", "1", "--trajectory-window", "600,700"],
+                "invalid --trajectory-window 600,700: T0 must be before the end of the run (run.duration_s = 600 s)",
+            ),
+            (&["--trajectories", "1", "--trajectory-x", "9,9"], "invalid --trajectory-x 9,9: expected X0,X1 with X0 < X1"),
+            (
+                &["--trajectories", "1", "--trajectory-x", "7000,8000"],
+                "invalid --trajectory-x 7000,8000: the range must overlap the road, which spans 0 to 6500 m",
+            ),
+        ] {
+            let err = rec(extra).unwrap_err().to_string();
+            assert!(err.starts_with(expected), "{extra:?}: {err}");
+        }
+        // The windows need --trajectories; the numbers must be numbers.
+        for bad in [
+            &["run", "homogeneous", "--trajectory-window", "1,2"][..],
+            &["run", "homogeneous", "--trajectory-x", "1,2"],
+            &[
+                "run",
+                "homogeneous",
+                "--trajectories",
+                "1",
+                "--trajectory-window",
+                "a,b",
+            ],
+            &["run", "homogeneous", "--trajectories", "fast"],
+        ] {
+            let mut argv = vec!["platoonsim"];
+            argv.extend_from_slice(bad);
+            assert!(Cli::try_parse_from(argv).is_err(), "{bad:?}");
+        }
     }
 
     #[test]

@@ -7,14 +7,23 @@
 //! | `detectors.csv` | one row per detector, lane (1 = rightmost, `all`) and interval |
 //! | `scenario.json` | the resolved [`Config`] |
 //! | `scenario.toml` | the same as a complete scenario file (`platoonsim run DIR/scenario.toml` reruns it) |
+//! | `trips.csv` | with `--trips`: one row per vehicle that entered the road ([`trips_csv`]) |
+//! | `trajectories.csv` | with `--trajectories`: one row per vehicle and sample ([`write_trajectories`]) |
 
-use crate::atomic::write_atomic;
+use crate::atomic::{write_atomic, write_atomic_with};
 use anyhow::{Context, Result};
 use platoonsim_experiment::detectors::Scope;
-use platoonsim_sim::{Config, DetectorRecord, Output, Summary};
+use platoonsim_sim::vehicle::Kind;
+use platoonsim_sim::{Config, DetectorRecord, Output, Summary, TrajectoryPoint, Trip, TripStatus};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
+/// The optional per-vehicle files; one left by an earlier run in the same directory is removed
+/// when this run does not write it, so that the directory holds one run's files.
+pub const RECORD_FILES: [&str; 2] = ["trips.csv", "trajectories.csv"];
+
 /// Write every output file of a run into `dir` (which must exist); returns the paths written.
+/// `trips.csv` and `trajectories.csv` are written if the output has the records.
 pub fn write_run(dir: &Path, config: &Config, output: &Output) -> Result<Vec<PathBuf>> {
     let files: [(&str, Vec<u8>); 4] = [
         ("summary.json", json(&output.summary)?),
@@ -31,7 +40,148 @@ pub fn write_run(dir: &Path, config: &Config, output: &Output) -> Result<Vec<Pat
         write_atomic(&path, &bytes).with_context(|| format!("cannot write {}", path.display()))?;
         written.push(path);
     }
+    let [trips_file, trajectories_file] = RECORD_FILES.map(|name| dir.join(name));
+    if let Some(trips) = &output.trips {
+        let bytes = trips_csv(config, trips)?;
+        write_atomic(&trips_file, &bytes)
+            .with_context(|| format!("cannot write {}", trips_file.display()))?;
+        written.push(trips_file);
+    } else {
+        remove_stale(&trips_file)?;
+    }
+    if let Some(rows) = &output.trajectories {
+        write_atomic_with(&trajectories_file, |w| write_trajectories(w, rows))
+            .with_context(|| format!("cannot write {}", trajectories_file.display()))?;
+        written.push(trajectories_file);
+    } else {
+        remove_stale(&trajectories_file)?;
+    }
     Ok(written)
+}
+
+/// Remove a file of an earlier run (nothing if there is none).
+fn remove_stale(path: &Path) -> Result<()> {
+    match std::fs::remove_file(path) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+            Err(e).with_context(|| format!("cannot remove {} of an earlier run", path.display()))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// The name of entrance `origin` ([`Trip::origin`]): `mainline`, or the on-ramp's id as in the
+/// scenario file and the detector names (`OR3`).
+pub fn entrance_name(config: &Config, origin: usize) -> String {
+    let ramp = origin
+        .checked_sub(1)
+        .and_then(|i| config.road.network.as_ref()?.on_ramps.get(i));
+    match ramp {
+        Some(r) => platoonsim_scenario::network::split_name(&r.name).0,
+        None => "mainline".to_string(),
+    }
+}
+
+/// The id of off-ramp `k` (`FR2`; its exits are counted by detector `FR2-off`).
+pub fn off_ramp_name(config: &Config, k: usize) -> String {
+    config
+        .road
+        .network
+        .as_ref()
+        .and_then(|n| n.off_ramps.get(k))
+        .map_or_else(
+            || format!("off-ramp {k}"),
+            |r| platoonsim_scenario::network::split_name(&r.name).0,
+        )
+}
+
+fn kind_name(kind: Kind) -> &'static str {
+    match kind {
+        Kind::Human => "human",
+        Kind::Cav => "cav",
+    }
+}
+
+/// The columns of `trips.csv`, in order.
+pub const TRIP_COLUMNS: [&str; 14] = [
+    "id",
+    "kind",
+    "origin",
+    "destination",
+    "status",
+    "entered_s",
+    "left_s",
+    "travel_time_s",
+    "entry_x_m",
+    "last_x_m",
+    "lane_changes",
+    "max_platoon",
+    "max_platoon_tg2",
+    "measured",
+];
+
+/// `trips.csv`: the header, then one row per trip. `destination` is the off-ramp's id, `end`
+/// (the road end) or empty (still on the road); `status` is `exited`, `missed_exit_then_end`
+/// (it chose an off-ramp, was not in its lane there and drove on to the end) or `in_network`;
+/// `left_s` and `travel_time_s` are empty for a vehicle still on the road.
+pub fn trips_csv(config: &Config, trips: &[Trip]) -> Result<Vec<u8>> {
+    let mut w = csv::WriterBuilder::new()
+        .has_headers(false)
+        .from_writer(Vec::new());
+    w.write_record(TRIP_COLUMNS)?;
+    let num = |v: Option<f64>| v.map(|v| format!("{v}")).unwrap_or_default();
+    for t in trips {
+        let (destination, status) = match t.status {
+            TripStatus::Exited { off_ramp: Some(k) } => (off_ramp_name(config, k), "exited"),
+            TripStatus::Exited { off_ramp: None } => ("end".to_string(), "exited"),
+            TripStatus::MissedExitThenEnd { .. } => ("end".to_string(), "missed_exit_then_end"),
+            TripStatus::InNetwork => (String::new(), "in_network"),
+        };
+        w.write_record([
+            t.id.to_string(),
+            kind_name(t.kind).to_string(),
+            entrance_name(config, t.origin),
+            destination,
+            status.to_string(),
+            format!("{}", t.entered_s),
+            num(t.left_s),
+            num(t.travel_time_s),
+            format!("{}", t.entry_x_m),
+            format!("{}", t.last_x_m),
+            t.lane_changes.to_string(),
+            t.max_platoon.to_string(),
+            t.max_platoon_tg2.to_string(),
+            t.measured.to_string(),
+        ])?;
+    }
+    w.into_inner().context("cannot encode trips.csv")
+}
+
+/// The header of `trajectories.csv`.
+pub const TRAJECTORY_HEADER: &str = "t_s,id,kind,lane,x_m,v_mps,a_mps2,mode";
+
+/// `trajectories.csv`, written row by row (it can be large): the header, then one row per
+/// sample. `lane` counts lateral positions from the right starting at 1 (one more than the
+/// engine's index: on the homogeneous road the lane numbers of detectors.csv; on a network
+/// position 1 is that of the acceleration lanes); `mode` is
+/// [`platoonsim_sim::vehicle::ModeLabel::as_str`]. Every field is a number or a fixed word,
+/// so no quoting is needed.
+pub fn write_trajectories(w: &mut dyn Write, rows: &[TrajectoryPoint]) -> std::io::Result<()> {
+    writeln!(w, "{TRAJECTORY_HEADER}")?;
+    for r in rows {
+        writeln!(
+            w,
+            "{},{},{},{},{},{},{},{}",
+            r.t_s,
+            r.id,
+            kind_name(r.kind),
+            r.lane + 1,
+            r.x_m,
+            r.v_mps,
+            r.a_mps2,
+            r.mode.as_str()
+        )?;
+    }
+    Ok(())
 }
 
 /// Pretty JSON with a final newline.
@@ -154,6 +304,7 @@ pub fn wrap(text: &str, width: usize) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use platoonsim_sim::vehicle::ModeLabel;
 
     fn record(speed: Option<f64>) -> DetectorRecord {
         DetectorRecord {
@@ -230,6 +381,109 @@ mod tests {
         assert_eq!(c["road"]["length_m"], 6500.0);
         let back = platoonsim_scenario::load(dir.join("scenario.toml").to_str().unwrap()).unwrap();
         assert_eq!(back, config);
+    }
+
+    #[test]
+    fn trips_and_trajectories_csv_text() {
+        let o = platoonsim_scenario::Overrides {
+            duration_s: Some(60.0),
+            ..Default::default()
+        };
+        let sr99 = platoonsim_scenario::load_with("sr99", &o).unwrap();
+        assert_eq!(entrance_name(&sr99, 0), "mainline");
+        assert_eq!(entrance_name(&sr99, 7), "OR7");
+        assert_eq!(off_ramp_name(&sr99, 2), "FR3");
+        let trip = |status, left: Option<f64>| Trip {
+            id: 42,
+            kind: Kind::Cav,
+            origin: 7,
+            status,
+            entered_s: 12.3,
+            left_s: left,
+            travel_time_s: left.map(|l| l - 12.3),
+            entry_x_m: 5734.0,
+            last_x_m: 9000.25,
+            lane_changes: 2,
+            max_platoon: 3,
+            max_platoon_tg2: 1,
+            measured: false,
+        };
+        let trips = [
+            trip(TripStatus::Exited { off_ramp: Some(2) }, Some(112.5)),
+            trip(TripStatus::Exited { off_ramp: None }, Some(112.5)),
+            trip(TripStatus::MissedExitThenEnd { missed: 2 }, Some(112.5)),
+            trip(TripStatus::InNetwork, None),
+        ];
+        let text = String::from_utf8(trips_csv(&sr99, &trips).unwrap()).unwrap();
+        assert_eq!(
+            text.lines().collect::<Vec<_>>(),
+            [
+                "id,kind,origin,destination,status,entered_s,left_s,travel_time_s,entry_x_m,last_x_m,lane_changes,max_platoon,max_platoon_tg2,measured",
+                "42,cav,OR7,FR3,exited,12.3,112.5,100.2,5734,9000.25,2,3,1,false",
+                "42,cav,OR7,end,exited,12.3,112.5,100.2,5734,9000.25,2,3,1,false",
+                "42,cav,OR7,end,missed_exit_then_end,12.3,112.5,100.2,5734,9000.25,2,3,1,false",
+                "42,cav,OR7,,in_network,12.3,,,5734,9000.25,2,3,1,false",
+            ]
+        );
+        let homogeneous = Config::homogeneous(0.5, 2000.0, 60.0, 0.0, 1);
+        assert_eq!(entrance_name(&homogeneous, 0), "mainline");
+
+        let point = TrajectoryPoint {
+            t_s: 30.5,
+            id: 7,
+            kind: Kind::Human,
+            lane: 0,
+            x_m: -120.5,
+            v_mps: 0.0,
+            a_mps2: -1.25,
+            mode: ModeLabel::Blc,
+        };
+        let mut bytes = Vec::new();
+        write_trajectories(&mut bytes, &[point]).unwrap();
+        assert_eq!(
+            String::from_utf8(bytes).unwrap(),
+            "t_s,id,kind,lane,x_m,v_mps,a_mps2,mode\n30.5,7,human,1,-120.5,0,-1.25,blc\n"
+        );
+    }
+
+    #[test]
+    fn write_run_writes_the_records_asked_for_and_removes_stale_ones() {
+        let dir =
+            std::env::temp_dir().join(format!("platoonsim-output-rec-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let o = platoonsim_scenario::Overrides {
+            duration_s: Some(120.0),
+            warmup_s: Some(30.0),
+            ..Default::default()
+        };
+        let config = platoonsim_scenario::load_with("homogeneous", &o).unwrap();
+        let rec = platoonsim_sim::Recording {
+            trips: true,
+            trajectories: Some(platoonsim_sim::TrajectorySpec {
+                period_s: 10.0,
+                window_s: None,
+                x_m: None,
+            }),
+        };
+        let out = platoonsim_sim::run_recording(&config, &rec, None).unwrap();
+        let written = write_run(&dir, &config, &out).unwrap();
+        assert_eq!(written.len(), 6);
+        let trips = std::fs::read_to_string(dir.join("trips.csv")).unwrap();
+        assert_eq!(
+            trips.lines().count() as u64,
+            1 + out.summary.vehicles_entered
+        );
+        let traj = std::fs::read_to_string(dir.join("trajectories.csv")).unwrap();
+        let rows = out.trajectories.as_ref().unwrap().len();
+        assert!(rows > 0);
+        assert_eq!(traj.lines().count(), 1 + rows);
+        // A run without the records removes those of the earlier run.
+        let plain = platoonsim_sim::run(&config, None).unwrap();
+        assert_eq!(write_run(&dir, &config, &plain).unwrap().len(), 4);
+        assert!(!dir.join("trips.csv").exists());
+        assert!(!dir.join("trajectories.csv").exists());
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 4);
     }
 
     #[test]

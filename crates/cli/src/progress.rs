@@ -29,11 +29,20 @@ pub fn run_with_bar(
     config: &platoonsim_sim::Config,
     bar: &ProgressBar,
 ) -> Result<platoonsim_sim::Output, String> {
+    run_recording_with_bar(config, &platoonsim_sim::Recording::default(), bar)
+}
+
+/// [`run_with_bar`] that also records what `recording` asks for.
+pub fn run_recording_with_bar(
+    config: &platoonsim_sim::Config,
+    recording: &platoonsim_sim::Recording,
+    bar: &ProgressBar,
+) -> Result<platoonsim_sim::Output, String> {
     if bar.is_hidden() {
-        return platoonsim_sim::run(config, None);
+        return platoonsim_sim::run_recording(config, recording, None);
     }
     let mut update = |done_s: f64, _total_s: f64| bar.set_position(done_s.max(0.0) as u64);
-    let result = platoonsim_sim::run(config, Some(&mut update));
+    let result = platoonsim_sim::run_recording(config, recording, Some(&mut update));
     bar.finish_and_clear();
     result
 }

@@ -61,6 +61,11 @@ fn run_help_explains_every_flag() {
         "--demand-scale <F>",
         "--out <DIR>",
         "out/run",
+        "--trips",
+        "--trajectories <PERIOD_S>",
+        "--trajectory-window <T0,T1>",
+        "--trajectory-x <X0,X1>",
+        "tens of millions of rows",
     ] {
         assert!(
             text.contains(flag),
@@ -253,6 +258,75 @@ fn demand_scale_needs_a_network_and_demand_a_homogeneous_road() {
         &["sr99", "--demand-scale=-1"],
         "network.demand_scale = -1: must be a finite number >= 0",
     );
+}
+
+#[test]
+fn run_rejects_bad_trajectory_flags() {
+    assert_run_fails(
+        "trajectories-zero",
+        &["homogeneous", "--trajectories", "0"],
+        "invalid --trajectories 0: the sampling period (s) must be a positive multiple of the \
+         time step run.dt_s = 0.1 s",
+    );
+    assert_run_fails(
+        "trajectories-off-step",
+        &["homogeneous", "--trajectories", "0.15"],
+        "invalid --trajectories 0.15: the sampling period (s) must be a positive multiple of the \
+         time step run.dt_s = 0.1 s",
+    );
+    // The step is the scenario's, after the overrides.
+    assert_run_fails(
+        "trajectories-dt",
+        &[
+            "homogeneous",
+            "--set",
+            "run.dt_s=0.2",
+            "--trajectories",
+            "0.1",
+        ],
+        "invalid --trajectories 0.1: the sampling period (s) must be a positive multiple of the \
+         time step run.dt_s = 0.2 s",
+    );
+    assert_run_fails(
+        "trajectory-window-reversed",
+        &[
+            "homogeneous",
+            "--trajectories",
+            "1",
+            "--trajectory-window",
+            "5,1",
+        ],
+        "invalid --trajectory-window 5,1: expected T0,T1 with 0 <= T0 < T1 (seconds of simulated \
+         time)",
+    );
+    assert_run_fails(
+        "trajectory-x-reversed",
+        &["sr99", "--trajectories", "1", "--trajectory-x", "300,200"],
+        "invalid --trajectory-x 300,200: expected X0,X1 with X0 < X1",
+    );
+    assert_run_fails(
+        "trajectory-x-off-road",
+        &["sr99", "--trajectories", "1", "--trajectory-x=-3000,-1000"],
+        "invalid --trajectory-x -3000,-1000: the range must overlap the road, which spans -500 to \
+         17160 m in this coordinate",
+    );
+    // A window without --trajectories, or one that is not numbers: clap refuses it.
+    for (extra, expected) in [
+        (
+            &["--trajectory-window", "1,2"][..],
+            "--trajectories <PERIOD_S>",
+        ),
+        (
+            &["--trajectories", "1", "--trajectory-window", "a,2"],
+            "invalid value 'a' for '--trajectory-window <T0,T1>'",
+        ),
+    ] {
+        let mut args = vec!["run", "homogeneous"];
+        args.extend_from_slice(extra);
+        let o = platoonsim(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        assert!(stderr(&o).contains(expected), "{args:?}: {}", stderr(&o));
+    }
 }
 
 #[test]
@@ -451,4 +525,226 @@ fn bench_reports_updates_per_second() {
         "{}",
         stdout(&text)
     );
+}
+
+// ---------------------------------------------------------------- trips and trajectories
+
+/// A CSV file as a header and rows of named cells.
+fn read_csv(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
+    let mut r = csv::Reader::from_path(path).unwrap();
+    let header: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
+    r.records()
+        .map(|rec| {
+            let rec = rec.unwrap();
+            header
+                .iter()
+                .cloned()
+                .zip(rec.iter().map(String::from))
+                .collect()
+        })
+        .collect()
+}
+
+fn num(row: &std::collections::HashMap<String, String>, key: &str) -> f64 {
+    row[key]
+        .parse()
+        .unwrap_or_else(|_| panic!("{key} = {:?}", row[key]))
+}
+
+/// Ten minutes of SR-99 with both records, from 300 to 360 s every 0.5 s over the first 8 km.
+const SR99_RECORDS: &[&str] = &[
+    "run",
+    "sr99",
+    "--penetration",
+    "0.4",
+    "--seed",
+    "1",
+    "--duration",
+    "600",
+    "--warmup",
+    "120",
+    "-q",
+    "--trips",
+    "--trajectories",
+    "0.5",
+    "--trajectory-window",
+    "300,360",
+    "--trajectory-x=0,8000",
+];
+
+fn sr99_with_records(test: &str) -> PathBuf {
+    let out = scratch(test).join("out");
+    let mut args = SR99_RECORDS.to_vec();
+    args.extend_from_slice(&["--out", s(&out)]);
+    let o = platoonsim(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains("Also written: trips.csv ("),
+        "{}",
+        stdout(&o)
+    );
+    out
+}
+
+#[test]
+fn sr99_trips_agree_with_the_summary_and_the_off_ramp_detectors() {
+    let out = sr99_with_records("sr99-records");
+    let summary = summary_without_wall_time(&out);
+    let n = |k: &str| summary[k].as_u64().unwrap();
+    let trips = read_csv(&out.join("trips.csv"));
+    let header = std::fs::read_to_string(out.join("trips.csv")).unwrap();
+    assert!(header.starts_with(
+        "id,kind,origin,destination,status,entered_s,left_s,travel_time_s,entry_x_m,last_x_m,\
+         lane_changes,max_platoon,max_platoon_tg2,measured\n"
+    ));
+    assert_eq!(trips.len() as u64, n("vehicles_entered"));
+    let status = |st: &str| trips.iter().filter(|t| t["status"] == st).count() as u64;
+    assert_eq!(status("in_network"), n("vehicles_in_network"));
+    assert_eq!(
+        status("exited") + status("missed_exit_then_end"),
+        n("vehicles_exited")
+    );
+    assert!(status("missed_exit_then_end") <= n("missed_exits"));
+
+    // The lane-change statistic, exactly, as integers.
+    let measured: Vec<_> = trips.iter().filter(|t| t["measured"] == "true").collect();
+    assert_eq!(measured.len() as u64, n("vehicles_counted"));
+    let lane_changes: u64 = measured
+        .iter()
+        .map(|t| t["lane_changes"].parse::<u64>().unwrap())
+        .sum();
+    let per_vehicle = summary["lane_changes_per_vehicle"].as_f64().unwrap();
+    assert_eq!(
+        lane_changes,
+        (per_vehicle * n("vehicles_counted") as f64).round() as u64
+    );
+    assert!(lane_changes > 0);
+
+    // Per off-ramp: the trips that left by it = its detector's count over the run.
+    let mut off_counts: std::collections::HashMap<String, u64> = Default::default();
+    for r in read_csv(&out.join("detectors.csv")) {
+        if r["kind"] == "off-ramp" && r["lane"] == "all" {
+            *off_counts.entry(r["detector"].clone()).or_default() +=
+                r["count"].parse::<u64>().unwrap();
+        }
+    }
+    assert_eq!(off_counts.len(), 11, "{off_counts:?}");
+    let mut total = 0;
+    for (detector, count) in &off_counts {
+        let ramp = detector.strip_suffix("-off").unwrap();
+        let left_by_it = trips
+            .iter()
+            .filter(|t| t["destination"] == ramp && t["status"] == "exited")
+            .count() as u64;
+        assert_eq!(left_by_it, *count, "{detector}");
+        total += count;
+    }
+    assert!(total > 100, "only {total} vehicles took an off-ramp");
+
+    let mut origins = std::collections::BTreeSet::new();
+    for t in &trips {
+        origins.insert(t["origin"].clone());
+        assert!(["human", "cav"].contains(&t["kind"].as_str()), "{t:?}");
+        let entered = num(t, "entered_s");
+        assert!(entered > 0.0 && entered <= 600.0, "{t:?}");
+        assert!(num(t, "last_x_m") >= num(t, "entry_x_m"), "{t:?}");
+        if t["status"] == "in_network" {
+            assert!(
+                t["destination"].is_empty() && t["left_s"].is_empty(),
+                "{t:?}"
+            );
+            assert!(t["travel_time_s"].is_empty(), "{t:?}");
+        } else {
+            let (left, tt) = (num(t, "left_s"), num(t, "travel_time_s"));
+            assert!(tt > 0.0, "{t:?}");
+            assert!((tt - (left - entered)).abs() < 1e-6, "{t:?}");
+            assert!(!t["destination"].is_empty(), "{t:?}");
+        }
+        if t["origin"] == "mainline" {
+            assert_eq!(num(t, "entry_x_m"), -500.0, "{t:?}");
+        }
+    }
+    // The mainline and the 16 on-ramps.
+    assert_eq!(origins.len(), 17, "{origins:?}");
+    assert!(origins.contains("mainline") && origins.contains("OR16"));
+}
+
+#[test]
+fn trajectory_rows_lie_in_the_windows_and_move_forward() {
+    let out = sr99_with_records("sr99-trajectories");
+    let text = std::fs::read_to_string(out.join("trajectories.csv")).unwrap();
+    assert!(text.starts_with("t_s,id,kind,lane,x_m,v_mps,a_mps2,mode\n"));
+    let rows = read_csv(&out.join("trajectories.csv"));
+    assert!(rows.len() > 1000, "{} rows", rows.len());
+    let lanes = {
+        let c: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("scenario.json")).unwrap()).unwrap();
+        c["road"]["lanes"].as_u64().unwrap()
+    };
+    let mut times = std::collections::BTreeSet::new();
+    let mut last: std::collections::HashMap<String, (f64, f64)> = Default::default();
+    for r in &rows {
+        let (t, x, v, lane) = (
+            num(r, "t_s"),
+            num(r, "x_m"),
+            num(r, "v_mps"),
+            num(r, "lane"),
+        );
+        assert!((300.0..=360.0).contains(&t), "{r:?}");
+        assert_eq!((t * 2.0).fract(), 0.0, "not a multiple of 0.5 s: {r:?}");
+        assert!((0.0..=8000.0).contains(&x), "{r:?}");
+        assert!(v >= 0.0, "{r:?}");
+        assert!(
+            lane >= 1.0 && lane <= lanes as f64 && lane.fract() == 0.0,
+            "{r:?}"
+        );
+        assert!(
+            ["cf", "blc", "ycf", "cf-auto", "blc-auto", "ycf-auto"].contains(&r["mode"].as_str()),
+            "{r:?}"
+        );
+        if let Some(&(t0, x0)) = last.get(&r["id"]) {
+            assert!(t > t0 && x >= x0, "{r:?} after t = {t0}, x = {x0}");
+        }
+        last.insert(r["id"].clone(), (t, x));
+        times.insert((t * 2.0) as u64);
+    }
+    // Every sample time of the window has rows.
+    assert_eq!(times.len(), 121);
+}
+
+#[test]
+fn records_are_reproducible_and_do_not_change_the_other_outputs() {
+    let a = sr99_with_records("records-a");
+    let b = sr99_with_records("records-b");
+    for file in ["trips.csv", "trajectories.csv"] {
+        assert_eq!(
+            std::fs::read(a.join(file)).unwrap(),
+            std::fs::read(b.join(file)).unwrap(),
+            "{file}"
+        );
+    }
+    // The same run without the flags: the same four files, and none of the record files.
+    let plain = scratch("records-plain").join("out");
+    let mut args: Vec<&str> = SR99_RECORDS
+        .iter()
+        .copied()
+        .take_while(|a| *a != "--trips")
+        .collect();
+    args.extend_from_slice(&["--out", s(&plain)]);
+    let o = platoonsim(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stdout(&o).contains("Also written"), "{}", stdout(&o));
+    for file in ["detectors.csv", "scenario.json", "scenario.toml"] {
+        assert_eq!(
+            std::fs::read(a.join(file)).unwrap(),
+            std::fs::read(plain.join(file)).unwrap(),
+            "{file}"
+        );
+    }
+    assert_eq!(
+        summary_without_wall_time(&a),
+        summary_without_wall_time(&plain)
+    );
+    assert!(!plain.join("trips.csv").exists());
+    assert!(!plain.join("trajectories.csv").exists());
 }

@@ -1,6 +1,6 @@
-//! Atomic file writes: every result file goes through [`write_atomic`], so a reader (or a
-//! rerun after an interruption) sees either the old file or the complete new one, never a
-//! half-written one.
+//! Atomic file writes: every result file goes through [`write_atomic`] (or
+//! [`write_atomic_with`] for one written piecewise), so a reader (or a rerun after an
+//! interruption) sees either the old file or the complete new one, never a half-written one.
 
 use std::fs::{self, File};
 use std::io::{self, Write};
@@ -9,10 +9,21 @@ use std::path::{Path, PathBuf};
 /// Write `contents` to `path` atomically: write `<name>.tmp` in the same directory, flush it
 /// to disk, rename it over `path`, then flush the directory entry (best effort).
 pub fn write_atomic(path: &Path, contents: &[u8]) -> io::Result<()> {
+    write_atomic_with(path, |w| w.write_all(contents))
+}
+
+/// [`write_atomic`] for contents produced piecewise (a large file that should not be held in
+/// memory): `fill` writes them to a buffered writer on `<name>.tmp`; an error from it leaves
+/// the old file in place and no tmp file.
+pub fn write_atomic_with<F>(path: &Path, fill: F) -> io::Result<()>
+where
+    F: FnOnce(&mut dyn Write) -> io::Result<()>,
+{
     let tmp = tmp_path(path)?;
     let result = (|| {
-        let mut f = File::create(&tmp)?;
-        f.write_all(contents)?;
+        let mut f = io::BufWriter::with_capacity(1 << 16, File::create(&tmp)?);
+        fill(&mut f)?;
+        let f = f.into_inner().map_err(io::IntoInnerError::into_error)?;
         f.sync_all()?;
         drop(f);
         fs::rename(&tmp, path)
@@ -87,5 +98,30 @@ mod tests {
         assert_eq!(fs::read(&path).unwrap(), b"old");
         // A missing directory is an error, not a panic.
         assert!(write_atomic(&dir.join("missing/x.csv"), b"x").is_err());
+    }
+
+    #[test]
+    fn piecewise_writes_and_failures() {
+        let dir = scratch("piecewise");
+        let path = dir.join("big.csv");
+        write_atomic_with(&path, |w| {
+            for i in 0..100_000 {
+                writeln!(w, "{i}")?;
+            }
+            Ok(())
+        })
+        .unwrap();
+        let text = fs::read_to_string(&path).unwrap();
+        assert_eq!(text.lines().count(), 100_000);
+        assert!(text.ends_with("99999\n"));
+        // A failing producer keeps the old file and leaves no tmp file.
+        let err = write_atomic_with(&path, |w| {
+            w.write_all(b"partial")?;
+            Err(io::Error::other("producer failed"))
+        })
+        .unwrap_err();
+        assert_eq!(err.to_string(), "producer failed");
+        assert_eq!(fs::read_to_string(&path).unwrap(), text);
+        assert!(!dir.join("big.csv.tmp").exists());
     }
 }

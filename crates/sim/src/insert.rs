@@ -132,8 +132,8 @@ pub const MIN_TRIP_TO_EXIT_M: f64 = 200.0;
 /// Draw a new vehicle (type and parameters) from its own stream; on a network it also chooses
 /// its exit on entry at `x` and time `t` (issue 4 item 1): for each off-ramp downstream in turn
 /// a Bernoulli trial with that ramp's exit fraction for the current interval; the first success
-/// is its exit, none means the mainline end.
-fn create(cfg: &Config, id: u64, x: f64, t: f64) -> Vehicle {
+/// is its exit, none means the mainline end. `origin` is the entrance's index.
+fn create(cfg: &Config, id: u64, x: f64, t: f64, origin: u32) -> Vehicle {
     let mut rng = Stream::new(cfg.seed, Purpose::Vehicle, id);
     let kind = if rng.uniform() < cfg.penetration {
         Kind::Cav
@@ -188,6 +188,8 @@ fn create(cfg: &Config, id: u64, x: f64, t: f64) -> Vehicle {
         max_platoon: 1,
         max_platoon_tg2: 1,
         exit,
+        origin,
+        planned_exit: exit,
     }
 }
 
@@ -202,7 +204,7 @@ impl Simulation {
                     None => 0.0,
                     Some(r) => self.geom.on_ramps[r].x,
                 };
-                let v = create(&self.cfg, self.next_id, x, t);
+                let v = create(&self.cfg, self.next_id, x, t, e as u32);
                 self.next_id += 1;
                 let ent = &mut self.entrances[e];
                 ent.queue.push_back(v);

@@ -3,6 +3,8 @@
 //! Principal types: [`Config`] (validated input), [`Simulation`] (the state and
 //! [`Simulation::step`], whose doc lists the phases), [`Output`]/[`Summary`]/[`DetectorRecord`]
 //! (what a run produces), and [`run`] (config → output, single-threaded and deterministic).
+//! Optional per-vehicle records: [`Recording`] → [`Trip`]s and [`TrajectoryPoint`]s
+//! ([`run_recording`], module `record`).
 //!
 //! Modules by phase: `sense` (neighbours, platoons), `decide` (lane-change decisions and
 //! accelerations), `execute` (lane changes), `insert` (arrivals, insertion), `detector`,
@@ -15,6 +17,7 @@ mod execute;
 mod insert;
 pub mod metrics;
 pub mod network;
+pub mod record;
 pub mod rng;
 mod sense;
 mod sim;
@@ -27,6 +30,7 @@ pub use config::{
     Config, Demand, DetectorKind, DetectorSpec, FlowAwareConfig, LaneExtent, Network, OffRamp,
     OnRamp, PdConfig, Road, Strategy,
 };
+pub use record::{Recording, TrajectoryPoint, TrajectorySpec, Trip, TripStatus};
 pub use sim::{strategy_name, Simulation};
 pub use summary::{DetectorRecord, Output, Summary};
 
@@ -36,9 +40,21 @@ pub type Progress<'a> = &'a mut dyn FnMut(f64, f64);
 /// Run a whole simulation: validate, step to the end, and collect the outputs.
 /// Single-threaded and deterministic: the same config gives bit-identical outputs (except
 /// `wall_seconds`).
-pub fn run(config: &Config, mut progress: Option<Progress<'_>>) -> Result<Output, String> {
+pub fn run(config: &Config, progress: Option<Progress<'_>>) -> Result<Output, String> {
+    run_recording(config, &Recording::default(), progress)
+}
+
+/// [`run`] that also records trips and trajectories as `recording` asks
+/// ([`Output::trips`], [`Output::trajectories`]). The other outputs are those of [`run`]:
+/// recording does not change the simulation.
+pub fn run_recording(
+    config: &Config,
+    recording: &Recording,
+    mut progress: Option<Progress<'_>>,
+) -> Result<Output, String> {
     let start = std::time::Instant::now();
     let mut sim = Simulation::new(config.clone())?;
+    sim.record(recording)?;
     let every = (60.0 / config.dt_s).round().max(1.0) as u64;
     let total = config.duration_s;
     while !sim.finished() {

@@ -5,6 +5,7 @@ use crate::detector::{Detector, Passage};
 use crate::insert::Entrance;
 use crate::metrics::Metrics;
 use crate::network::Geometry;
+use crate::record::{trip_of, Recorder, Recording, TrajectoryRecorder};
 use crate::sense::{Sensed, NONE};
 use crate::summary::{Output, Summary};
 use crate::vehicle::{Kind, Relaxation, Vehicle, NO_EXIT};
@@ -78,6 +79,8 @@ pub struct Simulation {
     pub(crate) vehicle_updates: u64,
     /// Flow-Aware condition per road cell of `FA_CELL_M` (from the latest broadcasts).
     pub(crate) fa_cells: Vec<bool>,
+    /// Optional trip and trajectory records (`record.rs`); off unless [`Simulation::record`].
+    pub(crate) rec: Recorder,
 }
 
 impl Simulation {
@@ -151,8 +154,51 @@ impl Simulation {
             collisions: 0,
             vehicle_updates: 0,
             fa_cells: Vec::new(),
+            rec: Recorder::default(),
             cfg,
         })
+    }
+
+    /// Also record what `recording` asks for (trips, trajectories); they come back in
+    /// [`Output::trips`] and [`Output::trajectories`]. Recording reads the state and never
+    /// changes the simulation. Must be called before the first step.
+    pub fn record(&mut self, recording: &Recording) -> Result<(), String> {
+        recording.check(&self.cfg)?;
+        if self.step > 0 {
+            return Err("recording must be enabled before the first step".into());
+        }
+        let origin = self.origin_m();
+        self.rec = Recorder {
+            trips: recording.trips.then(Vec::new),
+            trajectories: recording
+                .trajectories
+                .as_ref()
+                .map(|t| TrajectoryRecorder::new(t, &self.cfg, origin)),
+        };
+        Ok(())
+    }
+
+    /// Output coordinate of engine x = 0 (the network origin; 0 on a plain road).
+    fn origin_m(&self) -> f64 {
+        self.cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m)
+    }
+
+    /// Record the trip of slot `s` if trips are recorded: it left by `off_ramp` (or the end) in
+    /// this step, or (`left == false`) is still on the road at the end of the run.
+    #[cold]
+    #[inline(never)]
+    fn record_trip(&mut self, s: u32, left: bool, off_ramp: Option<usize>) {
+        let origin_m = self.origin_m();
+        let Some(trips) = self.rec.trips.as_mut() else {
+            return;
+        };
+        let v = &self.vehicles[s as usize];
+        let entry_x = match v.origin {
+            0 => 0.0,
+            i => self.geom.on_ramps[i as usize - 1].x,
+        };
+        let left_step = left.then_some(self.step + 1);
+        trips.push(trip_of(v, left_step, off_ramp, entry_x, origin_m, self.dt));
     }
 
     /// Simulated time (s).
@@ -223,6 +269,11 @@ impl Simulation {
                 d.close_interval();
             }
             self.update_flow_aware();
+        }
+        if let Some(t) = self.rec.trajectories.as_mut() {
+            if t.due(self.step) {
+                t.sample(self.step, &self.vehicles, &self.lanes);
+            }
         }
         self.check_invariants()
     }
@@ -302,6 +353,9 @@ impl Simulation {
                 }
                 self.lanes[l].remove(0);
                 self.metrics.on_exit(&self.vehicles[s as usize]);
+                if self.rec.trips.is_some() {
+                    self.record_trip(s, true, None);
+                }
                 self.free.push(s);
             }
         }
@@ -336,6 +390,9 @@ impl Simulation {
                     self.detectors[d].count_exit(speed, cav);
                 }
                 self.metrics.on_exit(&self.vehicles[s as usize]);
+                if self.rec.trips.is_some() {
+                    self.record_trip(s, true, Some(exit));
+                }
                 self.free.push(s);
             }
         }
@@ -453,6 +510,15 @@ impl Simulation {
                 self.metrics.on_exit_in_network(&self.vehicles[s as usize]);
             }
         }
+        let trips = self.rec.trips.is_some().then(|| {
+            let mut on_road: Vec<u32> = self.lanes.iter().flatten().copied().collect();
+            on_road.sort_unstable_by_key(|&s| self.vehicles[s as usize].id);
+            for s in on_road {
+                self.record_trip(s, false, None);
+            }
+            self.rec.trips.take().unwrap_or_default()
+        });
+        let trajectories = self.rec.trajectories.take().map(|t| t.rows);
         let cfg = &self.cfg;
         let det = &self.detectors[cfg.measurement_detector];
         let lanes = det.covered_lanes() as f64;
@@ -526,7 +592,12 @@ impl Simulation {
         for d in &self.detectors {
             d.records(interval, &mut detectors);
         }
-        Output { summary, detectors }
+        Output {
+            summary,
+            detectors,
+            trips,
+            trajectories,
+        }
     }
 
     /// Renumber the slots in lane order, front first (memory locality only: neighbours in a

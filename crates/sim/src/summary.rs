@@ -1,5 +1,6 @@
 //! Run outputs: the summary and the detector records (plain data; the CLI writes files).
 
+use crate::record::{TrajectoryPoint, Trip};
 use serde::Serialize;
 
 /// One run's summary (`summary.json`). Rates per lane use the road's lane count.
@@ -80,4 +81,9 @@ pub struct DetectorRecord {
 pub struct Output {
     pub summary: Summary,
     pub detectors: Vec<DetectorRecord>,
+    /// With [`crate::Recording::trips`]: one trip per vehicle that entered the road, in the
+    /// order they left, then those still on the road by id.
+    pub trips: Option<Vec<Trip>>,
+    /// With [`crate::Recording::trajectories`]: the samples in time order, each sample by id.
+    pub trajectories: Option<Vec<TrajectoryPoint>>,
 }

@@ -96,6 +96,13 @@ pub struct Vehicle {
     pub lc: LaneChangeParams,
     /// Own random stream (lane choice, yielding draws).
     pub rng: Stream,
+
+    // Cold: read only when the vehicle leaves, for the optional trip records (`record.rs`).
+    /// Entrance it came in by: 0 the mainline, i + 1 on-ramp i.
+    pub origin: u32,
+    /// The off-ramp it chose on entry (`NO_EXIT`: the mainline end). Unlike `exit`, kept when it
+    /// misses that off-ramp.
+    pub planned_exit: u32,
 }
 
 impl Vehicle {
@@ -117,12 +124,58 @@ impl Vehicle {
     pub fn rear(&self) -> f64 {
         self.x - self.human.length_m
     }
+
+    /// The driving mode for the records ([`ModeLabel`]).
+    pub fn mode_label(&self) -> ModeLabel {
+        let auto = self.automated();
+        match (self.mode, auto) {
+            (Mode::Cf, false) => ModeLabel::Cf,
+            (Mode::Cf, true) => ModeLabel::CfAuto,
+            (Mode::Blc { .. }, false) => ModeLabel::Blc,
+            (Mode::Blc { .. }, true) => ModeLabel::BlcAuto,
+            (Mode::Ycf { .. }, false) => ModeLabel::Ycf,
+            (Mode::Ycf { .. }, true) => ModeLabel::YcfAuto,
+        }
+    }
+}
+
+/// The driving mode as the trajectory records give it: the [`Mode`] variant, and whether a
+/// CAV's automation is engaged ([`Vehicle::automated`]; never for a human driver).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModeLabel {
+    Cf,
+    CfAuto,
+    Blc,
+    BlcAuto,
+    Ycf,
+    YcfAuto,
+}
+
+impl ModeLabel {
+    /// `cf`, `blc` or `ycf`, with `-auto` appended while automated.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ModeLabel::Cf => "cf",
+            ModeLabel::CfAuto => "cf-auto",
+            ModeLabel::Blc => "blc",
+            ModeLabel::BlcAuto => "blc-auto",
+            ModeLabel::Ycf => "ycf",
+            ModeLabel::YcfAuto => "ycf-auto",
+        }
+    }
+
+    pub fn automated(self) -> bool {
+        matches!(
+            self,
+            ModeLabel::CfAuto | ModeLabel::BlcAuto | ModeLabel::YcfAuto
+        )
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::mem::{align_of, offset_of};
+    use std::mem::{align_of, offset_of, size_of};
 
     #[test]
     fn layout_keeps_the_hot_state_together() {
@@ -133,5 +186,11 @@ mod tests {
         assert!(offset_of!(Vehicle, max_platoon_tg2) < 128);
         assert_eq!(offset_of!(Vehicle, human), 128);
         assert_eq!(offset_of!(HumanParams, length_m), 0);
+        // The trip-record fields are cold: after everything else, in the padding of the last
+        // cache line (the record did not grow for them).
+        assert!(offset_of!(Vehicle, origin) > offset_of!(Vehicle, rng));
+        assert!(offset_of!(Vehicle, planned_exit) > offset_of!(Vehicle, rng));
+        let end_of_rng = offset_of!(Vehicle, rng) + size_of::<Stream>();
+        assert_eq!(size_of::<Vehicle>(), end_of_rng.next_multiple_of(64));
     }
 }

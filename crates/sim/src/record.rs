@@ -1,0 +1,301 @@
+//! Optional per-vehicle records (the kind of SUMO's tripinfo and FCD outputs): one [`Trip`] per
+//! vehicle that entered the road, and [`TrajectoryPoint`] samples at a fixed period.
+//!
+//! Off by default. A [`Recording`] is not part of the [`crate::Config`]: it does not change the
+//! simulation (the records are read from the state, never fed back), nor the configuration's
+//! JSON, so neither `scenario.json` nor the experiment runner's run keys depend on it. When it is
+//! off, the cost is one branch per vehicle that leaves and one per step.
+
+use crate::config::Config;
+use crate::vehicle::{Kind, ModeLabel, Vehicle, NO_EXIT};
+
+/// What to record besides the summary and the detectors.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Recording {
+    /// One [`Trip`] per vehicle that entered the road.
+    pub trips: bool,
+    /// Trajectory samples.
+    pub trajectories: Option<TrajectorySpec>,
+}
+
+/// When and where to sample trajectories.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TrajectorySpec {
+    /// Sampling period (s): a positive multiple of the step `dt_s`. Samples are taken at the
+    /// multiples of the period (t = period, 2·period, …), after the step that ends there.
+    pub period_s: f64,
+    /// Only samples with t0 ≤ t ≤ t1 (s of simulated time); `None`: the whole run.
+    pub window_s: Option<(f64, f64)>,
+    /// Only vehicles whose front is at x0 ≤ x ≤ x1, in the output coordinate of the detectors
+    /// (engine x + the network origin; m); `None`: the whole road.
+    pub x_m: Option<(f64, f64)>,
+}
+
+impl Recording {
+    /// Whether anything is recorded.
+    pub fn any(&self) -> bool {
+        self.trips || self.trajectories.is_some()
+    }
+
+    /// The invariants the recorder relies on; `Err` names the field, the value and what is
+    /// allowed.
+    pub fn check(&self, cfg: &Config) -> Result<(), String> {
+        let Some(t) = &self.trajectories else {
+            return Ok(());
+        };
+        if period_steps(t.period_s, cfg.dt_s).is_none() {
+            return Err(format!(
+                "trajectories.period_s = {}: must be a positive multiple of the time step dt_s = {}",
+                t.period_s, cfg.dt_s
+            ));
+        }
+        if let Some((t0, t1)) = t.window_s {
+            if !(t0.is_finite() && t1.is_finite() && t0 >= 0.0 && t0 < t1) {
+                return Err(format!(
+                    "trajectories.window_s = ({t0}, {t1}): must be finite with 0 <= t0 < t1"
+                ));
+            }
+        }
+        if let Some((x0, x1)) = t.x_m {
+            if !(x0.is_finite() && x1.is_finite() && x0 < x1) {
+                return Err(format!(
+                    "trajectories.x_m = ({x0}, {x1}): must be finite with x0 < x1"
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The number of steps in `period_s` if it is a positive multiple of `dt_s` (within a relative
+/// 1e-6, so that 0.3 s is three steps of 0.1 s), otherwise `None`.
+pub fn period_steps(period_s: f64, dt_s: f64) -> Option<u64> {
+    if !(period_s.is_finite() && period_s > 0.0 && dt_s.is_finite() && dt_s > 0.0) {
+        return None;
+    }
+    let r = period_s / dt_s;
+    let k = r.round();
+    ((1.0..1e15).contains(&k) && (r - k).abs() <= 1e-6 * k).then_some(k as u64)
+}
+
+/// How a trip ended (or did not, by the end of the run).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TripStatus {
+    /// Left the road where it meant to: by off-ramp `off_ramp` (index into the network's
+    /// off-ramps), or at the mainline end (`None`).
+    Exited { off_ramp: Option<usize> },
+    /// Chose off-ramp `missed` on entry, was not in its lane there, and drove on to the end.
+    MissedExitThenEnd { missed: usize },
+    /// Still on the road at the end of the run.
+    InNetwork,
+}
+
+/// One vehicle that entered the road.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Trip {
+    pub id: u64,
+    pub kind: Kind,
+    /// Entrance: 0 the mainline, i + 1 on-ramp i of the network.
+    pub origin: usize,
+    pub status: TripStatus,
+    /// Time at which it entered the road (s).
+    pub entered_s: f64,
+    /// Time at which it left (s); `None` if still on the road.
+    pub left_s: Option<f64>,
+    /// left − entered, from the step counts (s); `None` if still on the road.
+    pub travel_time_s: Option<f64>,
+    /// Front position at entry and when it left (or at the end), output coordinate (m).
+    pub entry_x_m: f64,
+    pub last_x_m: f64,
+    /// The per-vehicle counters of the summary's statistics (`metrics.rs`).
+    pub lane_changes: u32,
+    pub max_platoon: u32,
+    pub max_platoon_tg2: u32,
+    /// Entered in the measurement window: counts in the summary's statistics.
+    pub measured: bool,
+}
+
+/// One vehicle at one sample time (48 bytes: a long recording is held in memory until the end
+/// of the run).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TrajectoryPoint {
+    /// Simulated time (s).
+    pub t_s: f64,
+    pub id: u64,
+    /// Front position, output coordinate (m).
+    pub x_m: f64,
+    pub v_mps: f64,
+    /// The acceleration applied in the last step (m/s²).
+    pub a_mps2: f64,
+    /// Lateral lane index, 0 = rightmost position of the road (the engine's numbering).
+    pub lane: u32,
+    pub kind: Kind,
+    pub mode: ModeLabel,
+}
+
+/// Simulated time of step `step`: `step / n` when a second is a whole number n of steps (so
+/// that times print as short decimals, 12.3 rather than 12.300000000000001), else `step · dt`.
+pub fn step_time(step: u64, dt: f64) -> f64 {
+    let n = (1.0 / dt).round();
+    if n >= 1.0 && (n * dt - 1.0).abs() < 1e-12 {
+        step as f64 / n
+    } else {
+        step as f64 * dt
+    }
+}
+
+/// The recorders of a running simulation.
+#[derive(Debug, Default)]
+pub(crate) struct Recorder {
+    pub trips: Option<Vec<Trip>>,
+    pub trajectories: Option<TrajectoryRecorder>,
+}
+
+#[derive(Debug)]
+pub(crate) struct TrajectoryRecorder {
+    /// Steps between samples.
+    every: u64,
+    /// First and last step sampled (inclusive).
+    first: u64,
+    last: u64,
+    /// Engine coordinates, inclusive.
+    x_lo: f64,
+    x_hi: f64,
+    /// Added to engine x in the records.
+    origin_m: f64,
+    dt: f64,
+    pub rows: Vec<TrajectoryPoint>,
+}
+
+impl TrajectoryRecorder {
+    pub fn new(spec: &TrajectorySpec, cfg: &Config, origin_m: f64) -> TrajectoryRecorder {
+        let dt = cfg.dt_s;
+        let every = period_steps(spec.period_s, dt).unwrap_or(1).max(1);
+        // Steps of the window's ends, with a little slack for times that are not exact
+        // multiples of dt in binary.
+        let (first, last) = match spec.window_s {
+            Some((t0, t1)) => (
+                ((t0 / dt - 1e-6).ceil().max(0.0)) as u64,
+                ((t1 / dt + 1e-6).floor().max(0.0)) as u64,
+            ),
+            None => (0, u64::MAX),
+        };
+        let first = first.max(1).div_ceil(every) * every;
+        let (x_lo, x_hi) = spec
+            .x_m
+            .map_or((f64::NEG_INFINITY, f64::INFINITY), |(a, b)| {
+                (a - origin_m, b - origin_m)
+            });
+        TrajectoryRecorder {
+            every,
+            first,
+            last,
+            x_lo,
+            x_hi,
+            origin_m,
+            dt,
+            rows: Vec::new(),
+        }
+    }
+
+    /// Whether the state after step `step` is sampled.
+    #[inline]
+    pub fn due(&self, step: u64) -> bool {
+        step >= self.first && step <= self.last && step.is_multiple_of(self.every)
+    }
+
+    /// Sample the vehicles on the road (lists of slots per lane) after step `step`, ordered by
+    /// id.
+    pub fn sample(&mut self, step: u64, vehicles: &[Vehicle], lanes: &[Vec<u32>]) {
+        let t = step_time(step, self.dt);
+        let start = self.rows.len();
+        for lane in lanes {
+            for &s in lane {
+                let v = &vehicles[s as usize];
+                if v.x >= self.x_lo && v.x <= self.x_hi {
+                    self.rows.push(TrajectoryPoint {
+                        t_s: t,
+                        id: v.id,
+                        kind: v.kind,
+                        lane: v.lane,
+                        x_m: v.x + self.origin_m,
+                        v_mps: v.v,
+                        a_mps2: v.a,
+                        mode: v.mode_label(),
+                    });
+                }
+            }
+        }
+        self.rows[start..].sort_unstable_by_key(|p| p.id);
+    }
+}
+
+/// The trip of `v`, which left in the step that ends at step `left_step` (`None`: still on the
+/// road). `off_ramp`: it left by that off-ramp; `entry_x` is its entry position (engine).
+pub(crate) fn trip_of(
+    v: &Vehicle,
+    left_step: Option<u64>,
+    off_ramp: Option<usize>,
+    entry_x: f64,
+    origin_m: f64,
+    dt: f64,
+) -> Trip {
+    let status = match (left_step, off_ramp) {
+        (None, _) => TripStatus::InNetwork,
+        (Some(_), Some(r)) => TripStatus::Exited { off_ramp: Some(r) },
+        (Some(_), None) if v.planned_exit != NO_EXIT => TripStatus::MissedExitThenEnd {
+            missed: v.planned_exit as usize,
+        },
+        (Some(_), None) => TripStatus::Exited { off_ramp: None },
+    };
+    Trip {
+        id: v.id,
+        kind: v.kind,
+        origin: v.origin as usize,
+        status,
+        entered_s: step_time(v.entered_step, dt),
+        left_s: left_step.map(|s| step_time(s, dt)),
+        travel_time_s: left_step.map(|s| step_time(s - v.entered_step, dt)),
+        entry_x_m: entry_x + origin_m,
+        last_x_m: v.x + origin_m,
+        lane_changes: v.lane_changes,
+        max_platoon: v.max_platoon,
+        max_platoon_tg2: v.max_platoon_tg2,
+        measured: v.measured,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn periods_are_whole_multiples_of_the_step() {
+        assert_eq!(period_steps(0.1, 0.1), Some(1));
+        assert_eq!(period_steps(0.3, 0.1), Some(3));
+        assert_eq!(period_steps(1.0, 0.1), Some(10));
+        assert_eq!(period_steps(60.0, 0.1), Some(600));
+        assert_eq!(period_steps(0.15, 0.1), None);
+        assert_eq!(period_steps(0.05, 0.1), None);
+        assert_eq!(period_steps(0.0, 0.1), None);
+        assert_eq!(period_steps(-1.0, 0.1), None);
+        assert_eq!(period_steps(f64::NAN, 0.1), None);
+        assert_eq!(period_steps(f64::INFINITY, 0.1), None);
+        assert_eq!(period_steps(0.25, 0.05), Some(5));
+    }
+
+    #[test]
+    fn a_trajectory_point_is_small() {
+        assert_eq!(std::mem::size_of::<TrajectoryPoint>(), 48);
+    }
+
+    #[test]
+    fn step_times_are_short_decimals() {
+        assert_eq!(step_time(123, 0.1).to_string(), "12.3");
+        assert_eq!(step_time(3, 0.1).to_string(), "0.3");
+        assert_eq!(step_time(36000, 0.1), 3600.0);
+        assert_eq!(step_time(7, 0.05).to_string(), "0.35");
+        // dt whose inverse is not whole: plain product.
+        assert_eq!(step_time(2, 0.3), 2.0 * 0.3);
+    }
+}
