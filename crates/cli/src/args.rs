@@ -44,6 +44,11 @@ pub enum Command {
     /// differences). --quick uses 3 seeds per cell on the homogeneous road and a reduced SR-99
     /// part.
     Reproduce(ReproduceArgs),
+    /// Draw a time-space diagram of one lane from a trajectories.csv (written by `run
+    /// --trajectories`): time on the x axis, position on the y axis, one line per vehicle while
+    /// it is in the lane, coloured by speed (0-120 km/h), CAVs thick and humans thin. Writes
+    /// STEM.png and STEM.svg.
+    TimeSpace(TimeSpaceArgs),
 }
 
 /// Which scenario, and what to change in it. Overrides act on the scenario file before it
@@ -268,6 +273,49 @@ fn pair(v: &Option<Vec<f64>>) -> Option<(String, Option<(f64, f64)>)> {
         _ => None,
     };
     Some((text, p))
+}
+
+#[derive(Debug, Args)]
+pub struct TimeSpaceArgs {
+    /// The trajectories.csv to draw.
+    #[arg(value_name = "TRAJECTORIES_CSV")]
+    pub csv: PathBuf,
+
+    /// The lane to draw, numbered from 1 (the rightmost position) as in trajectories.csv.
+    /// A vehicle's line is broken while it is in another lane.
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 1,
+        allow_negative_numbers = true
+    )]
+    pub lane: i64,
+
+    /// Output file stem: writes STEM.png and STEM.svg (default: time_space_lane<N> next to
+    /// the CSV).
+    #[arg(long, value_name = "STEM")]
+    pub out: Option<PathBuf>,
+}
+
+impl TimeSpaceArgs {
+    /// The lane, checked (lanes are numbered from 1).
+    pub fn lane(&self) -> Result<u32> {
+        match u32::try_from(self.lane) {
+            Ok(lane) if lane >= 1 => Ok(lane),
+            _ => bail!(
+                "invalid --lane {}: lanes are numbered from 1 (the rightmost position), as in \
+                 trajectories.csv's lane column",
+                self.lane
+            ),
+        }
+    }
+
+    /// The output stem: --out, or time_space_lane<N> next to the CSV.
+    pub fn stem(&self, lane: u32) -> PathBuf {
+        self.out
+            .clone()
+            .unwrap_or_else(|| self.csv.with_file_name(format!("time_space_lane{lane}")))
+    }
 }
 
 #[derive(Debug, Args)]

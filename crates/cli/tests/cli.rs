@@ -38,7 +38,7 @@ fn help_lists_the_commands() {
     let o = platoonsim(&["--help"]);
     assert!(o.status.success());
     let text = stdout(&o);
-    for cmd in ["run", "bench", "scenarios", "show", "--quiet"] {
+    for cmd in ["run", "bench", "scenarios", "show", "time-space", "--quiet"] {
         assert!(text.contains(cmd), "{cmd} missing from --help:\n{text}");
     }
 }
@@ -747,4 +747,119 @@ fn records_are_reproducible_and_do_not_change_the_other_outputs() {
     );
     assert!(!plain.join("trips.csv").exists());
     assert!(!plain.join("trajectories.csv").exists());
+}
+
+// ---------------------------------------------------------------- time-space
+
+/// `time-space` fails with exit code 1 and says `expected` on stderr, writing no figure.
+fn assert_time_space_fails(dir: &Path, args: &[&str], expected: &str) {
+    let mut all = vec!["time-space"];
+    all.extend_from_slice(args);
+    let o = platoonsim(&all);
+    assert_eq!(o.status.code(), Some(1), "{all:?}: {}", stderr(&o));
+    let err = stderr(&o);
+    assert!(
+        err.contains(expected),
+        "{all:?}: expected {expected:?} in:\n{err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+    let figures = std::fs::read_dir(dir)
+        .unwrap()
+        .filter(|e| {
+            let name = e.as_ref().unwrap().file_name();
+            let name = name.to_string_lossy();
+            name.ends_with(".png") || name.ends_with(".svg")
+        })
+        .count();
+    assert_eq!(figures, 0, "a figure was written for {all:?}");
+}
+
+#[test]
+fn time_space_refuses_bad_input() {
+    let dir = scratch("tsd-refusals");
+    let head = "t_s,id,kind,lane,x_m,v_mps,a_mps2,mode\n";
+    let good = dir.join("trajectories.csv");
+    std::fs::write(
+        &good,
+        format!("{head}0,1,cav,1,0,20,0,cf\n1,1,cav,1,20,20,0,cf\n"),
+    )
+    .unwrap();
+    let missing = dir.join("nope.csv");
+    assert_time_space_fails(&dir, &[s(&missing)], "cannot read");
+    assert_time_space_fails(&dir, &[s(&missing)], "nope.csv");
+    let wrong = dir.join("detectors.csv");
+    std::fs::write(&wrong, "t_s,detector,flow\n1,2,3\n").unwrap();
+    assert_time_space_fails(&dir, &[s(&wrong)], "is not a trajectories.csv");
+    let bad = dir.join("bad.csv");
+    std::fs::write(
+        &bad,
+        format!("{head}0,1,cav,1,0,20,0,cf\n1,1,cav,1,20,fast,0,cf\n"),
+    )
+    .unwrap();
+    assert_time_space_fails(&dir, &[s(&bad)], "bad.csv line 3, column v_mps: 'fast'");
+    assert_time_space_fails(
+        &dir,
+        &[s(&good), "--lane", "0"],
+        "invalid --lane 0: lanes are numbered from 1",
+    );
+    assert_time_space_fails(&dir, &[s(&good), "--lane", "3"], "no sample in lane 3");
+    assert_time_space_fails(
+        &dir,
+        &[s(&good), "--lane", "-1"],
+        "invalid --lane -1: lanes are numbered from 1",
+    );
+    // The good file draws, next to the CSV by default.
+    let o = platoonsim(&["time-space", s(&good)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(dir.join("time_space_lane1.png").exists());
+    assert!(dir.join("time_space_lane1.svg").exists());
+}
+
+#[test]
+fn time_space_draws_what_run_writes() {
+    let out = scratch("tsd-run").join("out");
+    let o = platoonsim(&[
+        "run",
+        "homogeneous",
+        "--duration",
+        "300",
+        "--warmup",
+        "60",
+        "--quiet",
+        "--demand",
+        "2000",
+        "--trajectories",
+        "1",
+        "--out",
+        s(&out),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = out.join("trajectories.csv");
+    let rows = read_csv(&csv);
+    assert!(rows.len() > 1000, "{} rows", rows.len());
+    // Stays in lane 2: per vehicle, the runs of consecutive samples in lane 2.
+    let mut last: std::collections::HashMap<String, bool> = Default::default();
+    let mut stays = 0;
+    for r in &rows {
+        let here = r["lane"] == "2";
+        let before = last.insert(r["id"].clone(), here).unwrap_or(false);
+        stays += usize::from(here && !before);
+    }
+    assert!(stays > 10, "{stays} stays in lane 2");
+    let stem = out.join("fig/lane2");
+    let o = platoonsim(&["time-space", s(&csv), "--lane", "2", "--out", s(&stem)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let png = out.join("fig/lane2.png");
+    let svg = out.join("fig/lane2.svg");
+    assert_eq!(
+        stdout(&o),
+        format!("{}\n{}\n", png.display(), svg.display())
+    );
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.contains("lane 2"));
+    // Every stay is at least one polyline (more where the speed colour changes) or a dot.
+    let drawn = text.matches("<polyline").count() + text.matches("<circle").count();
+    assert!(drawn >= stays, "{drawn} elements for {stays} stays");
 }

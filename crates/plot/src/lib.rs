@@ -1,6 +1,7 @@
 //! Figures for platoonsim, written as both PNG and SVG: line charts ([`line_chart`], as
 //! panels [`panels`]), speed contours ([`heatmap`], [`heatmap_panels`]) and grouped bars
-//! ([`bar_chart`], [`bar_panels`]).
+//! ([`bar_chart`], [`bar_panels`]), and time-space diagrams of vehicle trajectories
+//! ([`time_space`]).
 //!
 //! The crate takes plain data (vectors of `f64`, strings) and knows nothing about the
 //! simulator. Every public function writes `<stem>.png` and `<stem>.svg` and returns both
@@ -44,6 +45,7 @@ mod heat;
 mod line;
 mod output;
 mod theme;
+mod tsd;
 
 use std::path::{Path, PathBuf};
 
@@ -144,6 +146,52 @@ pub struct Bars {
     pub series: Vec<(String, Vec<f64>, Option<Vec<f64>>)>,
 }
 
+/// The fixed speed scale of [`time_space`] (km/h): 0 (red) through yellow to 120 (green);
+/// faster samples take the end colour.
+pub const TRACK_SPEED_RANGE_KMH: (f64, f64) = (0.0, 120.0);
+
+/// Width of one colour step of [`time_space`]'s speed scale (km/h).
+pub const TRACK_SPEED_BIN_KMH: f64 = 5.0;
+
+/// One sample of a vehicle's trajectory.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct TrackSample {
+    /// Simulated time (s).
+    pub t_s: f64,
+    /// Lane (any numbering; compared with [`TimeSpace::lane`]).
+    pub lane: u32,
+    /// Position of the vehicle's front (m).
+    pub x_m: f64,
+    /// Speed (m/s).
+    pub v_mps: f64,
+}
+
+/// One vehicle's samples, in any order (they are sorted by time).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Track {
+    /// A CAV (drawn thick) or a human-driven vehicle (drawn thin).
+    pub cav: bool,
+    /// The samples; those in other lanes only break the line.
+    pub samples: Vec<TrackSample>,
+}
+
+/// A time-space diagram of one lane: time on the x axis, position on the y axis.
+///
+/// Each track is drawn through its samples in `lane`, in time order; a sample in another lane
+/// (or with a non-finite value) breaks the line, so a vehicle that leaves the lane and comes
+/// back gives two lines. Each step between two samples is coloured by their mean speed on the
+/// fixed scale [`TRACK_SPEED_RANGE_KMH`] in steps of [`TRACK_SPEED_BIN_KMH`]; consecutive steps
+/// of one colour form one polyline. A lone sample in the lane is drawn as a dot.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct TimeSpace {
+    /// Title above the figure; empty for none.
+    pub title: String,
+    /// The lane drawn.
+    pub lane: u32,
+    /// The vehicles.
+    pub tracks: Vec<Track>,
+}
+
 /// Why a figure could not be written. Every variant names the file concerned.
 #[derive(Debug, thiserror::Error)]
 pub enum PlotError {
@@ -229,6 +277,13 @@ pub fn bar_panels(
     stem: &Path,
 ) -> Result<Vec<PathBuf>, PlotError> {
     output::write_figure(&bars::Grid::new(charts, cols, title), stem)
+}
+
+/// Writes a time-space diagram (1200 × 750 px) with a speed colour bar and a key of the line
+/// widths; returns both paths. Without samples in the lane it draws an empty frame. See
+/// [`TimeSpace`].
+pub fn time_space(ts: &TimeSpace, stem: &Path) -> Result<Vec<PathBuf>, PlotError> {
+    output::write_figure(&tsd::Figure::new(ts), stem)
 }
 
 /// Writes several speed contours as one figure, in a grid of `cols` columns (at least one)

@@ -6,6 +6,7 @@ pub mod reproduce;
 pub mod run;
 pub mod scenarios;
 pub mod show;
+pub mod time_space;
 
 use crate::args::{Cli, Command};
 use anyhow::Result;
@@ -19,5 +20,6 @@ pub fn dispatch(cli: Cli) -> Result<()> {
         Command::Show(args) => show::show(&args),
         Command::Experiment(args) => experiment::experiment(&args, cli.quiet),
         Command::Reproduce(args) => reproduce::reproduce(&args, cli.quiet),
+        Command::TimeSpace(args) => time_space::time_space(&args),
     }
 }
