@@ -249,27 +249,7 @@ fn colour_bar<DB: DrawingBackend>(
     missing: bool,
 ) -> DrawResult {
     let sz = &theme::FULL;
-    let mut ctx = ChartBuilder::on(area)
-        .margin_top(TOP)
-        .margin_bottom(12)
-        .margin_left(8)
-        .margin_right(8)
-        .x_label_area_size(sz.x_area)
-        .right_y_label_area_size(100)
-        .build_cartesian_2d(0.0..1.0, lo..hi)
-        .map_err(msg)?;
-    let z_tick = tick_label(lo, hi);
-    ctx.configure_mesh()
-        .disable_mesh()
-        .disable_x_axis()
-        .y_label_formatter(&z_tick)
-        .set_tick_mark_size(LabelAreaPosition::Right, 8)
-        .y_desc(label)
-        .axis_desc_style(text(sz.axis))
-        .label_style(text(sz.tick))
-        .y_labels(8)
-        .draw()
-        .map_err(msg)?;
+    let mut ctx = colour_bar_frame(area, (lo, hi), label, 8)?;
     const STEPS: usize = 128;
     let step = (hi - lo) / STEPS as f64;
     ctx.draw_series((0..STEPS).map(|k| {
@@ -297,6 +277,47 @@ fn colour_bar<DB: DrawingBackend>(
         area.draw(&key).map_err(msg)?;
     }
     Ok(())
+}
+
+/// The frame of a vertical colour scale over `(lo, hi)` in `area`: a unit-wide chart with the
+/// values labelled on the right (`y_labels` ticks) and `label` as the axis description. The
+/// caller fills it with the scale's blocks.
+pub(crate) fn colour_bar_frame<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    (lo, hi): (f64, f64),
+    label: &str,
+    y_labels: usize,
+) -> Result<
+    ChartContext<
+        'a,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    String,
+> {
+    let sz = &theme::FULL;
+    let mut ctx = ChartBuilder::on(area)
+        .margin_top(TOP)
+        .margin_bottom(12)
+        .margin_left(8)
+        .margin_right(8)
+        .x_label_area_size(sz.x_area)
+        .right_y_label_area_size(100)
+        .build_cartesian_2d(0.0..1.0, lo..hi)
+        .map_err(msg)?;
+    let tick = tick_label(lo, hi);
+    ctx.configure_mesh()
+        .disable_mesh()
+        .disable_x_axis()
+        .y_label_formatter(&tick)
+        .set_tick_mark_size(LabelAreaPosition::Right, 8)
+        .y_desc(label)
+        .axis_desc_style(text(sz.axis))
+        .label_style(text(sz.tick))
+        .y_labels(y_labels)
+        .draw()
+        .map_err(msg)?;
+    Ok(ctx)
 }
 
 #[cfg(test)]

@@ -201,29 +201,8 @@ impl Figure<'_> {
 
 /// The fixed speed scale, one block per bin.
 fn colour_bar<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>) -> DrawResult {
-    let sz = &theme::FULL;
     let (lo, hi) = TRACK_SPEED_RANGE_KMH;
-    let mut ctx = ChartBuilder::on(area)
-        .margin_top(TOP)
-        .margin_bottom(12)
-        .margin_left(8)
-        .margin_right(8)
-        .x_label_area_size(sz.x_area)
-        .right_y_label_area_size(100)
-        .build_cartesian_2d(0.0..1.0, lo..hi)
-        .map_err(msg)?;
-    let v_tick = tick_label(lo, hi);
-    ctx.configure_mesh()
-        .disable_mesh()
-        .disable_x_axis()
-        .y_label_formatter(&v_tick)
-        .set_tick_mark_size(LabelAreaPosition::Right, 8)
-        .y_desc("Speed (km/h)")
-        .axis_desc_style(text(sz.axis))
-        .label_style(text(sz.tick))
-        .y_labels(7)
-        .draw()
-        .map_err(msg)?;
+    let mut ctx = crate::heat::colour_bar_frame(area, (lo, hi), "Speed (km/h)", 7)?;
     ctx.draw_series((0..bins()).map(|b| {
         let a = lo + TRACK_SPEED_BIN_KMH * b as f64;
         Rectangle::new(
