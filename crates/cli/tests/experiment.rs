@@ -1,30 +1,8 @@
 //! `platoonsim experiment` and `platoonsim reproduce` end to end, on short runs.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn platoonsim(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_platoonsim"))
-        .args(args)
-        .output()
-        .expect("cannot start platoonsim")
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn scratch(test: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("platoonsim-cli-exp-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
+use common::{platoonsim, s, scratch, stdout};
 
 #[test]
 fn help_lists_the_experiment_commands() {
