@@ -13,7 +13,12 @@
 //!                v_G = max(0, A + sqrt(A² − C))  (0 if A² − C < 0),  a_G = min(a_M, (v_G − v)/τ_r)
 //! target (2.4):  a* = min(a_F, a_N, a_G)  (a_F alone without a leader)
 //! smoothing:     a(t) = a(t−Δt) + (a* − a(t−Δt)) / ω
+//! friction (2.7, optional): v_F' = v_adj + c_fr (v_F − v_adj)  if v_adj < v_F, else v_F
 //! ```
+//!
+//! Cross-lane friction [P15-code] (spec 2.7) is an optional refinement: v_adj is the slower of
+//! the average speeds ahead in the adjacent lanes, c_fr ∈ (0, 1] (`network.cross_lane_friction`;
+//! value not published, 1 = off, the default).
 //!
 //! Relaxation (spec 2.5/4.6) multiplies τ, d_jam, τ_r by the factors of a [`Relax`].
 //!
@@ -300,6 +305,19 @@ pub fn smooth_accel(a_prev: f64, a_target: f64, smoothing: f64) -> f64 {
     // ω = 2 (the default): halving is exact, so d · 0.5 is bit for bit d / 2, without the
     // division's latency.
     a_prev + if omega == 2.0 { d * 0.5 } else { d / omega }
+}
+
+/// Cross-lane friction (spec 2.7, [P15-code]): the desired speed of a driver whose slower
+/// adjacent lane runs at `v_adj` (the average speed ahead there) below its own desired speed
+/// `v_f`: v_adj + c_fr (v_f − v_adj). At or above v_f, or with c_fr = 1, it is v_f itself.
+/// The result lies in [v_adj, v_f] for c_fr ∈ [0, 1].
+#[inline]
+pub fn friction_desired_speed(v_f: f64, v_adj: f64, c_fr: f64) -> f64 {
+    if v_adj < v_f {
+        v_adj + c_fr * (v_f - v_adj)
+    } else {
+        v_f
+    }
 }
 
 /// Steady-state (equilibrium) net gap at speed v (leader at the same speed): the smallest gap g

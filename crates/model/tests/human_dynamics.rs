@@ -1,7 +1,8 @@
 //! Dynamic behaviour of the human car-following terms (spec 2.1-2.5, 1).
 
 use platoonsim_model::human::{
-    equilibrium_gap, free_accel, gipps_accel, newell_accel, smooth_accel, target_accel, HumanParams,
+    equilibrium_gap, free_accel, friction_desired_speed, gipps_accel, newell_accel, smooth_accel,
+    target_accel, HumanParams,
 };
 use platoonsim_model::{Leader, Relax};
 
@@ -236,4 +237,32 @@ fn a_human_platoon_in_equilibrium_stays_there() {
         Relax::NONE,
     );
     assert!(a.abs() < 1e-9, "{a}");
+}
+
+/// Cross-lane friction (spec 2.7): v_adj + c_fr (v_F − v_adj) below v_F, v_F otherwise.
+#[test]
+fn friction_pulls_the_desired_speed_toward_a_slower_adjacent_lane() {
+    let v_f = 30.0;
+    // Spec form, hand-computed: 5 + 0.2 · (30 − 5) = 10 m/s.
+    assert_eq!(friction_desired_speed(v_f, 5.0, 0.2), 10.0);
+    // c_fr = 1 is off (exactly v_F); c_fr = 0 drives at the adjacent lane's speed.
+    assert_eq!(friction_desired_speed(v_f, 5.0, 1.0), v_f);
+    assert_eq!(friction_desired_speed(v_f, 5.0, 0.0), 5.0);
+    // A faster (or equally fast) adjacent lane adds nothing.
+    assert_eq!(friction_desired_speed(v_f, 35.0, 0.2), v_f);
+    assert_eq!(friction_desired_speed(v_f, v_f, 0.2), v_f);
+    // Monotone in v_adj and in c_fr, and inside [v_adj, v_F].
+    let mut prev = f64::NEG_INFINITY;
+    for i in 0..=30 {
+        let v_adj = f64::from(i);
+        let d = friction_desired_speed(v_f, v_adj, 0.3);
+        assert!(d >= prev && d >= v_adj && d <= v_f, "v_adj {v_adj}: {d}");
+        prev = d;
+    }
+    let mut prev = f64::NEG_INFINITY;
+    for i in 0..=10 {
+        let d = friction_desired_speed(v_f, 12.0, f64::from(i) / 10.0);
+        assert!(d >= prev);
+        prev = d;
+    }
 }

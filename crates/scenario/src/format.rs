@@ -144,6 +144,7 @@ fn raw_network(n: &Network, config: &Config) -> (RawNetwork, Vec<String>) {
         // Off (empty) stays unwritten, as in the files before the key existed.
         lane_speed_limits_kmh: (!n.lane_speed_limits_kmh.is_empty())
             .then(|| n.lane_speed_limits_kmh.clone()),
+        cross_lane_friction: n.cross_lane_friction,
         detectors: RawNetworkDetectors {
             upstream_of_ramps_m: Some(spacing.upstream_of_ramps_m),
             downstream_of_onramps_m: Some(spacing.downstream_of_onramps_m),

@@ -357,6 +357,7 @@ mod tests {
             demand_scale: 1.0,
             ramp_speed_kmh: 90.0,
             lane_speed_limits_kmh: Vec::new(),
+            cross_lane_friction: None,
         };
         let on = ["OR1".to_string(), "OR2".to_string()];
         let off = ["FR1".to_string()];

@@ -112,6 +112,8 @@ pub struct RawNetwork {
     pub ramp_speed_kmh: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lane_speed_limits_kmh: Option<Vec<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cross_lane_friction: Option<f64>,
     #[serde(skip_serializing_if = "RawNetworkDetectors::is_empty")]
     pub detectors: RawNetworkDetectors,
     #[serde(skip_serializing_if = "Vec::is_empty")]

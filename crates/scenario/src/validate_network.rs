@@ -202,6 +202,15 @@ pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -
         let cap = c.opt(Some(cap), cap);
         c.positive(&f, cap);
     }
+    // Cross-lane friction (spec 2.7): off unless given; c_fr in (0, 1], 1 = off.
+    if let Some(fr) = n.cross_lane_friction {
+        c.value(
+            "network.cross_lane_friction",
+            fr,
+            fr > 0.0 && fr <= 1.0,
+            "must be in (0, 1] (1 = off)",
+        );
+    }
 
     // --- lane stretches: they tile [start_m, end_m) in order
     if n.lanes.is_empty() {
@@ -484,6 +493,7 @@ pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -
             demand_scale: base.v * scale.v,
             ramp_speed_kmh: ramp_speed.v,
             lane_speed_limits_kmh: lane_caps,
+            cross_lane_friction: n.cross_lane_friction,
         },
         on_ids: ids[..n_on].iter().map(|(_, id, _)| id.clone()).collect(),
         off_ids: ids[n_on..].iter().map(|(_, id, _)| id.clone()).collect(),

@@ -277,6 +277,27 @@ fn lane_speed_caps_are_off_by_default_and_checked() {
 }
 
 #[test]
+fn cross_lane_friction_is_off_by_default_and_checked() {
+    // Spec 2.7: optional; none unless given, c_fr in (0, 1], written back when given.
+    let c = parse(SMALL_CORRIDOR).unwrap();
+    assert_eq!(c.road.network.as_ref().unwrap().cross_lane_friction, None);
+    assert!(!to_toml(&c).contains("cross_lane_friction"));
+    let c = with_set(SMALL_CORRIDOR, &["network.cross_lane_friction=0.3"]).unwrap();
+    assert_eq!(c.road.network.as_ref().unwrap().cross_lane_friction, Some(0.3));
+    let back = parse(&to_toml(&c)).unwrap();
+    assert_eq!(back.road.network.as_ref().unwrap().cross_lane_friction, Some(0.3));
+    for (value, shown) in [("0", "0"), ("1.5", "1.5"), ("-0.2", "-0.2"), ("nan", "nan")] {
+        let p = corridor_problems(&[&format!("network.cross_lane_friction={value}")]);
+        assert_eq!(
+            p,
+            vec![format!(
+                "network.cross_lane_friction = {shown}: must be in (0, 1] (1 = off)"
+            )]
+        );
+    }
+}
+
+#[test]
 fn series_are_checked_value_by_value_and_by_length() {
     let p = corridor_problems(&["network.mainline_vph=[3000, -1]"]);
     assert_eq!(

@@ -51,6 +51,11 @@ pub struct Network {
     /// further left. Empty: no caps (the default).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub lane_speed_limits_kmh: Vec<f64>,
+    /// Cross-lane friction c_fr ∈ (0, 1] (spec 2.7): a human driver (or a CAV's driver in
+    /// manual mode) whose slower adjacent lane runs below its desired speed v_F drives toward
+    /// v_adj + c_fr (v_F − v_adj) instead. `None` (the default) and 1 are off.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cross_lane_friction: Option<f64>,
 }
 
 /// A through lane open on [from_m, to_m) (engine coordinates).
@@ -129,6 +134,13 @@ impl Network {
             if !(c.is_finite() && *c > 0.0) {
                 return Err(format!(
                     "network.lane_speed_limits_kmh[{i}] = {c}: must be a finite number > 0"
+                ));
+            }
+        }
+        if let Some(c) = self.cross_lane_friction {
+            if !(c > 0.0 && c <= 1.0) {
+                return Err(format!(
+                    "network.cross_lane_friction = {c}: must be in (0, 1] (1 = off)"
                 ));
             }
         }

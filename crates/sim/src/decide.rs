@@ -124,7 +124,6 @@ impl Simulation {
     fn decide_one(&self, s: u32) -> Decision {
         let v = &self.vehicles[s as usize];
         let nb = &self.sensed[s as usize].nb;
-        let v_des = self.v_des_in(s, v, v.lane as usize);
         let (leader, wall) = self.leader_or_wall(s, v, nb.leader);
 
         // 1. Lane-change desire (takes priority over yielding).
@@ -165,6 +164,7 @@ impl Simulation {
         let yield_to = self.agreed_request(v, nb, false);
 
         // 3. Human model (humans and CAVs driving manually), possibly yielding.
+        let v_des = self.v_des_manual(s, v);
         let relax = self.relax_now(v);
         let mut target = human::target_accel(&v.human, v.v, v_des, leader, relax);
         let mut mode = Mode::Cf;
@@ -587,7 +587,7 @@ impl Simulation {
             Side::Right => nb.right_leader,
         };
         let tf = self.side_follower(v, nb, d.side);
-        let v_des = self.v_des_in(s, v, v.lane as usize);
+        let v_des = self.v_des_manual(s, v);
         let target = match d.side {
             Side::Left => v.lane as usize + 1,
             Side::Right => (v.lane as usize).saturating_sub(1),
@@ -698,6 +698,35 @@ fn v_des_of(v: &Vehicle) -> f64 {
 }
 
 impl Simulation {
+    /// The desired speed of a driver in manual control (a human, or a CAV's driver) in its own
+    /// lane: `v_des_in` there and, with cross-lane friction on (spec 2.7), the pull of the
+    /// slower adjacent lane. The automation keeps its set speed: friction is a driver's
+    /// behaviour [D].
+    #[inline]
+    fn v_des_manual(&self, s: u32, v: &Vehicle) -> f64 {
+        let v_des = self.v_des_in(s, v, v.lane as usize);
+        match self.friction {
+            None => v_des,
+            Some(c) => self.with_friction(s, v, v_des, c),
+        }
+    }
+
+    /// Cross-lane friction (spec 2.7): v_adj is the slower of the average speeds ahead in the
+    /// adjacent lanes (the same scan, n_scan vehicles within d_scan, as the lane-change
+    /// motivation; a lane with no vehicle in range counts as `v_des`, so it adds nothing).
+    fn with_friction(&self, s: u32, v: &Vehicle, v_des: f64, c_fr: f64) -> f64 {
+        let nb = &self.sensed[s as usize].nb;
+        let lane = v.lane as usize;
+        let mut v_adj = v_des;
+        if lane + 1 < self.lane_xv.len() {
+            v_adj = v_adj.min(self.avg_speed_ahead(lane + 1, nb.left_j as usize, v.x, v_des));
+        }
+        if lane > 0 {
+            v_adj = v_adj.min(self.avg_speed_ahead(lane - 1, nb.right_j as usize, v.x, v_des));
+        }
+        human::friction_desired_speed(v_des, v_adj, c_fr)
+    }
+
     /// The desired speed of vehicle `s` in `lane` (spec 2.7): v_F, capped by the lane's speed
     /// limit when the network has lane-based caps (counted from the rightmost through lane at
     /// the vehicle's position; an acceleration lane, right of it, takes the first cap). Without

@@ -65,6 +65,8 @@ pub struct Simulation {
     /// Lane-based desired-speed caps (spec 2.7, m/s) by lane counted from the rightmost through
     /// lane, the last for every lane further left; empty: none.
     pub(crate) lane_caps_mps: Vec<f64>,
+    /// Cross-lane friction c_fr (spec 2.7), `None` when off (not given, or 1).
+    pub(crate) friction: Option<f64>,
     /// Per on-ramp, the anticipation factor 1 + c_inc (ρ_ramp/ρ_jam)/j for j = 1, 2 (spec 4.2)
     /// from its density at the step start: computed once per step instead of per vehicle.
     pub(crate) ramp_factor: Vec<[f64; 2]>,
@@ -146,6 +148,12 @@ impl Simulation {
             geom,
             ramp_speed_mps,
             lane_caps_mps,
+            friction: cfg
+                .road
+                .network
+                .as_ref()
+                .and_then(|n| n.cross_lane_friction)
+                .filter(|&c| c < 1.0),
             missed_exits: 0,
             exit_detector,
             detectors,

@@ -61,6 +61,7 @@ pub fn toy(penetration: f64, mainline_vph: Vec<f64>, seed: u64) -> Config {
         demand_scale: 1.0,
         ramp_speed_kmh: 90.0,
         lane_speed_limits_kmh: Vec::new(),
+        cross_lane_friction: None,
     });
     let m = |name: &str, x: f64| DetectorSpec::mainline(name, x);
     cfg.detectors = vec![
@@ -479,4 +480,39 @@ fn lane_speed_caps_above_every_desired_speed_change_nothing() {
         a.summary.lane_changes_per_vehicle,
         b.summary.lane_changes_per_vehicle
     );
+}
+
+#[test]
+fn cross_lane_friction_slows_drivers_beside_a_slow_lane() {
+    // Spec 2.7: a driver whose slower adjacent lane runs at v_adj (the average speed of the
+    // vehicles within d_scan ahead there) below its desired speed v_F drives toward
+    // v_adj + c_fr (v_F − v_adj); an adjacent lane with no vehicle in range adds nothing. The
+    // rightmost lane is capped at 60 km/h; with c_fr = 0.5 the lane beside it, and through it
+    // the lane further left, run slower than without friction.
+    for seed in [4, 5] {
+        let mut plain = toy(0.0, vec![3000.0], seed);
+        plain.road.network.as_mut().unwrap().lane_speed_limits_kmh = vec![60.0, 200.0];
+        let mut friction = plain.clone();
+        friction.road.network.as_mut().unwrap().cross_lane_friction = Some(0.5);
+        let (with, without) = (run(&friction, None).unwrap(), run(&plain, None).unwrap());
+        let sw = lane_speeds(&with, "A-up");
+        let so = lane_speeds(&without, "A-up");
+        println!("seed {seed}: with friction {sw:?}\nwithout {so:?}");
+        assert_eq!(sw.len(), 3);
+        for lane in [1, 2] {
+            assert!(
+                sw[lane].1 < so[lane].1 - 3.0 && sw[lane].1 > sw[0].1,
+                "seed {seed}, lane {}: {sw:?} vs {so:?}",
+                lane + 1
+            );
+        }
+        assert_eq!(with.summary.collisions, 0);
+
+        // c_fr = 1 is off, bit for bit.
+        let mut one = plain.clone();
+        one.road.network.as_mut().unwrap().cross_lane_friction = Some(1.0);
+        let off = run(&one, None).unwrap();
+        assert_eq!(off.detectors, without.detectors);
+        assert_eq!(off.summary.vehicle_updates, without.summary.vehicle_updates);
+    }
 }

@@ -56,6 +56,7 @@ fn small_corridor(seed: u64) -> Config {
         demand_scale: 1.0,
         ramp_speed_kmh: 90.0,
         lane_speed_limits_kmh: Vec::new(),
+        cross_lane_friction: None,
     });
     cfg.detectors = vec![
         DetectorSpec::mainline("A-up", 750.0),
