@@ -283,9 +283,15 @@ fn cross_lane_friction_is_off_by_default_and_checked() {
     assert_eq!(c.road.network.as_ref().unwrap().cross_lane_friction, None);
     assert!(!to_toml(&c).contains("cross_lane_friction"));
     let c = with_set(SMALL_CORRIDOR, &["network.cross_lane_friction=0.3"]).unwrap();
-    assert_eq!(c.road.network.as_ref().unwrap().cross_lane_friction, Some(0.3));
+    assert_eq!(
+        c.road.network.as_ref().unwrap().cross_lane_friction,
+        Some(0.3)
+    );
     let back = parse(&to_toml(&c)).unwrap();
-    assert_eq!(back.road.network.as_ref().unwrap().cross_lane_friction, Some(0.3));
+    assert_eq!(
+        back.road.network.as_ref().unwrap().cross_lane_friction,
+        Some(0.3)
+    );
     for (value, shown) in [("0", "0"), ("1.5", "1.5"), ("-0.2", "-0.2"), ("nan", "nan")] {
         let p = corridor_problems(&[&format!("network.cross_lane_friction={value}")]);
         assert_eq!(
