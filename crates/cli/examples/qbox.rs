@@ -2,7 +2,7 @@
 //! 500-4,200 m, Florin 5,784-11,700 m, i.e. `OR7-down` to the end of the `OR11` acceleration
 //! lane, 47th Ave 11,700-14,000 m) the vehicles on the road, those slower than 50 km/h and the
 //! most upstream of these (km); then the vehicles waiting at the entrances and the flows (veh/h)
-//! across 5,784 m and 11,800 m. Used for docs/reproduction-notes.md ("Why the Florin queue did
+//! across 5,784 m and 11,800 m. Used for docs/reproduction-notes-sr99.md ("Why the Florin queue did
 //! not dissolve"). `qbox SCENARIO [KEY=VALUE ...]` (each a `--set`); the engine coordinate is
 //! the corridor coordinate + 500 m on `sr99`.
 mod common;

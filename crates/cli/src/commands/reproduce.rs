@@ -8,8 +8,12 @@ use platoonsim_experiment::report::{self, ReportInput};
 use platoonsim_experiment::{run_experiment, ExperimentName, Settings};
 use std::time::Instant;
 
-/// The report's "Notes on differences", written by hand in the repository.
-const NOTES: &str = include_str!("../../../../docs/reproduction-notes.md");
+/// The report's "Notes on differences", written by hand in the repository: the summary and
+/// the homogeneous road, then the SR-99 corridor (two files, one text).
+const NOTES: &str = concat!(
+    include_str!("../../../../docs/reproduction-notes.md"),
+    include_str!("../../../../docs/reproduction-notes-sr99.md")
+);
 
 /// Seeds per cell on the homogeneous road with --quick.
 pub const QUICK_SEEDS: u32 = 3;
