@@ -46,7 +46,7 @@ pub struct Simulation {
     /// sense phase found for each vehicle (one cache line per vehicle).
     pub(crate) sensed: Vec<Sensed>,
     /// Per lane, parallel to `lanes`: (x, v) of each vehicle at the step start (sense phase),
-    /// then a sentinel (−∞, 0).
+    /// then sentinels (−∞, 0) (`sense::SENTINELS`).
     pub(crate) lane_xv: Vec<Vec<(f64, f64)>>,
     pub(crate) decisions: Vec<Decision>,
     pub(crate) changed_this_step: Vec<u64>,
