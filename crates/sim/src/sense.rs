@@ -327,25 +327,25 @@ fn sweep(xv: &[(f64, f64)], j: u32, x: f64) -> u32 {
     let b0 = usize::from(w[0].0 > x);
     let b1 = usize::from(w[b0].0 > x);
     let k = b0 + b1;
-    if !(w[k].0 > x) {
-        return (j + k) as u32;
+    if w[k].0 > x {
+        // Galloping: `lo` is ahead, `hi` is not (the first sentinel is not).
+        let last = xv.len() - SENTINELS;
+        let (mut lo, mut step) = (j + k, 1);
+        let hi = loop {
+            let p = lo + step;
+            if p >= last {
+                break last;
+            }
+            if xv[p].0 > x {
+                lo = p;
+                step *= 2;
+            } else {
+                break p;
+            }
+        };
+        return (lo + 1 + xv[lo + 1..hi].partition_point(|p| p.0 > x)) as u32;
     }
-    // Galloping: `lo` is ahead, `hi` is not (the first sentinel is not).
-    let last = xv.len() - SENTINELS;
-    let (mut lo, mut step) = (j + k, 1);
-    let hi = loop {
-        let p = lo + step;
-        if p >= last {
-            break last;
-        }
-        if xv[p].0 > x {
-            lo = p;
-            step *= 2;
-        } else {
-            break p;
-        }
-    };
-    (lo + 1 + xv[lo + 1..hi].partition_point(|p| p.0 > x)) as u32
+    (j + k) as u32
 }
 
 /// A statistical platoon ends: every CAV in it, `lane[start..end]`, records its size.
