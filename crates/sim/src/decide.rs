@@ -49,13 +49,15 @@ impl Simulation {
             );
         }
         self.update_ramp_density();
-        for l in 0..self.lanes.len() {
-            for k in 0..self.lanes[l].len() {
-                let s = self.lanes[l][k];
-                let d = self.decide_one(s);
-                self.decisions[s as usize] = d;
+        // Taken out for the loop, so that the lanes are walked by iterator (no bounds checks
+        // on the lane lists) while the decisions are written.
+        let mut decisions = std::mem::take(&mut self.decisions);
+        for lane in &self.lanes {
+            for &s in lane {
+                decisions[s as usize] = self.decide_one(s);
             }
         }
+        self.decisions = decisions;
     }
 
     /// The leader view (net gap, speed) of slot `ld` for vehicle `v`.

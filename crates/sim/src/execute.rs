@@ -12,11 +12,19 @@ use platoonsim_model::Leader;
 impl Simulation {
     /// Phase 4.
     pub(crate) fn apply_lane_changes(&mut self) {
-        self.change_list.clear();
-        for lane in &self.lanes {
+        // Locals: a push does not make the loop reload the lane lists and the decisions.
+        let Simulation {
+            lanes,
+            decisions,
+            change_list,
+            ..
+        } = self;
+        let decisions = &decisions[..];
+        change_list.clear();
+        for lane in lanes.iter() {
             for &s in lane {
-                if let Some(side) = self.decisions[s as usize].change {
-                    self.change_list.push((s, side));
+                if let Some(side) = decisions[s as usize].change {
+                    change_list.push((s, side));
                 }
             }
         }

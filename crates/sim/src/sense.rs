@@ -114,13 +114,17 @@ impl Simulation {
             ..
         } = self;
         let vehicles = &vehicles[..];
-        let sensed = &mut sensed[..];
+        // As long as `vehicles` (resized above): a slot that indexes `vehicles` indexes this
+        // too, so the compiler drops the second bounds check.
+        let sensed = &mut sensed[..vehicles.len()];
         for (lane, xv) in lanes.iter().zip(lane_xv.iter_mut()) {
             let n = lane.len();
             xv.clear();
-            // One more: a sentinel that is behind every position (the merge sweeps below stop
-            // on it without a length check).
-            xv.resize(n + 1, (f64::NEG_INFINITY, 0.0));
+            // Sentinels behind every position: the merge sweeps below stop on the first one
+            // without a length check, and read up to two entries beyond the cursor.
+            xv.resize(n + SENTINELS, (f64::NEG_INFINITY, 0.0));
+            // The vehicles' part, as long as the lane (no bounds check on `xv[k]`).
+            let xv = &mut xv[..n];
             let mut follower = NONE;
             let mut f_pred = crate::vehicle::NEVER;
             let mut f_cand = false;
@@ -190,12 +194,13 @@ impl Simulation {
         let n_lanes = lanes.len();
         let plain = geom.plain;
         let vehicles = &mut vehicles[..];
-        let sensed = &mut sensed[..];
+        // As long as `vehicles` (see pass A).
+        let sensed = &mut sensed[..vehicles.len()];
         for l in 0..n_lanes {
             let lane = &lanes[l];
             let xs = &lane_xv[l];
             let empty: &[u32] = &[];
-            let no_xv: &[(f64, f64)] = &[(f64::NEG_INFINITY, 0.0)];
+            let no_xv: &[(f64, f64)] = &[(f64::NEG_INFINITY, 0.0); SENTINELS];
             let (llane, lx) = if l + 1 < n_lanes {
                 (&lanes[l + 1][..], &lane_xv[l + 1][..])
             } else {
@@ -208,7 +213,7 @@ impl Simulation {
             };
             // Merge-sweep cursors: the first vehicle of the other lane that is not strictly
             // ahead.
-            let (mut jl, mut jr) = (0usize, 0usize);
+            let (mut jl, mut jr) = (0u32, 0u32);
             let mut own = geom.walk(l);
             let mut left = geom.walk(l + 1);
             let mut right = geom.walk(l.wrapping_sub(1));
@@ -236,10 +241,18 @@ impl Simulation {
                     }
                 }
                 let t = &mut sensed[si];
-                t.nb.left_leader = if jl > 0 { llane[jl - 1] } else { NONE };
-                t.nb.right_leader = if jr > 0 { rlane[jr - 1] } else { NONE };
-                t.nb.left_j = jl as u32;
-                t.nb.right_j = jr as u32;
+                // The leader there is at the cursor's index − 1 (none when the cursor is 0:
+                // the index wraps past the end). One test instead of two.
+                t.nb.left_leader = llane
+                    .get((jl as usize).wrapping_sub(1))
+                    .copied()
+                    .unwrap_or(NONE);
+                t.nb.right_leader = rlane
+                    .get((jr as usize).wrapping_sub(1))
+                    .copied()
+                    .unwrap_or(NONE);
+                t.nb.left_j = jl;
+                t.nb.right_j = jr;
                 t.here = if plain {
                     Here {
                         wall: None,
@@ -274,22 +287,26 @@ impl Simulation {
                 let adjacent = cav_ahead && v.automated();
                 v.string_pred = pred_id;
                 if !adjacent || k - adj_start >= max as usize {
-                    close_run(vehicles, &lane[adj_start..k], false);
+                    close_run(vehicles, lane, adj_start, k, false);
                     adj_start = k;
                 }
                 if !is_linked {
-                    close_run(vehicles, &lane[tg2_start..k], true);
+                    close_run(vehicles, lane, tg2_start, k, true);
                     tg2_start = k;
                 }
             }
-            close_run(vehicles, &lane[adj_start..], false);
-            close_run(vehicles, &lane[tg2_start..], true);
+            close_run(vehicles, lane, adj_start, lane.len(), false);
+            close_run(vehicles, lane, tg2_start, lane.len(), true);
         }
     }
 }
 
+/// Entries (−∞, 0) after the vehicles in each `Simulation::lane_xv` list.
+const SENTINELS: usize = 3;
+
 /// The merge-sweep cursor of another lane for position `x`: from `j`, the index of the first
-/// vehicle of `xv` (front first, ending in a sentinel at −∞) that is not strictly ahead of `x`.
+/// vehicle of `xv` (front first, ending in `SENTINELS` sentinels at −∞) that is not strictly
+/// ahead of `x`.
 ///
 /// Equal to `while xv[j].0 > x { j += 1 }`. The first two steps are taken without branching
 /// (a step that stops leaves `j` where the loop would have stopped, and so does every later
@@ -299,14 +316,21 @@ impl Simulation {
 /// bisected: at the step start the lanes are sorted (descending x; `check_invariants` sorts
 /// them, and its finiteness check covers every vehicle but the first, which the two steps have
 /// passed by then), so "ahead of `x`" holds for a prefix of what is left.
+///
+/// The three reads `xv[j]`, `xv[j + b0]`, `xv[j + b0 + b1]` share one bounds check: the cursor
+/// never passes the first sentinel (nothing is ahead of a sentinel), so the two entries after
+/// it exist; `j` is a `u32`, so `j + SENTINELS` cannot wrap and the check is a single one.
 #[inline]
-fn sweep(xv: &[(f64, f64)], mut j: usize, x: f64) -> usize {
-    j += usize::from(xv[j].0 > x);
-    j += usize::from(xv[j].0 > x);
-    if xv[j].0 > x {
-        // Galloping: `lo` is ahead, `hi` is not (the sentinel is not).
-        let last = xv.len() - 1;
-        let (mut lo, mut step) = (j, 1);
+fn sweep(xv: &[(f64, f64)], j: u32, x: f64) -> u32 {
+    let j = j as usize;
+    let w = &xv[j..j + SENTINELS];
+    let b0 = usize::from(w[0].0 > x);
+    let b1 = usize::from(w[b0].0 > x);
+    let k = b0 + b1;
+    if w[k].0 > x {
+        // Galloping: `lo` is ahead, `hi` is not (the first sentinel is not).
+        let last = xv.len() - SENTINELS;
+        let (mut lo, mut step) = (j + k, 1);
         let hi = loop {
             let p = lo + step;
             if p >= last {
@@ -319,17 +343,22 @@ fn sweep(xv: &[(f64, f64)], mut j: usize, x: f64) -> usize {
                 break p;
             }
         };
-        j = lo + 1 + xv[lo + 1..hi].partition_point(|p| p.0 > x);
+        return (lo + 1 + xv[lo + 1..hi].partition_point(|p| p.0 > x)) as u32;
     }
-    j
+    (j + k) as u32
 }
 
-/// A statistical platoon ends: every CAV in it records its size.
-fn close_run(vehicles: &mut [Vehicle], run: &[u32], strict: bool) {
-    let size = run.len() as u32;
-    if size < 2 {
+/// A statistical platoon ends: every CAV in it, `lane[start..end]`, records its size.
+///
+/// The size is tested before the run is sliced: most runs have one vehicle, and the slice's
+/// bounds checks would come first otherwise.
+#[inline]
+fn close_run(vehicles: &mut [Vehicle], lane: &[u32], start: usize, end: usize, strict: bool) {
+    if end - start < 2 {
         return;
     }
+    let run = &lane[start..end];
+    let size = run.len() as u32;
     for &s in run {
         let v = &mut vehicles[s as usize];
         let m = if strict {

@@ -46,7 +46,7 @@ pub struct Simulation {
     /// sense phase found for each vehicle (one cache line per vehicle).
     pub(crate) sensed: Vec<Sensed>,
     /// Per lane, parallel to `lanes`: (x, v) of each vehicle at the step start (sense phase),
-    /// then a sentinel (−∞, 0).
+    /// then sentinels (−∞, 0) (`sense::SENTINELS`).
     pub(crate) lane_xv: Vec<Vec<(f64, f64)>>,
     pub(crate) decisions: Vec<Decision>,
     pub(crate) changed_this_step: Vec<u64>,
@@ -291,11 +291,32 @@ impl Simulation {
     fn integrate(&mut self) {
         let dt = self.dt;
         let mut sorted = true;
-        for lane in &self.lanes {
+        // Locals (the stores into the records cannot change them, so nothing is reloaded per
+        // vehicle), and the slot-indexed arrays as long as `vehicles`: one bounds check per
+        // vehicle for the three.
+        let Simulation {
+            lanes,
+            vehicles,
+            decisions,
+            sensed,
+            geom,
+            step,
+            collisions,
+            exit_due,
+            vehicle_updates,
+            ..
+        } = self;
+        let step = *step;
+        let plain = geom.plain;
+        let off_ramps = &geom.off_ramps[..];
+        let vehicles = &mut vehicles[..];
+        let decisions = &decisions[..vehicles.len()];
+        let sensed = &sensed[..vehicles.len()];
+        for lane in lanes.iter() {
             let mut ahead = f64::INFINITY;
             for &s in lane {
-                let d = &self.decisions[s as usize];
-                let veh = &mut self.vehicles[s as usize];
+                let d = &decisions[s as usize];
+                let veh = &mut vehicles[s as usize];
                 veh.x_prev = veh.x;
                 let v_new = veh.v + d.accel * dt;
                 if v_new >= 0.0 {
@@ -308,12 +329,12 @@ impl Simulation {
                     veh.a = -veh.v / dt;
                     veh.v = 0.0;
                 }
-                if !self.geom.plain {
+                if !plain {
                     // A wall is a standing obstacle (network.rs): passing it is a collision.
                     // (`here` is at the step-start position: x_prev, in this lane.)
-                    if let Some(w) = self.sensed[s as usize].here.wall {
+                    if let Some(w) = sensed[s as usize].here.wall {
                         if veh.x > w {
-                            self.collisions += 1;
+                            *collisions += 1;
                             veh.x = (w - 0.01).max(veh.x_prev);
                             veh.v = 0.0;
                         }
@@ -323,28 +344,26 @@ impl Simulation {
                 ahead = veh.x;
                 // As in exits: not `x < ramp.x` (a NaN position counts too).
                 if veh.exit != NO_EXIT
-                    && self
-                        .geom
-                        .off_ramps
+                    && off_ramps
                         .get(veh.exit as usize)
                         .is_some_and(|r| veh.x.partial_cmp(&r.x) != Some(std::cmp::Ordering::Less))
                 {
-                    self.exit_due = true;
+                    *exit_due = true;
                 }
                 veh.mode = d.mode;
                 veh.family = d.family;
                 veh.time_gap_s = d.time_gap;
                 if d.takeover {
-                    veh.relax = Relaxation::Since(self.step);
+                    veh.relax = Relaxation::Since(step);
                 }
                 if let Relaxation::Since(since) = veh.relax {
-                    let elapsed = (self.step + 1 - since) as f64 * dt;
+                    let elapsed = (step + 1 - since) as f64 * dt;
                     if elapsed >= veh.lc.relax_time_s {
                         veh.relax = Relaxation::None;
                     }
                 }
             }
-            self.vehicle_updates += lane.len() as u64;
+            *vehicle_updates += lane.len() as u64;
         }
         self.lanes_sorted = sorted;
     }
@@ -468,9 +487,13 @@ impl Simulation {
         for l in 0..self.lanes.len() {
             let lane = &mut self.lanes[l];
             let mut sorted = true;
-            for k in 1..lane.len() {
-                let lead = &self.vehicles[lane[k - 1] as usize];
-                let fol = &self.vehicles[lane[k] as usize];
+            // Each record is looked up once: the follower becomes the next pair's leader.
+            let Some((&first, rest)) = lane.split_first() else {
+                continue;
+            };
+            let mut lead = &self.vehicles[first as usize];
+            for &s in rest {
+                let fol = &self.vehicles[s as usize];
                 if !(fol.x.is_finite() && fol.v.is_finite() && fol.a.is_finite()) {
                     return Err(format!(
                         "vehicle {} in lane {} has a non-finite state at t = {:.1} s (x = {}, v = {}, a = {})",
@@ -501,6 +524,7 @@ impl Simulation {
                         );
                     }
                 }
+                lead = fol;
             }
             if !sorted {
                 let vehicles = &self.vehicles;
