@@ -126,6 +126,7 @@ impl Simulation {
     fn decide_one(&self, s: u32) -> Decision {
         let v = &self.vehicles[s as usize];
         let nb = &self.sensed[s as usize].nb;
+        let v_des = self.v_des_in(s, v, v.lane as usize);
         let (leader, wall) = self.leader_or_wall(s, v, nb.leader);
 
         // 1. Lane-change desire (takes priority over yielding).
@@ -166,7 +167,10 @@ impl Simulation {
         let yield_to = self.agreed_request(v, nb, false);
 
         // 3. Human model (humans and CAVs driving manually), possibly yielding.
-        let v_des = self.v_des_manual(s, v);
+        let v_des = match self.friction {
+            None => v_des,
+            Some(c) => self.with_friction(s, v, v_des, c),
+        };
         let relax = self.relax_now(v);
         let mut target = human::target_accel(&v.human, v.v, v_des, leader, relax);
         let mut mode = Mode::Cf;
