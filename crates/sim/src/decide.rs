@@ -167,10 +167,7 @@ impl Simulation {
         let yield_to = self.agreed_request(v, nb, false);
 
         // 3. Human model (humans and CAVs driving manually), possibly yielding.
-        let v_des = match self.friction {
-            None => v_des,
-            Some(c) => self.with_friction(s, v, v_des, c),
-        };
+        let v_des = self.manual_v_des(s, v, v_des);
         let relax = self.relax_now(v);
         let mut target = human::target_accel(&v.human, v.v, v_des, leader, relax);
         let mut mode = Mode::Cf;
@@ -593,7 +590,7 @@ impl Simulation {
             Side::Right => nb.right_leader,
         };
         let tf = self.side_follower(v, nb, d.side);
-        let v_des = self.v_des_manual(s, v);
+        let v_des = self.manual_v_des(s, v, self.v_des_in(s, v, v.lane as usize));
         let target = match d.side {
             Side::Left => v.lane as usize + 1,
             Side::Right => (v.lane as usize).saturating_sub(1),
@@ -705,12 +702,11 @@ fn v_des_of(v: &Vehicle) -> f64 {
 
 impl Simulation {
     /// The desired speed of a driver in manual control (a human, or a CAV's driver) in its own
-    /// lane: `v_des_in` there and, with cross-lane friction on (spec 2.7), the pull of the
-    /// slower adjacent lane. The automation keeps its set speed: friction is a driver's
-    /// behaviour [D].
+    /// lane, from `v_des`, that lane's `v_des_in`: with cross-lane friction on (spec 2.7), the
+    /// pull of the slower adjacent lane. The automation keeps its set speed: friction is a
+    /// driver's behaviour [D].
     #[inline]
-    fn v_des_manual(&self, s: u32, v: &Vehicle) -> f64 {
-        let v_des = self.v_des_in(s, v, v.lane as usize);
+    fn manual_v_des(&self, s: u32, v: &Vehicle, v_des: f64) -> f64 {
         match self.friction {
             None => v_des,
             Some(c) => self.with_friction(s, v, v_des, c),
