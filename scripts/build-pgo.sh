@@ -20,12 +20,13 @@ fi
 
 host=$(rustc -vV | sed -n 's/^host: //p')
 profdata="$(rustc --print sysroot)/lib/rustlib/$host/bin/llvm-profdata"
-if [ ! -x "$profdata" ]; then
+if [ ! -x "$profdata" ] && command -v rustup >/dev/null 2>&1; then
     echo "== llvm-profdata not found; installing the rustup component llvm-tools"
-    rustup component add llvm-tools || rustup component add llvm-tools-preview
+    rustup component add llvm-tools || rustup component add llvm-tools-preview || true
 fi
 if [ ! -x "$profdata" ]; then
-    echo "error: $profdata is missing; install it with 'rustup component add llvm-tools'" >&2
+    echo "error: $profdata is missing: PGO needs the llvm-profdata of rustc's own LLVM" \
+        "(rustup component add llvm-tools)" >&2
     exit 1
 fi
 
