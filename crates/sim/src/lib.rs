@@ -14,6 +14,7 @@ pub mod config;
 mod decide;
 pub mod detector;
 mod execute;
+mod here;
 mod insert;
 pub mod metrics;
 pub mod network;

@@ -224,6 +224,11 @@ impl Geometry {
         (rx - x <= range).then_some((i, rx - x))
     }
 
+    /// The ends at which the rightmost through lane may change (`RightWalk`'s breaks).
+    pub(crate) fn right_ends(&self) -> impl Iterator<Item = f64> + '_ {
+        self.right_breaks.iter().copied()
+    }
+
     /// `ramps_upto` for a run of positions, fastest with `x` not increasing between calls:
     /// `k` is the previous answer (start with the number of ramps).
     #[inline]
@@ -685,6 +690,50 @@ mod tests {
                 assert_eq!(mixed.at(y), g.seg(lane as u32, y), "lane {lane}, x = {y}");
             }
         }
+    }
+
+    #[test]
+    fn here_tables_agree_with_the_geometry_lookups() {
+        use crate::here::{here_at, tables};
+        let g = build(&net(), 5, 3000.0).unwrap();
+        let t = tables(&g);
+        let xs: Vec<f64> = (-8..=(3010 * 4)).map(|i| f64::from(i) / 4.0).collect();
+        for (lane, table) in t.iter().enumerate() {
+            let l = lane as u32;
+            // The lookups one by one, as `Geometry`'s own functions give them.
+            for &x in xs.iter().step_by(13) {
+                let h = here_at(&g, lane, x);
+                assert_eq!(h.wall, g.wall_ahead(l, x), "lane {lane}, x = {x}");
+                assert_eq!(h.accel, g.seg(l, x).is_some_and(|s| s.accel));
+                assert_eq!(h.enter_left, g.can_enter(l + 1, x), "lane {lane}, x = {x}");
+                assert_eq!(h.enter_right, lane > 0 && g.can_enter(l - 1, x));
+                assert_eq!(h.ramps_upto as usize, g.ramps_upto(x));
+                assert_eq!(
+                    h.right,
+                    g.rightmost_through(x).map_or(NO_LANE, |r| r as u8)
+                );
+            }
+            // The table's walk, down (as the sense phase walks a lane), up and in any order.
+            let mut down = table.walk();
+            for &x in xs.iter().rev() {
+                assert_eq!(down.at(x), here_at(&g, lane, x), "lane {lane}, x = {x}");
+            }
+            let mut up = table.walk();
+            for &x in &xs {
+                assert_eq!(up.at(x), here_at(&g, lane, x), "lane {lane}, x = {x} (up)");
+            }
+            let mut mixed = table.walk();
+            for (i, &x) in xs.iter().enumerate().step_by(97) {
+                let y = xs[(i * 7919) % xs.len()];
+                assert_eq!(mixed.at(x), here_at(&g, lane, x), "lane {lane}, x = {x}");
+                assert_eq!(mixed.at(y), here_at(&g, lane, y), "lane {lane}, x = {y}");
+            }
+        }
+        // The acceleration lane of ramps a and b: a wall at 750, no entry from either side.
+        let h = t[1].walk().at(400.0);
+        assert_eq!(h.wall, Some(750.0));
+        assert!(h.accel && h.enter_left && !h.enter_right);
+        assert_eq!((h.ramps_upto, h.right), (1, 2));
     }
 
     #[test]

@@ -1,5 +1,6 @@
 //! Phase 1 (sense): neighbours, CACC links, platoon positions and platoon statistics.
 
+use crate::here::Here;
 use crate::sim::Simulation;
 use crate::vehicle::Vehicle;
 
@@ -38,24 +39,6 @@ impl Default for Neighbours {
             right_j: 0,
         }
     }
-}
-
-/// Where a vehicle is at the start of the step, by the geometry (network.rs): looked up once
-/// per step by walking each lane's segments along the sorted lane lists.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Here {
-    /// The wall ending its lane segment, if it ends in one (`Geometry::wall_ahead`).
-    pub wall: Option<f64>,
-    /// It is in an acceleration segment.
-    pub accel: bool,
-    /// May change into the lane to the left / to the right here (`Geometry::can_enter`).
-    pub enter_left: bool,
-    pub enter_right: bool,
-    /// On-ramps with their merge point at or before it (`Geometry::ramps_upto`).
-    pub ramps_upto: u32,
-    /// The rightmost through lane there (`Geometry::rightmost_through`; `NO_LANE`: none); not
-    /// looked up on a plain road (0).
-    pub right: u8,
 }
 
 /// What the sense phase finds for one vehicle (indexed by slot; 64 bytes, one cache line).
@@ -161,7 +144,7 @@ impl Simulation {
     }
 
     /// Pass B, per lane front to back: leaders and followers in the adjacent lanes (merge
-    /// sweeps), `here` (geometry walks), CACC memberships and platoon positions, statistics.
+    /// sweeps), `here` (the geometry's step function, here.rs), CACC memberships and platoon positions, statistics.
     ///
     /// CACC strings (spec 3.6) and platoon statistics (spec 5.1.6, 6.15).
     ///
@@ -188,11 +171,10 @@ impl Simulation {
             lane_xv,
             vehicles,
             sensed,
-            geom,
+            here_tables,
             ..
         } = self;
         let n_lanes = lanes.len();
-        let plain = geom.plain;
         let vehicles = &mut vehicles[..];
         // As long as `vehicles` (see pass A).
         let sensed = &mut sensed[..vehicles.len()];
@@ -214,13 +196,8 @@ impl Simulation {
             // Merge-sweep cursors: the first vehicle of the other lane that is not strictly
             // ahead.
             let (mut jl, mut jr) = (0u32, 0u32);
-            let mut own = geom.walk(l);
-            let mut left = geom.walk(l + 1);
-            let mut right = geom.walk(l.wrapping_sub(1));
-            let mut rightmost = geom.walk_right();
-            let mut ramps = geom.ramps_by_x.len();
-            // `ramps` holds for every x in [ramps_lo, ramps_hi) (between two merge points).
-            let (mut ramps_lo, mut ramps_hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            // The geometry's step function along the lane (here.rs).
+            let mut here = here_tables[l].walk();
             let (mut adj_start, mut tg2_start) = (0usize, 0usize);
             for (k, (&s, &(x, _))) in lane.iter().zip(xs).enumerate() {
                 let si = s as usize;
@@ -253,32 +230,7 @@ impl Simulation {
                     .unwrap_or(NONE);
                 t.nb.left_j = jl;
                 t.nb.right_j = jr;
-                t.here = if plain {
-                    Here {
-                        wall: None,
-                        accel: false,
-                        enter_left: l + 1 < n_lanes,
-                        enter_right: l > 0,
-                        ramps_upto: 0,
-                        right: 0,
-                    }
-                } else {
-                    let seg = own.at(x);
-                    if !(x >= ramps_lo && x < ramps_hi) {
-                        ramps = geom.ramps_upto_from(ramps, x);
-                        let r = &geom.ramps_by_x;
-                        ramps_lo = ramps.checked_sub(1).map_or(f64::NEG_INFINITY, |i| r[i].0);
-                        ramps_hi = r.get(ramps).map_or(f64::INFINITY, |p| p.0);
-                    }
-                    Here {
-                        wall: seg.filter(|g| g.wall).map(|g| g.to),
-                        accel: seg.is_some_and(|g| g.accel),
-                        enter_left: left.at(x).is_some_and(|g| !g.accel),
-                        enter_right: l > 0 && right.at(x).is_some_and(|g| !g.accel),
-                        ramps_upto: ramps as u32,
-                        right: rightmost.at(x),
-                    }
-                };
+                t.here = here.at(x);
                 t.platoon_pos = pos;
                 let is_linked = pred_id != crate::vehicle::NEVER;
                 t.linked = is_linked;

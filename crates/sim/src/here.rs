@@ -1,0 +1,140 @@
+//! What the geometry says at a vehicle's position (`Here`), as one step function per lane.
+//!
+//! `Here` is a function of the lane and the position only, and every part of it is constant
+//! between two consecutive *breaks*: the starts and ends of the segments of the lane and of
+//! its two neighbours (spec 4.2's lane ends and acceleration lanes, network.rs), the ends at
+//! which the rightmost through lane changes, and the on-ramps' merge points. Every part holds
+//! on half-open stretches [from, to), so `Here` is constant on [break_i, break_i+1).
+//!
+//! The sense phase walks each lane's list front to back and used to look the parts up one by
+//! one (four segment walks and a ramp cursor per vehicle); the table gives the same value with
+//! one interval test per vehicle. The pieces are computed once per run by those same lookups,
+//! at each piece's first position, so every value is the one the lookups give there.
+
+use crate::network::{Geometry, NO_LANE};
+
+/// Where a vehicle is at the start of the step, by the geometry (network.rs).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Here {
+    /// The wall ending its lane segment, if it ends in one (`Geometry::wall_ahead`).
+    pub wall: Option<f64>,
+    /// It is in an acceleration segment.
+    pub accel: bool,
+    /// May change into the lane to the left / to the right here (`Geometry::can_enter`).
+    pub enter_left: bool,
+    pub enter_right: bool,
+    /// On-ramps with their merge point at or before it (`Geometry::ramps_upto`).
+    pub ramps_upto: u32,
+    /// The rightmost through lane there (`Geometry::rightmost_through`; `NO_LANE`: none); not
+    /// looked up on a plain road (0).
+    pub right: u8,
+}
+
+/// `Here` along one lane: `pieces[i]` holds on [breaks[i − 1], breaks[i]) (from −∞ for the
+/// first, to +∞ for the last).
+#[derive(Clone, Debug)]
+pub struct HereTable {
+    breaks: Vec<f64>,
+    pieces: Vec<Here>,
+}
+
+/// `Here` in `lane` at `x`, by the geometry's own lookups.
+pub fn here_at(geom: &Geometry, lane: usize, x: f64) -> Here {
+    let seg = geom.walk(lane).at(x);
+    Here {
+        wall: seg.filter(|g| g.wall).map(|g| g.to),
+        accel: seg.is_some_and(|g| g.accel),
+        enter_left: geom.walk(lane + 1).at(x).is_some_and(|g| !g.accel),
+        enter_right: lane > 0 && geom.walk(lane - 1).at(x).is_some_and(|g| !g.accel),
+        ramps_upto: geom.ramps_upto(x) as u32,
+        right: geom.walk_right().at(x),
+    }
+}
+
+/// The table of every lane.
+///
+/// A plain road's lanes are open everywhere: one piece per lane, with no wall, no ramps and
+/// `right` 0 (it is not looked up there).
+pub fn tables(geom: &Geometry) -> Vec<HereTable> {
+    let n = geom.lanes.len();
+    if geom.plain {
+        return (0..n)
+            .map(|l| HereTable {
+                breaks: Vec::new(),
+                pieces: vec![Here {
+                    wall: None,
+                    accel: false,
+                    enter_left: l + 1 < n,
+                    enter_right: l > 0,
+                    ramps_upto: 0,
+                    right: 0,
+                }],
+            })
+            .collect();
+    }
+    (0..n)
+        .map(|l| {
+            let near = l.saturating_sub(1)..(l + 2).min(n);
+            let mut breaks: Vec<f64> = geom.lanes[near]
+                .iter()
+                .flatten()
+                .flat_map(|s| [s.from, s.to])
+                .chain(geom.ramps_by_x.iter().map(|r| r.0))
+                .chain(geom.right_ends())
+                .filter(|e| e.is_finite())
+                .collect();
+            breaks.sort_by(f64::total_cmp);
+            breaks.dedup();
+            // One probe per piece: below the first break (f64::MIN), then each break itself.
+            let pieces = std::iter::once(f64::MIN)
+                .chain(breaks.iter().copied())
+                .map(|x| here_at(geom, l, x))
+                .collect();
+            HereTable { breaks, pieces }
+        })
+        .collect()
+}
+
+impl HereTable {
+    /// A cursor for a run of lookups along the lane.
+    pub fn walk(&self) -> HereWalk<'_> {
+        HereWalk {
+            table: self,
+            lo: f64::INFINITY,
+            hi: f64::NEG_INFINITY,
+            here: Here {
+                right: NO_LANE,
+                ..Here::default()
+            },
+        }
+    }
+}
+
+/// See `HereTable::walk`: `at(x)` is `here_at(geom, lane, x)` for every finite `x`.
+pub struct HereWalk<'a> {
+    table: &'a HereTable,
+    /// The answer `here` holds for every x in [lo, hi) (empty until the first lookup).
+    lo: f64,
+    hi: f64,
+    here: Here,
+}
+
+impl HereWalk<'_> {
+    #[inline]
+    pub fn at(&mut self, x: f64) -> Here {
+        if x >= self.lo && x < self.hi {
+            return self.here;
+        }
+        self.lookup(x)
+    }
+
+    #[cold]
+    fn lookup(&mut self, x: f64) -> Here {
+        let b = &self.table.breaks;
+        let i = b.partition_point(|&e| e <= x);
+        self.lo = if i > 0 { b[i - 1] } else { f64::NEG_INFINITY };
+        self.hi = b.get(i).copied().unwrap_or(f64::INFINITY);
+        self.here = self.table.pieces[i];
+        self.here
+    }
+}
