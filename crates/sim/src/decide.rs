@@ -514,13 +514,11 @@ impl Simulation {
     /// `v_empty` if none (spec 2.7 "speeds ahead").
     fn avg_speed_ahead(&self, lane: usize, from: usize, x: f64, v_empty: f64) -> f64 {
         let lcd = &self.cfg.lane_change;
-        let list = &self.lane_xv[lane];
+        // The vehicles ahead, nearest first (one bounds check for the scan).
+        let ahead = &self.lane_xv[lane][..from];
         let mut sum = 0.0;
         let mut n = 0u32;
-        let mut k = from;
-        while k > 0 && n < lcd.scan_vehicles {
-            k -= 1;
-            let (ox, ov) = list[k];
+        for &(ox, ov) in ahead.iter().rev().take(lcd.scan_vehicles as usize) {
             if ox - x > lcd.scan_distance_m {
                 break;
             }

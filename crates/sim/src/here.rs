@@ -106,6 +106,7 @@ impl HereTable {
                 right: NO_LANE,
                 ..Here::default()
             },
+            i: usize::MAX,
         }
     }
 }
@@ -117,6 +118,8 @@ pub struct HereWalk<'a> {
     lo: f64,
     hi: f64,
     here: Here,
+    /// The piece of the last lookup.
+    i: usize,
 }
 
 impl HereWalk<'_> {
@@ -131,7 +134,19 @@ impl HereWalk<'_> {
     #[cold]
     fn lookup(&mut self, x: f64) -> Here {
         let b = &self.table.breaks;
-        let i = b.partition_point(|&e| e <= x);
+        // Along a front-first lane list x falls: step down from the piece of the last lookup
+        // (`i` pieces' breaks at or before x: the same index as `partition_point`, since the
+        // breaks are sorted); otherwise search.
+        let i = if x < self.lo && self.i <= b.len() {
+            let mut i = self.i;
+            while i > 0 && b[i - 1] > x {
+                i -= 1;
+            }
+            i
+        } else {
+            b.partition_point(|&e| e <= x)
+        };
+        self.i = i;
         self.lo = if i > 0 { b[i - 1] } else { f64::NEG_INFINITY };
         self.hi = b.get(i).copied().unwrap_or(f64::INFINITY);
         self.here = self.table.pieces[i];

@@ -708,10 +708,7 @@ mod tests {
                 assert_eq!(h.enter_left, g.can_enter(l + 1, x), "lane {lane}, x = {x}");
                 assert_eq!(h.enter_right, lane > 0 && g.can_enter(l - 1, x));
                 assert_eq!(h.ramps_upto as usize, g.ramps_upto(x));
-                assert_eq!(
-                    h.right,
-                    g.rightmost_through(x).map_or(NO_LANE, |r| r as u8)
-                );
+                assert_eq!(h.right, g.rightmost_through(x).map_or(NO_LANE, |r| r as u8));
             }
             // The table's walk, down (as the sense phase walks a lane), up and in any order.
             let mut down = table.walk();
