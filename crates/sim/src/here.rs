@@ -1,15 +1,15 @@
 //! What the geometry says at a vehicle's position (`Here`), as one step function per lane.
 //!
 //! `Here` is a function of the lane and the position only, and every part of it is constant
-//! between two consecutive *breaks*: the starts and ends of the segments of the lane and of
-//! its two neighbours (spec 4.2's lane ends and acceleration lanes, network.rs), the ends at
-//! which the rightmost through lane changes, and the on-ramps' merge points. Every part holds
-//! on half-open stretches [from, to), so `Here` is constant on [break_i, break_i+1).
+//! between two consecutive *breaks*: the starts and ends of the lane segments (spec 4.2's lane
+//! ends and acceleration lanes, network.rs; the rightmost through lane too changes only at
+//! one of them) and the on-ramps' merge points. Segments are half-open stretches [from, to)
+//! and a ramp counts from its merge point on, so `Here` is constant on [break_i, break_i+1).
 //!
 //! The sense phase walks each lane's list front to back and used to look the parts up one by
 //! one (four segment walks and a ramp cursor per vehicle); the table gives the same value with
-//! one interval test per vehicle. The pieces are computed once per run by those same lookups,
-//! at each piece's first position, so every value is the one the lookups give there.
+//! one interval test for most vehicles. The pieces are computed once per run by the geometry's
+//! own lookups at each piece's first position.
 
 use crate::network::{Geometry, NO_LANE};
 
@@ -40,14 +40,16 @@ pub struct HereTable {
 
 /// `Here` in `lane` at `x`, by the geometry's own lookups.
 pub fn here_at(geom: &Geometry, lane: usize, x: f64) -> Here {
-    let seg = geom.walk(lane).at(x);
+    let l = lane as u32;
+    let seg = geom.seg(l, x);
+    let open = |l: u32| geom.seg(l, x).is_some_and(|g| !g.accel);
     Here {
         wall: seg.filter(|g| g.wall).map(|g| g.to),
         accel: seg.is_some_and(|g| g.accel),
-        enter_left: geom.walk(lane + 1).at(x).is_some_and(|g| !g.accel),
-        enter_right: lane > 0 && geom.walk(lane - 1).at(x).is_some_and(|g| !g.accel),
+        enter_left: open(l + 1),
+        enter_right: l > 0 && open(l - 1),
         ramps_upto: geom.ramps_upto(x) as u32,
-        right: geom.walk_right().at(x),
+        right: geom.rightmost_through(x).map_or(NO_LANE, |r| r as u8),
     }
 }
 
@@ -74,13 +76,14 @@ pub fn tables(geom: &Geometry) -> Vec<HereTable> {
     }
     (0..n)
         .map(|l| {
-            let near = l.saturating_sub(1)..(l + 2).min(n);
-            let mut breaks: Vec<f64> = geom.lanes[near]
+            // Every segment end of every lane (the rightmost through lane can change at any
+            // of them), and the merge points.
+            let mut breaks: Vec<f64> = geom
+                .lanes
                 .iter()
                 .flatten()
                 .flat_map(|s| [s.from, s.to])
                 .chain(geom.ramps_by_x.iter().map(|r| r.0))
-                .chain(geom.right_ends())
                 .filter(|e| e.is_finite())
                 .collect();
             breaks.sort_by(f64::total_cmp);

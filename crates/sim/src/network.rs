@@ -81,11 +81,6 @@ pub struct Geometry {
     /// segment boundary lies inside the metre (then the lanes are searched).
     right_tab: Vec<u8>,
     left_tab: Vec<u8>,
-    /// The rightmost through lane as a step function (`RightWalk`): the segment ends and starts
-    /// in increasing order, and per piece (before the first, between two, after the last) the
-    /// lane there (`NO_LANE`: none).
-    right_breaks: Vec<f64>,
-    right_pieces: Vec<u8>,
 }
 
 /// "No lane" in the per-metre tables and in `Here::right`.
@@ -112,36 +107,9 @@ impl Geometry {
                 index: Vec::new(),
                 right_tab: Vec::new(),
                 left_tab: Vec::new(),
-                right_breaks: Vec::new(),
-                right_pieces: vec![0],
             });
         };
         build(net, n, cfg.road.length_m)
-    }
-
-    /// A cursor over the segments of `lane` for a run of lookups (fastest with `x` not
-    /// increasing from one lookup to the next, as along a front-first lane list).
-    pub fn walk(&self, lane: usize) -> SegWalk<'_> {
-        let segs = self.lanes.get(lane).map_or(&[][..], Vec::as_slice);
-        SegWalk {
-            segs,
-            k: segs.len(),
-            disjoint: segs.windows(2).all(|w| w[0].to <= w[1].from),
-            lo: f64::INFINITY,
-            hi: f64::NEG_INFINITY,
-            hit: None,
-        }
-    }
-
-    /// A cursor over the rightmost through lane (fastest with `x` not increasing from one
-    /// lookup to the next).
-    pub fn walk_right(&self) -> RightWalk<'_> {
-        RightWalk {
-            geom: self,
-            lo: f64::INFINITY,
-            hi: f64::NEG_INFINITY,
-            lane: NO_LANE,
-        }
     }
 
     /// The segment of `lane` that contains `x`.
@@ -222,120 +190,6 @@ impl Geometry {
     pub fn next_on_ramp_after(&self, k: usize, x: f64, range: f64) -> Option<(usize, f64)> {
         let &(rx, i) = self.ramps_by_x.get(k)?;
         (rx - x <= range).then_some((i, rx - x))
-    }
-
-    /// The ends at which the rightmost through lane may change (`RightWalk`'s breaks).
-    pub(crate) fn right_ends(&self) -> impl Iterator<Item = f64> + '_ {
-        self.right_breaks.iter().copied()
-    }
-
-    /// `ramps_upto` for a run of positions, fastest with `x` not increasing between calls:
-    /// `k` is the previous answer (start with the number of ramps).
-    #[inline]
-    pub fn ramps_upto_from(&self, k: usize, x: f64) -> usize {
-        let r = &self.ramps_by_x;
-        cursor_down(k, r.len(), |i| r[i].0 <= x)
-    }
-}
-
-/// The number of items (sorted by start) that start at or before the looked-up position, found
-/// from `k`, the previous answer, by stepping down: fast when positions do not increase between
-/// lookups; a position that went up restarts from the end. `starts_upto(i)`: item `i` starts at
-/// or before the position.
-#[inline]
-fn cursor_down(mut k: usize, len: usize, starts_upto: impl Fn(usize) -> bool) -> usize {
-    if k > len || (k < len && starts_upto(k)) {
-        k = len;
-    }
-    while k > 0 && !starts_upto(k - 1) {
-        k -= 1;
-    }
-    k
-}
-
-/// See `Geometry::walk`. Gives the same segment as `Geometry::seg` for every `x`.
-pub struct SegWalk<'a> {
-    segs: &'a [Seg],
-    /// Segments at index ≥ `k` start after the last position looked up.
-    k: usize,
-    disjoint: bool,
-    /// The answer `hit` holds for every x in [lo, hi) (empty until the first lookup): most
-    /// lookups along a lane list fall in the segment (or gap) of the previous one.
-    lo: f64,
-    hi: f64,
-    hit: Option<&'a Seg>,
-}
-
-impl<'a> SegWalk<'a> {
-    /// The segment that contains `x`.
-    #[inline]
-    pub fn at(&mut self, x: f64) -> Option<&'a Seg> {
-        // (False for a NaN x and while the interval is empty.)
-        if x >= self.lo && x < self.hi {
-            return self.hit;
-        }
-        self.lookup(x)
-    }
-
-    fn lookup(&mut self, x: f64) -> Option<&'a Seg> {
-        if !self.disjoint {
-            return self.segs.iter().find(|s| s.contains(x));
-        }
-        let segs = self.segs;
-        let k = cursor_down(self.k, segs.len(), |i| segs[i].from <= x);
-        self.k = k;
-        // Sorted and disjoint: only the last segment starting at or before x can contain it.
-        // The answer is the same for every x in that segment, or, if x is past its end, in
-        // the gap up to the next segment's start (then no segment starts in the gap and none
-        // before it reaches into it).
-        let (hit, lo, hi) = match k.checked_sub(1).map(|i| &segs[i]) {
-            Some(s) if s.contains(x) => (Some(s), s.from, s.to),
-            prev => (
-                None,
-                prev.map_or(f64::NEG_INFINITY, |s| s.to.max(s.from)),
-                segs.get(k).map_or(f64::INFINITY, |s| s.from),
-            ),
-        };
-        self.hit = hit;
-        self.lo = lo;
-        self.hi = hi;
-        hit
-    }
-}
-
-/// See `Geometry::walk_right`: `at(x)` is `Geometry::rightmost_through(x)` for every `x`, as a
-/// `u8` (`NO_LANE` for `None`).
-pub struct RightWalk<'a> {
-    geom: &'a Geometry,
-    /// The answer `lane` holds for every x in [lo, hi) (empty until the first lookup).
-    lo: f64,
-    hi: f64,
-    lane: u8,
-}
-
-impl RightWalk<'_> {
-    /// The rightmost through lane at `x`.
-    #[inline]
-    pub fn at(&mut self, x: f64) -> u8 {
-        // (False for a NaN x and while the interval is empty.)
-        if x >= self.lo && x < self.hi {
-            return self.lane;
-        }
-        self.lookup(x)
-    }
-
-    fn lookup(&mut self, x: f64) -> u8 {
-        let g = self.geom;
-        if x.is_nan() {
-            return g.rightmost_through(x).map_or(NO_LANE, |l| l as u8);
-        }
-        // Segments are [from, to): between two consecutive ends the answer does not change.
-        let b = &g.right_breaks;
-        let i = b.partition_point(|&e| e <= x);
-        self.lo = if i > 0 { b[i - 1] } else { f64::NEG_INFINITY };
-        self.hi = b.get(i).copied().unwrap_or(f64::INFINITY);
-        self.lane = g.right_pieces[i];
-        self.lane
     }
 }
 
@@ -491,8 +345,6 @@ fn build(net: &Network, n: usize, length: f64) -> Result<Geometry, String> {
         index,
         right_tab: Vec::new(),
         left_tab: Vec::new(),
-        right_breaks: Vec::new(),
-        right_pieces: Vec::new(),
     };
     let inside = |m: usize| {
         g.lanes.iter().flatten().any(|s| {
@@ -512,21 +364,6 @@ fn build(net: &Network, n: usize, length: f64) -> Result<Geometry, String> {
     }
     g.right_tab = right;
     g.left_tab = left;
-    let mut breaks: Vec<f64> = g
-        .lanes
-        .iter()
-        .flatten()
-        .flat_map(|s| [s.from, s.to])
-        .filter(|e| e.is_finite())
-        .collect();
-    breaks.sort_by(f64::total_cmp);
-    breaks.dedup();
-    // One probe per piece: below the first end (f64::MIN), then each end itself.
-    g.right_pieces = std::iter::once(f64::MIN)
-        .chain(breaks.iter().copied())
-        .map(|x| g.rightmost_through(x).map_or(NO_LANE, |l| l as u8))
-        .collect();
-    g.right_breaks = breaks;
     Ok(g)
 }
 
@@ -644,52 +481,6 @@ mod tests {
             assert_eq!(g.rightmost_through(x), right, "x = {x}");
             assert_eq!(g.leftmost_through(x), left, "x = {x}");
         }
-        // The step-function walk, down, up and in any order.
-        let xs: Vec<f64> = (-8..=(3010 * 4)).map(|i| f64::from(i) / 4.0).collect();
-        let want = |x: f64| g.rightmost_through(x).map_or(NO_LANE, |l| l as u8);
-        let mut down = g.walk_right();
-        for &x in xs.iter().rev() {
-            assert_eq!(down.at(x), want(x), "x = {x}");
-        }
-        let mut up = g.walk_right();
-        for &x in &xs {
-            assert_eq!(up.at(x), want(x), "x = {x} (up)");
-        }
-        let mut mixed = g.walk_right();
-        for (i, &x) in xs.iter().enumerate().step_by(97) {
-            let y = xs[(i * 7919) % xs.len()];
-            assert_eq!(mixed.at(x), want(x), "x = {x}");
-            assert_eq!(mixed.at(y), want(y), "x = {y}");
-        }
-        assert_eq!(mixed.at(f64::NAN), want(f64::NAN));
-    }
-
-    #[test]
-    fn segment_walks_agree_with_the_segment_search() {
-        let g = build(&net(), 5, 3000.0).unwrap();
-        let xs: Vec<f64> = (-8..=(3010 * 4)).map(|i| f64::from(i) / 4.0).collect();
-        for lane in 0..6 {
-            let mut down = g.walk(lane);
-            for &x in xs.iter().rev() {
-                assert_eq!(down.at(x), g.seg(lane as u32, x), "lane {lane}, x = {x}");
-            }
-            let mut k = g.ramps_by_x.len();
-            for &x in xs.iter().rev() {
-                k = g.ramps_upto_from(k, x);
-                assert_eq!(k, g.ramps_upto(x), "x = {x}");
-            }
-            let mut up = g.walk(lane);
-            for &x in &xs {
-                assert_eq!(up.at(x), g.seg(lane as u32, x), "lane {lane}, x = {x} (up)");
-            }
-            // Any order (a jump up restarts the walk).
-            let mut mixed = g.walk(lane);
-            for (i, &x) in xs.iter().enumerate().step_by(97) {
-                let y = xs[(i * 7919) % xs.len()];
-                assert_eq!(mixed.at(x), g.seg(lane as u32, x), "lane {lane}, x = {x}");
-                assert_eq!(mixed.at(y), g.seg(lane as u32, y), "lane {lane}, x = {y}");
-            }
-        }
     }
 
     #[test]
@@ -726,7 +517,7 @@ mod tests {
                 assert_eq!(mixed.at(y), here_at(&g, lane, y), "lane {lane}, x = {y}");
             }
         }
-        // The acceleration lane of ramps a and b: a wall at 750, no entry from either side.
+        // In the acceleration lane of ramps a and b: a wall at 750; a change left, none right.
         let h = t[1].walk().at(400.0);
         assert_eq!(h.wall, Some(750.0));
         assert!(h.accel && h.enter_left && !h.enter_right);
