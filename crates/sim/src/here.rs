@@ -74,26 +74,26 @@ pub fn tables(geom: &Geometry) -> Vec<HereTable> {
             })
             .collect();
     }
+    // Every segment end of every lane (the rightmost through lane can change at any of them),
+    // and the merge points: the same breaks for every lane.
+    let mut breaks: Vec<f64> = geom
+        .lanes
+        .iter()
+        .flatten()
+        .flat_map(|s| [s.from, s.to])
+        .chain(geom.ramps_by_x.iter().map(|r| r.0))
+        .filter(|e| e.is_finite())
+        .collect();
+    breaks.sort_by(f64::total_cmp);
+    breaks.dedup();
     (0..n)
-        .map(|l| {
-            // Every segment end of every lane (the rightmost through lane can change at any
-            // of them), and the merge points.
-            let mut breaks: Vec<f64> = geom
-                .lanes
-                .iter()
-                .flatten()
-                .flat_map(|s| [s.from, s.to])
-                .chain(geom.ramps_by_x.iter().map(|r| r.0))
-                .filter(|e| e.is_finite())
-                .collect();
-            breaks.sort_by(f64::total_cmp);
-            breaks.dedup();
+        .map(|l| HereTable {
             // One probe per piece: below the first break (f64::MIN), then each break itself.
-            let pieces = std::iter::once(f64::MIN)
+            pieces: std::iter::once(f64::MIN)
                 .chain(breaks.iter().copied())
                 .map(|x| here_at(geom, l, x))
-                .collect();
-            HereTable { breaks, pieces }
+                .collect(),
+            breaks: breaks.clone(),
         })
         .collect()
 }
@@ -105,10 +105,7 @@ impl HereTable {
             table: self,
             lo: f64::INFINITY,
             hi: f64::NEG_INFINITY,
-            here: Here {
-                right: NO_LANE,
-                ..Here::default()
-            },
+            here: Here::default(),
             i: usize::MAX,
         }
     }
