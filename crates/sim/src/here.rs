@@ -25,17 +25,17 @@ pub struct Here {
     pub enter_right: bool,
     /// On-ramps with their merge point at or before it (`Geometry::ramps_upto`).
     pub ramps_upto: u32,
-    /// The rightmost through lane there (`Geometry::rightmost_through`; `NO_LANE`: none); not
-    /// looked up on a plain road (0).
+    /// The rightmost through lane there (`Geometry::rightmost_through`; `NO_LANE`: none; 0 on
+    /// a plain road).
     pub right: u8,
 }
 
-/// `Here` along one lane: `pieces[i]` holds on [breaks[i − 1], breaks[i]) (from −∞ for the
-/// first, to +∞ for the last).
+/// `Here` along every lane: in lane `l`, `pieces[l][i]` holds on [breaks[i − 1], breaks[i])
+/// (from −∞ for the first piece, to +∞ for the last). The breaks are the same for every lane.
 #[derive(Clone, Debug)]
-pub struct HereTable {
+pub struct HereTables {
     breaks: Vec<f64>,
-    pieces: Vec<Here>,
+    pieces: Vec<Vec<Here>>,
 }
 
 /// `Here` in `lane` at `x`, by the geometry's own lookups.
@@ -53,56 +53,39 @@ pub fn here_at(geom: &Geometry, lane: usize, x: f64) -> Here {
     }
 }
 
-/// The table of every lane.
-///
-/// A plain road's lanes are open everywhere: one piece per lane, with no wall, no ramps and
-/// `right` 0 (it is not looked up there).
-pub fn tables(geom: &Geometry) -> Vec<HereTable> {
-    let n = geom.lanes.len();
-    if geom.plain {
-        return (0..n)
-            .map(|l| HereTable {
-                breaks: Vec::new(),
-                pieces: vec![Here {
-                    wall: None,
-                    accel: false,
-                    enter_left: l + 1 < n,
-                    enter_right: l > 0,
-                    ramps_upto: 0,
-                    right: 0,
-                }],
+impl HereTables {
+    /// The tables of a geometry. A plain road has no finite break: one piece per lane (no wall,
+    /// no ramps, `right` 0).
+    pub fn new(geom: &Geometry) -> HereTables {
+        // Every segment end of every lane (the rightmost through lane can change at any of
+        // them), and the merge points.
+        let mut breaks: Vec<f64> = geom
+            .lanes
+            .iter()
+            .flatten()
+            .flat_map(|s| [s.from, s.to])
+            .chain(geom.ramps_by_x.iter().map(|r| r.0))
+            .filter(|e| e.is_finite())
+            .collect();
+        breaks.sort_by(f64::total_cmp);
+        breaks.dedup();
+        // One probe per piece: below the first break (f64::MIN), then each break itself.
+        let pieces = (0..geom.lanes.len())
+            .map(|l| {
+                std::iter::once(f64::MIN)
+                    .chain(breaks.iter().copied())
+                    .map(|x| here_at(geom, l, x))
+                    .collect()
             })
             .collect();
+        HereTables { breaks, pieces }
     }
-    // Every segment end of every lane (the rightmost through lane can change at any of them),
-    // and the merge points: the same breaks for every lane.
-    let mut breaks: Vec<f64> = geom
-        .lanes
-        .iter()
-        .flatten()
-        .flat_map(|s| [s.from, s.to])
-        .chain(geom.ramps_by_x.iter().map(|r| r.0))
-        .filter(|e| e.is_finite())
-        .collect();
-    breaks.sort_by(f64::total_cmp);
-    breaks.dedup();
-    (0..n)
-        .map(|l| HereTable {
-            // One probe per piece: below the first break (f64::MIN), then each break itself.
-            pieces: std::iter::once(f64::MIN)
-                .chain(breaks.iter().copied())
-                .map(|x| here_at(geom, l, x))
-                .collect(),
-            breaks: breaks.clone(),
-        })
-        .collect()
-}
 
-impl HereTable {
-    /// A cursor for a run of lookups along the lane.
-    pub fn walk(&self) -> HereWalk<'_> {
+    /// A cursor for a run of lookups along `lane`.
+    pub fn walk(&self, lane: usize) -> HereWalk<'_> {
         HereWalk {
-            table: self,
+            breaks: &self.breaks,
+            pieces: &self.pieces[lane],
             lo: f64::INFINITY,
             hi: f64::NEG_INFINITY,
             here: Here::default(),
@@ -111,9 +94,10 @@ impl HereTable {
     }
 }
 
-/// See `HereTable::walk`: `at(x)` is `here_at(geom, lane, x)` for every finite `x`.
+/// See `HereTables::walk`: `at(x)` is `here_at(geom, lane, x)` for every finite `x`.
 pub struct HereWalk<'a> {
-    table: &'a HereTable,
+    breaks: &'a [f64],
+    pieces: &'a [Here],
     /// The answer `here` holds for every x in [lo, hi) (empty until the first lookup).
     lo: f64,
     hi: f64,
@@ -133,7 +117,7 @@ impl HereWalk<'_> {
 
     #[cold]
     fn lookup(&mut self, x: f64) -> Here {
-        let b = &self.table.breaks;
+        let b = self.breaks;
         // Along a front-first lane list x falls: step down from the piece of the last lookup
         // (`i` pieces' breaks at or before x: the same index as `partition_point`, since the
         // breaks are sorted); otherwise search.
@@ -149,7 +133,7 @@ impl HereWalk<'_> {
         self.i = i;
         self.lo = if i > 0 { b[i - 1] } else { f64::NEG_INFINITY };
         self.hi = b.get(i).copied().unwrap_or(f64::INFINITY);
-        self.here = self.table.pieces[i];
+        self.here = self.pieces[i];
         self.here
     }
 }

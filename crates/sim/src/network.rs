@@ -485,11 +485,11 @@ mod tests {
 
     #[test]
     fn here_tables_agree_with_the_geometry_lookups() {
-        use crate::here::{here_at, tables};
+        use crate::here::{here_at, HereTables};
         let g = build(&net(), 5, 3000.0).unwrap();
-        let t = tables(&g);
+        let t = HereTables::new(&g);
         let xs: Vec<f64> = (-8..=(3010 * 4)).map(|i| f64::from(i) / 4.0).collect();
-        for (lane, table) in t.iter().enumerate() {
+        for lane in 0..g.lanes.len() {
             let l = lane as u32;
             // The lookups one by one, as `Geometry`'s own functions give them.
             for &x in xs.iter().step_by(13) {
@@ -502,15 +502,15 @@ mod tests {
                 assert_eq!(h.right, g.rightmost_through(x).map_or(NO_LANE, |r| r as u8));
             }
             // The table's walk, down (as the sense phase walks a lane), up and in any order.
-            let mut down = table.walk();
+            let mut down = t.walk(lane);
             for &x in xs.iter().rev() {
                 assert_eq!(down.at(x), here_at(&g, lane, x), "lane {lane}, x = {x}");
             }
-            let mut up = table.walk();
+            let mut up = t.walk(lane);
             for &x in &xs {
                 assert_eq!(up.at(x), here_at(&g, lane, x), "lane {lane}, x = {x} (up)");
             }
-            let mut mixed = table.walk();
+            let mut mixed = t.walk(lane);
             for (i, &x) in xs.iter().enumerate().step_by(97) {
                 let y = xs[(i * 7919) % xs.len()];
                 assert_eq!(mixed.at(x), here_at(&g, lane, x), "lane {lane}, x = {x}");
@@ -518,7 +518,7 @@ mod tests {
             }
         }
         // In the acceleration lane of ramps a and b: a wall at 750; a change left, none right.
-        let h = t[1].walk().at(400.0);
+        let h = t.walk(1).at(400.0);
         assert_eq!(h.wall, Some(750.0));
         assert!(h.accel && h.enter_left && !h.enter_right);
         assert_eq!((h.ramps_upto, h.right), (1, 2));

@@ -144,7 +144,8 @@ impl Simulation {
     }
 
     /// Pass B, per lane front to back: leaders and followers in the adjacent lanes (merge
-    /// sweeps), `here` (the geometry's step function, here.rs), CACC memberships and platoon positions, statistics.
+    /// sweeps), `here` (the geometry's step function, here.rs), CACC memberships and platoon
+    /// positions, statistics.
     ///
     /// CACC strings (spec 3.6) and platoon statistics (spec 5.1.6, 6.15).
     ///
@@ -197,7 +198,7 @@ impl Simulation {
             // ahead.
             let (mut jl, mut jr) = (0u32, 0u32);
             // The geometry's step function along the lane (here.rs).
-            let mut here = here_tables[l].walk();
+            let mut here = here_tables.walk(l);
             let (mut adj_start, mut tg2_start) = (0usize, 0usize);
             for (k, (&s, &(x, _))) in lane.iter().zip(xs).enumerate() {
                 let si = s as usize;

@@ -2,7 +2,7 @@
 
 use crate::config::{Config, DetectorKind, Strategy};
 use crate::detector::{Detector, Passage};
-use crate::here::{self, HereTable};
+use crate::here::HereTables;
 use crate::insert::Entrance;
 use crate::metrics::Metrics;
 use crate::network::Geometry;
@@ -62,7 +62,7 @@ pub struct Simulation {
     pub(crate) entrances: Vec<Entrance>,
     pub(crate) geom: Geometry,
     /// `Here` along each lane as a step function (here.rs).
-    pub(crate) here_tables: Vec<HereTable>,
+    pub(crate) here_tables: HereTables,
     /// Ramp speed limit (m/s); ∞ on a plain road.
     pub(crate) ramp_speed_mps: f64,
     /// Lane-based desired-speed caps (spec 2.7, m/s) by lane counted from the rightmost through
@@ -148,7 +148,7 @@ impl Simulation {
             det_hint: Vec::new(),
             entrances: Entrance::all(&cfg),
             ramp_factor: vec![[1.0; 2]; geom.on_ramps.len()],
-            here_tables: here::tables(&geom),
+            here_tables: HereTables::new(&geom),
             geom,
             ramp_speed_mps,
             lane_caps_mps,
