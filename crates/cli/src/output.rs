@@ -121,7 +121,8 @@ pub const TRIP_COLUMNS: [&str; 14] = [
 
 /// `trips.csv`: the header, then one row per trip. `destination` is the off-ramp's id, `end`
 /// (the road end) or empty (still on the road); `status` is `exited`, `missed_exit_then_end`
-/// (it chose an off-ramp, was not in its lane there and drove on to the end) or `in_network`;
+/// (it chose an off-ramp, was not in its lane there and drove on to the end), `in_network` or
+/// `collided` (it ran past the end of its lane and was removed, see `collisions.csv`);
 /// `left_s` and `travel_time_s` are empty for a vehicle still on the road.
 pub fn trips_csv(config: &Config, trips: &[Trip]) -> Result<Vec<u8>> {
     let mut w = csv::WriterBuilder::new()
@@ -135,6 +136,7 @@ pub fn trips_csv(config: &Config, trips: &[Trip]) -> Result<Vec<u8>> {
             TripStatus::Exited { off_ramp: None } => ("end".to_string(), "exited"),
             TripStatus::MissedExitThenEnd { .. } => ("end".to_string(), "missed_exit_then_end"),
             TripStatus::InNetwork => (String::new(), "in_network"),
+            TripStatus::Collided => (String::new(), "collided"),
         };
         w.write_record([
             t.id.to_string(),

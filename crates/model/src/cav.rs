@@ -49,6 +49,7 @@
 //! | τ_r | `reaction_s` | 0.4 | s | seed, spec 3.8 |
 //! | a_M | `max_accel` | 1.5 | m/s² | seed (swapped row) |
 //! | b | `max_decel` | −4.0 | m/s² | seed (swapped row) |
+//! | b_e | `emergency_decel_mps2` | 9.0 | m/s² (positive) | SUMO `emergencyDecel`; bounds every applied acceleration (docs/safety.md) |
 //! | – | `inter_platoon_gap_s` | 1.5 | s | seed |
 //! | – | `max_platoon` | 10 | veh | seed |
 //! | – | `sensor_range_m` | 250 | m | spec 3.9 |
@@ -88,6 +89,9 @@ pub struct CavParams {
     pub reaction_s: f64,
     pub max_accel: f64,
     pub max_decel: f64,
+    /// b_e (m/s², positive): the hardest braking the vehicle can apply, whatever the controller
+    /// or its driver asks for (the safety override may ask for more than b; docs/safety.md).
+    pub emergency_decel_mps2: f64,
     pub inter_platoon_gap_s: f64,
     pub max_platoon: u32,
     pub sensor_range_m: f64,
@@ -152,6 +156,7 @@ impl Default for CavParams {
             reaction_s: 0.4,
             max_accel: 1.5,
             max_decel: -4.0,
+            emergency_decel_mps2: crate::safety::DEFAULT_EMERGENCY_DECEL_MPS2,
             inter_platoon_gap_s: 1.5,
             max_platoon: 10,
             sensor_range_m: 250.0,

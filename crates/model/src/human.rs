@@ -36,6 +36,10 @@
 //! | δ | `free_exponent` | 4 | fixed | – |
 //! | ω | `smoothing` | 2 | fixed | – |
 //! | b_c | `comfort_decel` | −2.0 (= 0.5 b_f) | fixed | m/s² |
+//! | b_e | `emergency_decel_mps2` (scenario only) | 9.0 | fixed, positive | m/s² |
+//!
+//! b_e bounds every acceleration the engine applies to the vehicle, whatever produced it
+//! (`safety::braking_limited`); braking harder than b_f is an emergency braking (docs/safety.md).
 
 use crate::bounded;
 use crate::dist::Dist;
@@ -97,6 +101,8 @@ pub struct HumanDists {
     pub smoothing: f64,
     /// b_c as a fraction of b_f (b̂_c, spec 4.9): b_c = comfort_factor · b_f.
     pub comfort_factor: f64,
+    /// b_e (m/s², positive): the hardest braking the vehicle can apply (docs/safety.md).
+    pub emergency_decel_mps2: f64,
 }
 
 impl Default for HumanDists {
@@ -115,6 +121,7 @@ impl Default for HumanDists {
             free_exponent: 4.0,
             smoothing: 2.0,
             comfort_factor: 0.5,
+            emergency_decel_mps2: crate::safety::DEFAULT_EMERGENCY_DECEL_MPS2,
         }
     }
 }

@@ -10,6 +10,7 @@
 //! | [`human`] | human car following: min(Newell, IDM free term, Gipps), smoothing | 2 |
 //! | [`cav`] | CAV control: speed regulation, ACC, CACC, safety override, limits | 3 |
 //! | [`lanechange`] | lane-change desire, anticipated-minimum-gap acceptance, relaxation | 4 |
+//! | [`safety`] | emergency braking limit, time to collision, TET/TIT exposure | docs/safety.md |
 //!
 //! Conventions: SI units inside (m, s, m/s, m/s²); decelerations are negative
 //! numbers (`max_decel = -4.0`); gaps are *net* gaps (leader's rear bumper to the
@@ -19,6 +20,7 @@ pub mod cav;
 pub mod dist;
 pub mod human;
 pub mod lanechange;
+pub mod safety;
 
 /// What a follower knows about its leader: the net gap and the leader's speed.
 #[derive(Clone, Copy, Debug, PartialEq)]

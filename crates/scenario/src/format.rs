@@ -83,6 +83,7 @@ pub fn to_raw(config: &Config, description: Option<String>) -> RawScenario {
         human: config.human,
         cav: config.cav.clone(),
         lane_change: config.lane_change,
+        safety: config.safety,
     }
 }
 

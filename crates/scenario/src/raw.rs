@@ -12,6 +12,7 @@ use crate::error::ScenarioError;
 use platoonsim_model::cav::CavParams;
 use platoonsim_model::human::HumanDists;
 use platoonsim_model::lanechange::LaneChangeDists;
+use platoonsim_model::safety::SafetyParams;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use toml::{Table, Value};
@@ -40,6 +41,7 @@ pub struct RawScenario {
     pub human: HumanDists,
     pub cav: CavParams,
     pub lane_change: LaneChangeDists,
+    pub safety: SafetyParams,
 }
 
 /// `[run]`: seed, step, duration, warm-up, CAV share. All optional.
@@ -304,6 +306,7 @@ fn diagnose(doc: &Table) -> (String, String) {
             "human" => narrow::<HumanDists>("human", value),
             "cav" => narrow::<CavParams>("cav", value),
             "lane_change" => narrow::<LaneChangeDists>("lane_change", value),
+            "safety" => narrow::<SafetyParams>("safety", value),
             "detectors" => narrow_array::<RawDetector>("detectors", value)
                 .unwrap_or_else(|| ("detectors".into(), single_message(key, value))),
             _ => (key.clone(), rewrite(&single_message(key, value), None)),

@@ -624,6 +624,7 @@ pub fn validate(
         human: raw.human,
         cav: raw.cav.clone(),
         lane_change: raw.lane_change,
+        safety: raw.safety,
     };
     if c.problems.is_empty() {
         // The engine's own invariants; the checks above are stricter, so this is a safety net.

@@ -5,6 +5,7 @@
 use platoonsim_model::cav::CavParams;
 use platoonsim_model::human::HumanDists;
 use platoonsim_model::lanechange::LaneChangeDists;
+use platoonsim_model::safety::SafetyParams;
 use serde::Serialize;
 
 /// A straight multi-lane road (the paper's homogeneous segment). Positions in metres from
@@ -315,6 +316,8 @@ pub struct Config {
     pub human: HumanDists,
     pub cav: CavParams,
     pub lane_change: LaneChangeDists,
+    /// Surrogate safety measures' settings (`[safety]`, docs/safety.md).
+    pub safety: SafetyParams,
 }
 
 impl Config {
@@ -426,6 +429,7 @@ impl Config {
             human: HumanDists::default(),
             cav: CavParams::default(),
             lane_change: LaneChangeDists::default(),
+            safety: SafetyParams::default(),
         }
     }
 

@@ -190,6 +190,8 @@ fn create(cfg: &Config, id: u64, x: f64, t: f64, origin: u32) -> Vehicle {
         exit,
         origin,
         planned_exit: exit,
+        conflict_step: NEVER,
+        conflict_leader: NEVER,
     }
 }
 

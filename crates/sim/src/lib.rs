@@ -20,6 +20,7 @@ pub mod metrics;
 pub mod network;
 pub mod record;
 pub mod rng;
+mod safety;
 mod sense;
 mod sim;
 mod strategy;
@@ -33,7 +34,7 @@ pub use config::{
 };
 pub use record::{Recording, TrajectoryPoint, TrajectorySpec, Trip, TripStatus};
 pub use sim::{strategy_name, Simulation};
-pub use summary::{DetectorRecord, Output, Summary};
+pub use summary::{CollisionEvent, CollisionKind, DetectorRecord, Output, Summary};
 
 /// Progress callback: called with (simulated seconds so far, total seconds) every simulated minute.
 pub type Progress<'a> = &'a mut dyn FnMut(f64, f64);

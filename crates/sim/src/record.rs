@@ -88,6 +88,8 @@ pub enum TripStatus {
     MissedExitThenEnd { missed: usize },
     /// Still on the road at the end of the run.
     InNetwork,
+    /// Ran past the end of its lane and was removed (a collision, `collisions.csv`).
+    Collided,
 }
 
 /// One vehicle that entered the road.

@@ -7,10 +7,13 @@ use crate::insert::Entrance;
 use crate::metrics::Metrics;
 use crate::network::Geometry;
 use crate::record::{trip_of, Recorder, Recording, TrajectoryRecorder};
+use crate::safety::Safety;
 use crate::sense::{Sensed, NONE};
+use crate::summary::CollisionKind;
 use crate::summary::{Output, Summary};
 use crate::vehicle::{Kind, Relaxation, Vehicle, NO_EXIT};
 use platoonsim_model::lanechange::Side;
+use platoonsim_model::safety as law;
 
 /// Steps between two renumberings of the vehicle slots (`Simulation::compact`).
 const COMPACT_EVERY_STEPS: u64 = 600;
@@ -79,8 +82,10 @@ pub struct Simulation {
     pub(crate) detectors: Vec<Detector>,
     pub(crate) metrics: Metrics,
     pub(crate) next_id: u64,
-    /// Per-step pair-overlap count (collisions), all steps.
-    pub(crate) collisions: u64,
+    /// Braking limit, collisions and surrogate safety measures (`safety.rs`).
+    pub(crate) safety: Safety,
+    /// Vehicles past the end of their lane in this step's integrate phase: (slot, lane, wall).
+    pub(crate) crashed: Vec<(u32, u32, f64)>,
     pub(crate) vehicle_updates: u64,
     /// Flow-Aware condition per road cell of `FA_CELL_M` (from the latest broadcasts).
     pub(crate) fa_cells: Vec<bool>,
@@ -163,7 +168,8 @@ impl Simulation {
             detectors,
             metrics: Metrics::default(),
             next_id: 0,
-            collisions: 0,
+            safety: Safety::new(&cfg),
+            crashed: Vec::new(),
             vehicle_updates: 0,
             fa_cells: Vec::new(),
             rec: Recorder::default(),
@@ -245,9 +251,10 @@ impl Simulation {
         self.entrances.iter().map(Entrance::waiting).sum()
     }
 
-    /// Collisions counted so far (vehicle pairs overlapping, per step).
+    /// Collisions so far: vehicle pairs that started to overlap, vehicles that reached the end
+    /// of their lane.
     pub fn collisions(&self) -> u64 {
-        self.collisions
+        self.safety.events.len() as u64
     }
 
     /// Advance one step. Phases, in this order, each reading the state the previous one left:
@@ -290,8 +297,10 @@ impl Simulation {
         self.check_invariants()
     }
 
-    /// Phase 3: v' = max(0, v + aΔt); x' = x + ½(v + v')Δt, or the stopping point when the
-    /// speed would turn negative.
+    /// Phase 3: the decided acceleration bounded by the vehicle's emergency limit
+    /// (`safety.rs`), then v' = max(0, v + aΔt); x' = x + ½(v + v')Δt, or the stopping point
+    /// when the speed would turn negative. A vehicle whose front passes the end of its lane
+    /// has collided with it: the event is recorded and the vehicle leaves the road.
     fn integrate(&mut self) {
         let dt = self.dt;
         let mut sorted = true;
@@ -305,42 +314,45 @@ impl Simulation {
             sensed,
             geom,
             step,
-            collisions,
             exit_due,
             vehicle_updates,
+            safety,
+            crashed,
             ..
         } = self;
         let step = *step;
+        let in_window = step >= self.warmup_step;
         let plain = geom.plain;
         let off_ramps = &geom.off_ramps[..];
         let vehicles = &mut vehicles[..];
         let decisions = &decisions[..vehicles.len()];
         let sensed = &sensed[..vehicles.len()];
-        for lane in lanes.iter() {
+        for (l, lane) in lanes.iter().enumerate() {
             let mut ahead = f64::INFINITY;
             for &s in lane {
                 let d = &decisions[s as usize];
                 let veh = &mut vehicles[s as usize];
                 veh.x_prev = veh.x;
-                let v_new = veh.v + d.accel * dt;
+                let a_prev = veh.a;
+                let accel = law::braking_limited(d.accel, safety.limit(veh.kind));
+                let v_new = veh.v + accel * dt;
                 if v_new >= 0.0 {
                     veh.x += 0.5 * (veh.v + v_new) * dt;
                     veh.v = v_new;
-                    veh.a = d.accel;
+                    veh.a = accel;
                 } else {
                     // Stops within the step: travels v²/(2|a|).
-                    veh.x += 0.5 * veh.v * veh.v / (-d.accel);
+                    veh.x += 0.5 * veh.v * veh.v / (-accel);
                     veh.a = -veh.v / dt;
                     veh.v = 0.0;
                 }
+                safety.on_applied(veh, a_prev, veh.a, in_window);
                 if !plain {
                     // A wall is a standing obstacle (network.rs): passing it is a collision.
                     // (`here` is at the step-start position: x_prev, in this lane.)
                     if let Some(w) = sensed[s as usize].here.wall {
                         if veh.x > w {
-                            *collisions += 1;
-                            veh.x = (w - 0.01).max(veh.x_prev);
-                            veh.v = 0.0;
+                            crashed.push((s, l as u32, w));
                         }
                     }
                 }
@@ -370,6 +382,40 @@ impl Simulation {
             *vehicle_updates += lane.len() as u64;
         }
         self.lanes_sorted = sorted;
+        if !self.crashed.is_empty() {
+            self.remove_crashed();
+        }
+    }
+
+    /// The vehicles that ran past the end of their lane in this step: one collision each, and
+    /// they leave the road (their trip ends as `collided`). Removing them keeps every lane
+    /// sorted.
+    #[cold]
+    #[inline(never)]
+    fn remove_crashed(&mut self) {
+        let t = crate::record::step_time(self.step + 1, self.dt);
+        let origin = self.origin_m();
+        for (s, l, w) in std::mem::take(&mut self.crashed) {
+            let v = &self.vehicles[s as usize];
+            self.safety.collide(
+                t,
+                CollisionKind::LaneEnd,
+                l as usize,
+                v.x + origin,
+                v,
+                None,
+                v.x - w,
+            );
+            self.lanes[l as usize].retain(|&o| o != s);
+            self.metrics.on_exit_in_network(&self.vehicles[s as usize]);
+            if self.rec.trips.is_some() {
+                self.record_trip(s, true, None);
+                if let Some(trip) = self.rec.trips.as_mut().and_then(|t| t.last_mut()) {
+                    trip.status = crate::record::TripStatus::Collided;
+                }
+            }
+            self.free.push(s);
+        }
     }
 
     /// Phase 5a: vehicles whose front passed the road end leave; on a network, vehicles that
@@ -486,52 +532,84 @@ impl Simulation {
         }
     }
 
-    /// Phase 7: overlap and finiteness. Keeps each lane sorted even after a collision.
+    /// Phase 7: finiteness, collisions and the surrogate safety measures (`safety.rs`), over
+    /// each lane's (leader, follower) pairs at the end of the step. A pair whose follower's
+    /// front is past its leader's rear is a collision when it starts (it was not overlapping at
+    /// the end of the previous step). Keeps each lane sorted even after a collision.
     fn check_invariants(&mut self) -> Result<(), String> {
-        for l in 0..self.lanes.len() {
-            let lane = &mut self.lanes[l];
+        let step = self.step;
+        let t = crate::record::step_time(step, self.dt);
+        let dt = self.dt;
+        let origin = self.origin_m();
+        let in_window = step > self.warmup_step;
+        let Simulation {
+            lanes,
+            vehicles,
+            safety,
+            ..
+        } = self;
+        let threshold = safety.ttc_threshold_s;
+        std::mem::swap(&mut safety.overlapping, &mut safety.overlapping_now);
+        safety.overlapping_now.clear();
+        for (l, lane) in lanes.iter_mut().enumerate() {
             let mut sorted = true;
-            // Each record is looked up once: the follower becomes the next pair's leader.
             let Some((&first, rest)) = lane.split_first() else {
                 continue;
             };
-            let mut lead = &self.vehicles[first as usize];
-            for &s in rest {
-                let fol = &self.vehicles[s as usize];
-                if !(fol.x.is_finite() && fol.v.is_finite() && fol.a.is_finite()) {
-                    return Err(format!(
-                        "vehicle {} in lane {} has a non-finite state at t = {:.1} s (x = {}, v = {}, a = {})",
-                        fol.id,
-                        l + 1,
-                        self.step as f64 * self.dt,
-                        fol.x,
-                        fol.v,
-                        fol.a
-                    ));
-                }
-                if fol.x > lead.rear() {
-                    self.collisions += 1;
+            // Each record is looked up once: the follower becomes the next pair's leader.
+            let mut li = first as usize;
+            check_finite(&vehicles[li], l, t)?;
+            for &s in rest.iter() {
+                let fi = s as usize;
+                let fol = &vehicles[fi];
+                check_finite(fol, l, t)?;
+                let lead = &vehicles[li];
+                let gap = lead.rear() - fol.x;
+                if gap < 0.0 {
+                    let pair = (fol.id, lead.id);
+                    if !safety.overlapping.contains(&pair) {
+                        safety.collide(
+                            t,
+                            CollisionKind::RearEnd,
+                            l,
+                            fol.x + origin,
+                            fol,
+                            Some(lead),
+                            -gap,
+                        );
+                    }
+                    safety.overlapping_now.push(pair);
                     if fol.x > lead.x {
                         sorted = false;
                     }
-                    if cfg!(debug_assertions) {
-                        panic!(
-                            "overlap at t = {:.1} s in lane {}: vehicle {} (x = {:.2}, v = {:.2}) and its leader {} (rear = {:.2}, v = {:.2})",
-                            self.step as f64 * self.dt,
-                            l + 1,
-                            fol.id,
-                            fol.x,
-                            fol.v,
-                            lead.id,
-                            lead.rear(),
-                            lead.v
-                        );
+                }
+                if in_window {
+                    let closing = fol.v - lead.v;
+                    // TTC = g / closing, divided out only when it is below the threshold or
+                    // the smallest so far.
+                    let g = gap.max(0.0);
+                    if closing > 0.0 && g < closing * threshold.max(safety.min_ttc_s) {
+                        let ttc = g / closing;
+                        if ttc < safety.min_ttc_s {
+                            safety.min_ttc_s = ttc;
+                        }
+                        if ttc < threshold {
+                            let (tet, tit) = law::exposure(ttc, threshold, dt);
+                            let (kind, lead_id) = (fol.kind, lead.id);
+                            *safety.tet_s.get_mut(kind) += tet;
+                            *safety.tit_s2.get_mut(kind) += tit;
+                            let fol = &mut vehicles[fi];
+                            if !(fol.conflict_step == step - 1 && fol.conflict_leader == lead_id) {
+                                *safety.conflicts.get_mut(kind) += 1;
+                            }
+                            fol.conflict_step = step;
+                            fol.conflict_leader = lead_id;
+                        }
                     }
                 }
-                lead = fol;
+                li = fi;
             }
             if !sorted {
-                let vehicles = &self.vehicles;
                 lane.sort_by(|&a, &b| vehicles[b as usize].x.total_cmp(&vehicles[a as usize].x));
             }
         }
@@ -593,6 +671,7 @@ impl Simulation {
             0.0
         };
         let m = &self.metrics;
+        let sf = &self.safety;
         let summary = Summary {
             scenario: cfg.name.clone(),
             penetration: cfg.penetration,
@@ -619,7 +698,21 @@ impl Simulation {
             max_sustained_flow_vphpl: max_flow,
             network_discharge_vph: network_discharge,
             missed_exits: self.missed_exits,
-            collisions: self.collisions,
+            collisions: self.safety.events.len() as u64,
+            max_deceleration_mps2: sf.max_decel,
+            emergency_brakings: sf.emergency_brakings.total(),
+            emergency_brakings_cav: sf.emergency_brakings.cav,
+            emergency_brakings_human: sf.emergency_brakings.human,
+            conflicts: sf.conflicts.total(),
+            conflicts_cav: sf.conflicts.cav,
+            conflicts_human: sf.conflicts.human,
+            tet_s: sf.tet_s.total(),
+            tet_s_cav: sf.tet_s.cav,
+            tet_s_human: sf.tet_s.human,
+            tit_s2: sf.tit_s2.total(),
+            tit_s2_cav: sf.tit_s2.cav,
+            tit_s2_human: sf.tit_s2.human,
+            min_ttc_s: sf.min_ttc_s.is_finite().then_some(sf.min_ttc_s),
             vehicle_updates: self.vehicle_updates,
             steps: self.step,
             wall_seconds,
@@ -631,6 +724,7 @@ impl Simulation {
         Output {
             summary,
             detectors,
+            collision_events: std::mem::take(&mut self.safety.events),
             trips,
             trajectories,
         }
@@ -672,6 +766,21 @@ impl Simulation {
     pub(crate) fn is_cav(&self, s: u32) -> bool {
         s != NONE && self.vehicles[s as usize].kind == Kind::Cav
     }
+}
+
+/// A non-finite state is an engine error (phase 7).
+fn check_finite(v: &Vehicle, lane: usize, t: f64) -> Result<(), String> {
+    if v.x.is_finite() && v.v.is_finite() && v.a.is_finite() {
+        return Ok(());
+    }
+    Err(format!(
+        "vehicle {} in lane {} has a non-finite state at t = {t:.1} s (x = {}, v = {}, a = {})",
+        v.id,
+        lane + 1,
+        v.x,
+        v.v,
+        v.a
+    ))
 }
 
 /// Short name of a strategy (summary field).

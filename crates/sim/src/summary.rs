@@ -47,8 +47,34 @@ pub struct Summary {
     pub network_discharge_vph: Option<f64>,
     /// Vehicles that could not reach the lane of their off-ramp in time and drove on to the end.
     pub missed_exits: u64,
-    /// Steps in which two vehicles overlapped (counted per vehicle pair and step).
+    /// Collision events over the whole run: a vehicle pair that starts to overlap, or a vehicle
+    /// that reaches the end of its lane ([`CollisionEvent`]). A run with any is a failed run.
     pub collisions: u64,
+    /// Largest deceleration applied by any vehicle over the whole run (m/s², positive; 0 if
+    /// none braked). Never above the vehicle's emergency limit.
+    pub max_deceleration_mps2: f64,
+    /// Safety measures over the measurement window (docs/safety.md), all vehicles, then CAVs
+    /// and human-driven vehicles (by the follower's, or the braking vehicle's, kind).
+    /// Emergency brakings: episodes (consecutive steps of one vehicle) of braking harder than
+    /// the vehicle's normal limit.
+    pub emergency_brakings: u64,
+    pub emergency_brakings_cav: u64,
+    pub emergency_brakings_human: u64,
+    /// Conflicts: episodes of a (follower, leader) pair with TTC below `safety.ttc_threshold_s`.
+    pub conflicts: u64,
+    pub conflicts_cav: u64,
+    pub conflicts_human: u64,
+    /// Time-exposed TTC (vehicle-seconds with TTC below the threshold).
+    pub tet_s: f64,
+    pub tet_s_cav: f64,
+    pub tet_s_human: f64,
+    /// Time-integrated TTC: Σ (TTC* − TTC) Δt below the threshold (s²).
+    pub tit_s2: f64,
+    pub tit_s2_cav: f64,
+    pub tit_s2_human: f64,
+    /// Smallest TTC seen in the window (s); `None` (null) if no follower ever closed in on its
+    /// leader.
+    pub min_ttc_s: Option<f64>,
     pub vehicle_updates: u64,
     pub steps: u64,
     pub wall_seconds: f64,
@@ -76,11 +102,54 @@ pub struct DetectorRecord {
     pub occupancy: f64,
 }
 
+/// How a collision happened.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CollisionKind {
+    /// A follower's front passed its leader's rear in the same lane.
+    RearEnd,
+    /// A vehicle's front passed the end of its lane (an acceleration lane or a dropped lane).
+    LaneEnd,
+}
+
+impl CollisionKind {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            CollisionKind::RearEnd => "rear-end",
+            CollisionKind::LaneEnd => "lane-end",
+        }
+    }
+}
+
+/// One collision (`collisions.csv`): when and where it started, and who was involved.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CollisionEvent {
+    /// Simulated time at the end of the step in which it happened (s).
+    pub t_s: f64,
+    pub kind: CollisionKind,
+    /// Lane counted from the right, 1 = rightmost (the numbering of `detectors.csv`).
+    pub lane: u32,
+    /// Front position of the colliding vehicle (output coordinate, m).
+    pub x_m: f64,
+    /// The colliding (following) vehicle: id, "human" or "cav", speed (m/s).
+    pub vehicle: u64,
+    pub vehicle_kind: &'static str,
+    pub v_mps: f64,
+    /// The vehicle it ran into (none for a lane end).
+    pub other: Option<u64>,
+    pub other_kind: Option<&'static str>,
+    pub other_v_mps: Option<f64>,
+    /// How far the fronts/rear overlap (or the front is past the lane end), m.
+    pub overlap_m: f64,
+}
+
 /// Everything a run produces.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Output {
     pub summary: Summary,
     pub detectors: Vec<DetectorRecord>,
+    /// Every collision, in time order (empty in a correct run).
+    pub collision_events: Vec<CollisionEvent>,
     /// With [`crate::Recording::trips`]: one trip per vehicle that entered the road, in the
     /// order they left, then those still on the road by id.
     pub trips: Option<Vec<Trip>>,

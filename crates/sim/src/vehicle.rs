@@ -103,6 +103,10 @@ pub struct Vehicle {
     /// The off-ramp it chose on entry (`NO_EXIT`: the mainline end). Unlike `exit`, kept when it
     /// misses that off-ramp.
     pub planned_exit: u32,
+    /// The last step in which it was in a conflict (TTC below the threshold, `safety.rs`), and
+    /// with which leader: a conflict continues while both stay the same from step to step.
+    pub conflict_step: u64,
+    pub conflict_leader: u64,
 }
 
 impl Vehicle {

@@ -1,0 +1,149 @@
+//! Safety accounting (issue 18, docs/safety.md): the braking limit applied in the integrate
+//! phase, emergency-braking episodes, the largest deceleration, collision events and the
+//! surrogate safety measures (TTC, TET, TIT, conflicts), by vehicle kind.
+//!
+//! The laws are pure functions in `platoonsim_model::safety`; this module only accumulates.
+//! Collisions count over the whole run (any one fails the run); the largest deceleration over
+//! the whole run too (it checks the braking limit); everything else over the measurement
+//! window, like the paper's statistics.
+
+use crate::config::Config;
+use crate::summary::{CollisionEvent, CollisionKind};
+use crate::vehicle::{Kind, Vehicle};
+use platoonsim_model::safety as law;
+
+/// Per vehicle kind (index `Kind as usize`: human 0, CAV 1).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ByKind<T> {
+    pub human: T,
+    pub cav: T,
+}
+
+impl<T: Copy + std::ops::Add<Output = T>> ByKind<T> {
+    #[inline]
+    pub fn get_mut(&mut self, k: Kind) -> &mut T {
+        match k {
+            Kind::Human => &mut self.human,
+            Kind::Cav => &mut self.cav,
+        }
+    }
+
+    pub fn total(&self) -> T {
+        self.human + self.cav
+    }
+}
+
+/// The run's safety accumulators.
+#[derive(Clone, Debug)]
+pub struct Safety {
+    /// Emergency deceleration b_e per kind (m/s², positive).
+    pub emergency_decel: ByKind<f64>,
+    /// The CAV's normal braking limit b (negative); a human's is its own `human.max_decel`.
+    pub cav_max_decel: f64,
+    /// TTC* (s).
+    pub ttc_threshold_s: f64,
+    /// Largest applied deceleration, whole run (m/s², positive).
+    pub max_decel: f64,
+    pub emergency_brakings: ByKind<u64>,
+    pub conflicts: ByKind<u64>,
+    pub tet_s: ByKind<f64>,
+    pub tit_s2: ByKind<f64>,
+    /// Smallest TTC seen in the window (s); ∞ if none.
+    pub min_ttc_s: f64,
+    /// Every collision, in time order.
+    pub events: Vec<CollisionEvent>,
+    /// (follower id, leader id) pairs overlapping at the end of the previous step, and of this
+    /// one: a pair that overlaps in consecutive steps is one collision.
+    pub overlapping: Vec<(u64, u64)>,
+    pub overlapping_now: Vec<(u64, u64)>,
+}
+
+impl Safety {
+    pub fn new(cfg: &Config) -> Safety {
+        Safety {
+            emergency_decel: ByKind {
+                human: cfg.human.emergency_decel_mps2,
+                cav: cfg.cav.emergency_decel_mps2,
+            },
+            cav_max_decel: cfg.cav.max_decel,
+            ttc_threshold_s: cfg.safety.ttc_threshold_s,
+            max_decel: 0.0,
+            emergency_brakings: ByKind::default(),
+            conflicts: ByKind::default(),
+            tet_s: ByKind::default(),
+            tit_s2: ByKind::default(),
+            min_ttc_s: f64::INFINITY,
+            events: Vec::new(),
+            overlapping: Vec::new(),
+            overlapping_now: Vec::new(),
+        }
+    }
+
+    /// The vehicle's emergency limit b_e (positive).
+    #[inline]
+    pub fn limit(&self, kind: Kind) -> f64 {
+        match kind {
+            Kind::Human => self.emergency_decel.human,
+            Kind::Cav => self.emergency_decel.cav,
+        }
+    }
+
+    /// The vehicle's normal braking limit b (negative).
+    #[inline]
+    pub fn normal(&self, v: &Vehicle) -> f64 {
+        match v.kind {
+            Kind::Human => v.human.max_decel,
+            Kind::Cav => self.cav_max_decel,
+        }
+    }
+
+    /// Account for the acceleration `a` a vehicle applied in this step, `a_prev` in the step
+    /// before (an episode is consecutive emergency steps); `in_window`: the step is in the
+    /// measurement window.
+    #[inline]
+    pub fn on_applied(&mut self, v: &Vehicle, a_prev: f64, a: f64, in_window: bool) {
+        if -a > self.max_decel {
+            self.max_decel = -a;
+        }
+        let normal = self.normal(v);
+        if in_window && law::is_emergency(a, normal) && !law::is_emergency(a_prev, normal) {
+            *self.emergency_brakings.get_mut(v.kind) += 1;
+        }
+    }
+
+    /// A collision event.
+    #[cold]
+    #[allow(clippy::too_many_arguments)]
+    pub fn collide(
+        &mut self,
+        t_s: f64,
+        kind: CollisionKind,
+        lane: usize,
+        x_m: f64,
+        v: &Vehicle,
+        other: Option<&Vehicle>,
+        overlap_m: f64,
+    ) {
+        self.events.push(CollisionEvent {
+            t_s,
+            kind,
+            lane: lane as u32 + 1,
+            x_m,
+            vehicle: v.id,
+            vehicle_kind: kind_name(v.kind),
+            v_mps: v.v,
+            other: other.map(|o| o.id),
+            other_kind: other.map(|o| kind_name(o.kind)),
+            other_v_mps: other.map(|o| o.v),
+            overlap_m,
+        });
+    }
+}
+
+/// "human" or "cav", as in the trip and trajectory records.
+pub fn kind_name(k: Kind) -> &'static str {
+    match k {
+        Kind::Human => "human",
+        Kind::Cav => "cav",
+    }
+}
