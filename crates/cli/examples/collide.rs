@@ -15,6 +15,9 @@ fn main() {
         }
         seen = sim.collisions();
         println!("t = {:.1} s, collisions {seen}", sim.time_s());
+        if let Some(e) = sim.collision_events().last() {
+            println!("  {e:?}");
+        }
         for lane in 0..sim.config().road.lanes as usize {
             let vs: Vec<_> = sim.lane_vehicles(lane).collect();
             for w in vs.windows(2) {

@@ -474,10 +474,27 @@ impl Simulation {
             if !open || w <= 0.0 {
                 continue;
             }
+            // Not into a lane that ends where the driver would already have to leave it (a
+            // lane drop ahead: its mandatory desire there is positive), issue 18.
+            if self.ends_too_soon(v, target) {
+                continue;
+            }
             let v_ant = self.anticipated_speed(s, v, target, j as usize, v_cur);
             out[i] = Some(w * eta * lcm::discretionary_desire(&v.lc, v_ant, v_cur, side));
         }
         out
+    }
+
+    /// Does lane `target` end so soon ahead of `v` that a driver who moved into it would at
+    /// once want to leave it again (mandatory desire γ_m > 0 for its wall, one change)? A
+    /// discretionary change into such a lane ends at the wall (issue 18: 3 → 2 lane drops).
+    #[inline]
+    fn ends_too_soon(&self, v: &Vehicle, target: usize) -> bool {
+        !self.geom.plain
+            && self
+                .geom
+                .wall_ahead(target as u32, v.x)
+                .is_some_and(|w| lcm::mandatory_desire(&v.lc, w - v.x, v.v, 1) > 0.0)
     }
 
     /// Spec 4.2 "Anticipatory": in the two rightmost through lanes within the anticipation

@@ -257,6 +257,11 @@ impl Simulation {
         self.safety.events.len() as u64
     }
 
+    /// The collisions so far, in time order.
+    pub fn collision_events(&self) -> &[crate::summary::CollisionEvent] {
+        &self.safety.events
+    }
+
     /// Advance one step. Phases, in this order, each reading the state the previous one left:
     ///
     /// 1. **sense**: same-lane leaders and adjacent-lane leaders/followers (a merge sweep over
