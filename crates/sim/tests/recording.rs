@@ -216,6 +216,7 @@ fn corridor_trips_match_the_exit_detectors() {
             }
             TripStatus::InNetwork => assert!(t.last_x_m < 2500.0, "{t:?}"),
             TripStatus::Exited { off_ramp: Some(r) } => panic!("no off-ramp {r}"),
+            TripStatus::Collided => panic!("a collision: {t:?}"),
         }
     }
     assert!(
