@@ -31,7 +31,7 @@ fn main() -> ExitCode {
         Err(e) => match stdout::find(&e) {
             Some(w) if w.is_broken_pipe() => ExitCode::from(EXIT_BROKEN_PIPE),
             _ => {
-                eprintln!("error: {e:#}");
+                errln!("error: {e:#}");
                 ExitCode::FAILURE
             }
         },

@@ -2,7 +2,8 @@
 //! write fails (a closed pipe, `platoonsim show sr99 | head -1`; a full disk,
 //! `> /dev/full`). Every command prints through [`print`] / [`outln!`], which return the error;
 //! `main` maps a closed pipe to a quiet exit with [`crate::EXIT_BROKEN_PIPE`] and any other
-//! failure to `error: cannot write to standard output: …`.
+//! failure to `error: cannot write to standard output: …`. Messages to stderr go through
+//! [`errln!`], which never panics.
 
 use std::fmt;
 use std::io::Write;
@@ -40,6 +41,15 @@ macro_rules! outln {
     ($($arg:tt)*) => {
         $crate::stdout::print(&format!("{}\n", format_args!($($arg)*)))
     };
+}
+
+/// `eprintln!` that ignores a failed write: `eprintln!` panics when stderr is a closed pipe
+/// (`platoonsim run … 2>&1 | true`), and there is nowhere left to report that failure.
+macro_rules! errln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
 }
 
 /// The [`StdoutError`] somewhere in an error's chain (the commands add context to errors).

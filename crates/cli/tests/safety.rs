@@ -167,6 +167,33 @@ fn a_closed_pipe_exits_quietly_with_141() {
     }
     // The run's files were written before the summary was printed.
     assert!(dir.join("summary.json").is_file());
+
+    // Stderr into the same closed pipe: the collision warning cannot be written either, and
+    // that is no panic.
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let o = Command::new(env!("CARGO_BIN_EXE_platoonsim"))
+        .args([
+            "run",
+            "homogeneous",
+            "--duration",
+            "60",
+            "--warmup",
+            "0",
+            "--penetration",
+            "0.5",
+            "--set",
+            "cav.sensor_range_m=1",
+            "--out",
+            s(&dir),
+            "-q",
+        ])
+        .stdout(writer.try_clone().unwrap())
+        .stderr(writer)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(141));
+    assert!(dir.join("collisions.csv").is_file());
 }
 
 #[test]

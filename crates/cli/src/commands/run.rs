@@ -22,7 +22,7 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
     output::write_run(&args.out, &config, &out)?;
     // The warning goes first, so that it is on stderr even if stdout is closed below.
     if let Some(first) = out.collision_events.first() {
-        eprintln!(
+        errln!(
             "warning: {} collision{} (the run is invalid: vehicles overlapped or ran past the \
              end of a lane); the first: {}; every one in {}",
             out.summary.collisions,
