@@ -12,7 +12,11 @@ use std::path::PathBuf;
 /// Skabardonis, "Flow-aware platoon formation of CAVs in mixed traffic").
 #[derive(Debug, Parser)]
 #[command(name = "platoonsim", version, propagate_version = true)]
-#[command(after_help = "Run `platoonsim <COMMAND> --help` for a command's flags.")]
+#[command(
+    after_help = "Run `platoonsim <COMMAND> --help` for a command's flags.\n\nExit codes: 0 \
+                  success; 1 error; 2 invalid arguments; 3 `run` had collisions (unless \
+                  --allow-collisions); 141 standard output was closed (e.g. `| head`)."
+)]
 pub struct Cli {
     /// Hide progress bars (they are also hidden when stderr is not a terminal).
     #[arg(short, long, global = true, display_order = 1000)]
@@ -25,8 +29,9 @@ pub struct Cli {
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Simulate one scenario; write summary.json, detectors.csv, scenario.json and
-    /// scenario.toml (and on request trips.csv, trajectories.csv) to the output directory and
-    /// print a short summary.
+    /// scenario.toml (and on request trips.csv, trajectories.csv; collisions.csv if vehicles
+    /// collided) to the output directory and print a short summary. Exits with 3 if the run
+    /// had collisions (unless --allow-collisions).
     Run(RunArgs),
     /// Measure the engine's speed (vehicle updates per second) on the built-in homogeneous road
     /// at 50 % CAV and 2,500 veh/h/lane.
@@ -162,9 +167,16 @@ pub struct RunArgs {
     pub scenario: ScenarioArgs,
 
     /// Output directory (created if missing; existing files in it are replaced, and a
-    /// trips.csv or trajectories.csv of an earlier run is removed unless this run writes one).
+    /// trips.csv, trajectories.csv or collisions.csv of an earlier run is removed unless this
+    /// run writes one).
     #[arg(long, value_name = "DIR", default_value = "out/run")]
     pub out: PathBuf,
+
+    /// Exit with 0 even if the simulation had collisions (the warning is printed all the
+    /// same). Without it, a run with collisions exits with code 3 after writing its files,
+    /// collisions.csv among them.
+    #[arg(long)]
+    pub allow_collisions: bool,
 
     /// Also write trips.csv: one row per vehicle that entered the road (entrance, exit, times,
     /// travel time, lane changes, largest platoon). Does not change the simulation.

@@ -1,7 +1,14 @@
 //! `platoonsim`: the command line. Commands live in [`commands`], one module each; typed
 //! errors from the libraries become `anyhow` errors here and are printed once, with their
 //! causes, by `main`.
+//!
+//! Exit codes: 0 success; 1 an error (printed as `error: …`); 2 a usage error (from clap);
+//! [`EXIT_COLLISIONS`] a `run` whose simulation had collisions (unless `--allow-collisions`);
+//! [`EXIT_BROKEN_PIPE`] standard output was closed by its reader (`| head`), quietly.
 
+// First, so that its `outln!` is in scope in the modules below.
+#[macro_use]
+mod stdout;
 mod args;
 mod atomic;
 mod commands;
@@ -11,13 +18,22 @@ mod progress;
 use clap::Parser;
 use std::process::ExitCode;
 
+/// `run`: the simulation had at least one collision (the files are written all the same).
+pub const EXIT_COLLISIONS: u8 = 3;
+/// Standard output was closed before everything was written: 128 + SIGPIPE, what a shell
+/// reports for a program killed by the signal, so `set -o pipefail` scripts see a failure.
+pub const EXIT_BROKEN_PIPE: u8 = 141;
+
 fn main() -> ExitCode {
     let cli = args::Cli::parse();
     match commands::dispatch(cli) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e:#}");
-            ExitCode::FAILURE
-        }
+        Ok(code) => code,
+        Err(e) => match stdout::find(&e) {
+            Some(w) if w.is_broken_pipe() => ExitCode::from(EXIT_BROKEN_PIPE),
+            _ => {
+                errln!("error: {e:#}");
+                ExitCode::FAILURE
+            }
+        },
     }
 }

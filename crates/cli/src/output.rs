@@ -9,12 +9,15 @@
 //! | `scenario.toml` | the same as a complete scenario file (`platoonsim run DIR/scenario.toml` reruns it) |
 //! | `trips.csv` | with `--trips`: one row per vehicle that entered the road ([`trips_csv`]) |
 //! | `trajectories.csv` | with `--trajectories`: one row per vehicle and sample ([`write_trajectories`]) |
+//! | `collisions.csv` | only if the run had collisions: one row per [`CollisionEvent`] ([`collisions_csv`]) |
 
 use crate::atomic::{write_atomic, write_atomic_with};
 use anyhow::{Context, Result};
 use platoonsim_experiment::detectors::Scope;
 use platoonsim_sim::vehicle::Kind;
-use platoonsim_sim::{Config, DetectorRecord, Output, Summary, TrajectoryPoint, Trip, TripStatus};
+use platoonsim_sim::{
+    CollisionEvent, Config, DetectorRecord, Output, Summary, TrajectoryPoint, Trip, TripStatus,
+};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -22,8 +25,13 @@ use std::path::{Path, PathBuf};
 /// when this run does not write it, so that the directory holds one run's files.
 pub const RECORD_FILES: [&str; 2] = ["trips.csv", "trajectories.csv"];
 
+/// The file of a run's collisions; like the record files, a stale one is removed by a run
+/// without collisions, so that its absence means "no collision".
+pub const COLLISIONS_FILE: &str = "collisions.csv";
+
 /// Write every output file of a run into `dir` (which must exist); returns the paths written.
-/// `trips.csv` and `trajectories.csv` are written if the output has the records.
+/// `trips.csv` and `trajectories.csv` are written if the output has the records,
+/// `collisions.csv` if the run had collisions.
 pub fn write_run(dir: &Path, config: &Config, output: &Output) -> Result<Vec<PathBuf>> {
     let files: [(&str, Vec<u8>); 4] = [
         ("summary.json", json(&output.summary)?),
@@ -55,6 +63,15 @@ pub fn write_run(dir: &Path, config: &Config, output: &Output) -> Result<Vec<Pat
         written.push(trajectories_file);
     } else {
         remove_stale(&trajectories_file)?;
+    }
+    let collisions_file = dir.join(COLLISIONS_FILE);
+    if output.collision_events.is_empty() {
+        remove_stale(&collisions_file)?;
+    } else {
+        let bytes = collisions_csv(&output.collision_events)?;
+        write_atomic(&collisions_file, &bytes)
+            .with_context(|| format!("cannot write {}", collisions_file.display()))?;
+        written.push(collisions_file);
     }
     Ok(written)
 }
@@ -158,6 +175,73 @@ pub fn trips_csv(config: &Config, trips: &[Trip]) -> Result<Vec<u8>> {
     w.into_inner().context("cannot encode trips.csv")
 }
 
+/// The columns of `collisions.csv`, in the order of [`CollisionEvent`]'s fields.
+pub const COLLISION_COLUMNS: [&str; 11] = [
+    "t_s",
+    "kind",
+    "lane",
+    "x_m",
+    "vehicle",
+    "vehicle_kind",
+    "v_mps",
+    "other",
+    "other_kind",
+    "other_v_mps",
+    "overlap_m",
+];
+
+/// `collisions.csv`: the header, then one row per event in time order. `kind` is `rear-end`
+/// or `lane-end`; `lane` counts from the right (1 = rightmost); the `other*` cells are empty
+/// for a lane end (no other vehicle).
+pub fn collisions_csv(events: &[CollisionEvent]) -> Result<Vec<u8>> {
+    let mut w = csv::WriterBuilder::new()
+        .has_headers(false)
+        .from_writer(Vec::new());
+    w.write_record(COLLISION_COLUMNS)?;
+    for e in events {
+        w.write_record([
+            format!("{}", e.t_s),
+            e.kind.as_str().to_string(),
+            e.lane.to_string(),
+            format!("{}", e.x_m),
+            e.vehicle.to_string(),
+            e.vehicle_kind.to_string(),
+            format!("{}", e.v_mps),
+            e.other.map(|o| o.to_string()).unwrap_or_default(),
+            e.other_kind.unwrap_or_default().to_string(),
+            e.other_v_mps.map(|v| format!("{v}")).unwrap_or_default(),
+            format!("{}", e.overlap_m),
+        ])?;
+    }
+    w.into_inner().context("cannot encode collisions.csv")
+}
+
+/// One line about the first collision, for the warning on stderr: time, kind, lane, place and
+/// the vehicles involved.
+pub fn describe_collision(e: &CollisionEvent) -> String {
+    let who = match (e.other, e.other_kind) {
+        (Some(o), Some(k)) => format!(
+            "{} {} ({:.1} m/s) ran into {k} {o} ({:.1} m/s)",
+            e.vehicle_kind,
+            e.vehicle,
+            e.v_mps,
+            e.other_v_mps.unwrap_or(f64::NAN)
+        ),
+        _ => format!(
+            "{} {} ({:.1} m/s) reached the end of its lane",
+            e.vehicle_kind, e.vehicle, e.v_mps
+        ),
+    };
+    format!(
+        "t = {} s, {} in lane {} at x = {:.1} m: {who}, overlap {:.2} m",
+        e.t_s,
+        e.kind.as_str(),
+        e.lane,
+        e.x_m,
+        e.overlap_m
+    )
+}
+
 /// The header of `trajectories.csv`.
 pub const TRAJECTORY_HEADER: &str = "t_s,id,kind,lane,x_m,v_mps,a_mps2,mode";
 
@@ -241,8 +325,11 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
          the measurement window; highest {agg} s flow {qmax:.1} veh/h/lane.{network} Lane changes per \
          vehicle {lc:.3} ({counted} vehicles; per CAV {lc_cav:.3}, per human {lc_human:.3}); \
          average platoon length {lbar:.2} and platooning probability {pp:.3} ({cavs} CAVs). \
+         Safety after the warm-up: {eb} emergency brakings ({eb_cav} CAV, {eb_human} human), \
+         {conflicts} conflicts (TTC below {ttc_star} s), TET {tet:.1} s, TIT {tit:.1} s², \
+         minimum TTC {min_ttc}; largest deceleration {max_decel:.2} m/s² over the whole run. \
          Collisions: {collisions}. {updates} vehicle updates in {wall:.2} s{rate}. \
-         Files in {dir}: summary.json, detectors.csv, scenario.json, scenario.toml.",
+         Files in {dir}: summary.json, detectors.csv, scenario.json, scenario.toml{collisions_file}.",
         name = s.scenario,
         dur = s.duration_s,
         dt = s.dt_s,
@@ -264,7 +351,24 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
         lbar = s.avg_platoon_length,
         pp = s.platooning_probability,
         cavs = s.cavs_counted,
+        eb = s.emergency_brakings,
+        eb_cav = s.emergency_brakings_cav,
+        eb_human = s.emergency_brakings_human,
+        conflicts = s.conflicts,
+        ttc_star = config.safety.ttc_threshold_s,
+        tet = s.tet_s,
+        tit = s.tit_s2,
+        // Null when no follower ever closed in on its leader.
+        min_ttc = s
+            .min_ttc_s
+            .map_or("none (no follower closed in)".to_string(), |t| format!("{t:.2} s")),
+        max_decel = s.max_deceleration_mps2,
         collisions = s.collisions,
+        collisions_file = if s.collisions > 0 {
+            ", collisions.csv"
+        } else {
+            ""
+        },
         updates = s.vehicle_updates,
         wall = s.wall_seconds,
         dir = dir.display(),
@@ -529,6 +633,51 @@ mod tests {
             assert!(p.contains(part), "{part} missing in:\n{p}");
         }
         assert!(!p.contains("veh/h/lane demand"), "{p}");
+    }
+
+    #[test]
+    fn collisions_csv_and_the_warning_line() {
+        use platoonsim_sim::CollisionKind;
+        let rear = CollisionEvent {
+            t_s: 61.3,
+            kind: CollisionKind::RearEnd,
+            lane: 2,
+            x_m: 4020.5,
+            vehicle: 17,
+            vehicle_kind: "human",
+            v_mps: 12.25,
+            other: Some(15),
+            other_kind: Some("cav"),
+            other_v_mps: Some(3.5),
+            overlap_m: 0.125,
+        };
+        let end = CollisionEvent {
+            kind: CollisionKind::LaneEnd,
+            other: None,
+            other_kind: None,
+            other_v_mps: None,
+            ..rear.clone()
+        };
+        let text =
+            String::from_utf8(collisions_csv(&[rear.clone(), end.clone()]).unwrap()).unwrap();
+        assert_eq!(
+            text.lines().collect::<Vec<_>>(),
+            [
+                "t_s,kind,lane,x_m,vehicle,vehicle_kind,v_mps,other,other_kind,other_v_mps,overlap_m",
+                "61.3,rear-end,2,4020.5,17,human,12.25,15,cav,3.5,0.125",
+                "61.3,lane-end,2,4020.5,17,human,12.25,,,,0.125",
+            ]
+        );
+        assert_eq!(
+            describe_collision(&rear),
+            "t = 61.3 s, rear-end in lane 2 at x = 4020.5 m: human 17 (12.2 m/s) ran into cav 15 \
+             (3.5 m/s), overlap 0.12 m"
+        );
+        assert_eq!(
+            describe_collision(&end),
+            "t = 61.3 s, lane-end in lane 2 at x = 4020.5 m: human 17 (12.2 m/s) reached the end \
+             of its lane, overlap 0.12 m"
+        );
     }
 
     #[test]

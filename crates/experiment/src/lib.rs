@@ -11,6 +11,7 @@
 //! * [`experiments`]: `capacity` (Fig. 4), `sensitivity` (Table 3), `flow-aware`,
 //!   `calibrate-flow-aware`, `sr99` (Table 4, Figs. 6-8) and `sr99-demand` (the demand-scale
 //!   search); [`corridor`] reads contours, lane series and bottlenecks from detector records.
+//! * [`safety`]: runs with collisions (a failed run) and the safety measures per cell.
 //! * [`report`]: `REPORT.md` and a self-contained `report.html` over several experiments.
 //! * [`atomic`]: the one atomic file writer (also used by the CLI).
 
@@ -24,6 +25,7 @@ pub mod paper;
 pub mod record;
 pub mod report;
 pub mod runner;
+pub mod safety;
 pub mod stats;
 pub mod table;
 

@@ -7,6 +7,7 @@
 
 use crate::atomic::write_atomic;
 use crate::experiments::{ExperimentName, ExperimentOutput, Figure};
+use crate::safety;
 use crate::table::md_table;
 use crate::{Error, VERSION};
 use pulldown_cmark::{html, CowStr, Event, Options, Parser, Tag};
@@ -115,6 +116,7 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
         input.wall_seconds / 60.0
     ));
 
+    md.push_str(&collisions_warning(input.outputs));
     md.push_str("## At a glance: the checks\n\n");
     for o in input.outputs {
         for c in &o.checks {
@@ -189,6 +191,37 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
     md
 }
 
+/// The warning at the top of the report when runs collided (empty if none): how many, and
+/// every failed cell by experiment. A run with a collision is not physical traffic.
+pub fn collisions_warning(outputs: &[ExperimentOutput]) -> String {
+    let mut list = String::new();
+    let mut n = 0;
+    for o in outputs {
+        let failed = safety::failed_cells(&o.cells, &o.outcomes);
+        n += failed.iter().map(|f| f.seeds.len()).sum::<usize>();
+        list.push_str(&safety::failed_list(
+            &o.cells,
+            &failed,
+            &format!("{}: ", o.name.as_str()),
+        ));
+    }
+    if n == 0 {
+        return String::new();
+    }
+    let total: usize = outputs.iter().map(|o| o.outcomes.len()).sum();
+    let mut md = format!(
+        "> **Warning: {n} of {total} runs with collisions — these results are invalid.** In the \
+         cells below, vehicles overlapped or ran past the end of a lane (a correct run has \
+         none; docs/safety.md), and the cells' statistics include these runs. Each experiment's \
+         Safety table marks them.\n>\n"
+    );
+    for l in list.lines() {
+        md.push_str(&format!("> {l}\n"));
+    }
+    md.push('\n');
+    md
+}
+
 /// An experiment's files, body and figures, its headings pushed `depth` levels down.
 fn section(o: &ExperimentOutput, depth: usize) -> String {
     let mut md = format!(
@@ -216,7 +249,8 @@ table{border-collapse:collapse;margin:1em 0;font-size:0.88em}\
 th,td{border:1px solid #ccc;padding:0.25em 0.5em;text-align:left;vertical-align:top}\
 th{background:#f2f2f2}tr:nth-child(even) td{background:#fafafa}\
 img{max-width:100%;height:auto;border:1px solid #eee}\
-code{background:#f5f5f5;padding:0 0.2em}h1{font-size:1.6em}h2{border-bottom:1px solid #ddd}";
+code{background:#f5f5f5;padding:0 0.2em}\
+blockquote{border-left:4px solid #c00;background:#fff4f4;margin:1em 0;padding:0.3em 1em}h1{font-size:1.6em}h2{border-bottom:1px solid #ddd}";
 
 /// Standard base64 with padding.
 pub fn base64(bytes: &[u8]) -> String {

@@ -9,8 +9,9 @@
 //!
 //! `summary.csv` columns: the cell labels, `metric`, `mean`, `sd`, `n`, `ci_low`, `ci_high`,
 //! `paper`, `difference` (mean − paper), `relative_difference` ((mean − paper) / |paper|),
-//! `paper_source`. Cells without a value (no paper value, n < 2 for sd and the interval) are
-//! empty.
+//! `paper_source`, `runs_with_collisions` (the cell's runs that had a collision: a failed run,
+//! see [`crate::safety`]; 0 in a valid cell). Cells without a value (no paper value, n < 2 for
+//! sd and the interval) are empty.
 
 use crate::design::{Cell, Labels};
 use crate::paper::{self, PaperValue};
@@ -26,6 +27,8 @@ pub struct SummaryRow {
     pub metric: String,
     pub stats: Stats,
     pub paper: Option<PaperValue>,
+    /// Runs of the cell with a collision (the same on every metric's row of the cell).
+    pub collided: usize,
 }
 
 impl SummaryRow {
@@ -143,6 +146,7 @@ pub fn summarize(experiment: &str, cells: &[Cell], outcomes: &[Outcome]) -> Vec<
                 metric: m.clone(),
                 stats: Stats::of(&v),
                 paper: paper::lookup(experiment, &cell.labels, m),
+                collided: crate::safety::collided_runs(outcomes, i),
             });
         }
     }
@@ -167,6 +171,7 @@ pub fn summary_csv(cells: &[Cell], rows: &[SummaryRow]) -> Result<Vec<u8>, Error
         "difference",
         "relative_difference",
         "paper_source",
+        "runs_with_collisions",
     ] {
         header.push(h.into());
     }
@@ -186,6 +191,7 @@ pub fn summary_csv(cells: &[Cell], rows: &[SummaryRow]) -> Result<Vec<u8>, Error
         row.push(csv_num(r.difference()));
         row.push(csv_num(r.relative_difference()));
         row.push(r.paper.map(|p| p.source.to_string()).unwrap_or_default());
+        row.push(r.collided.to_string());
         w.write_record(&row).map_err(csv_error)?;
     }
     w.into_inner().map_err(csv_error)
@@ -430,12 +436,12 @@ mod tests {
         let lines: Vec<&str> = summary.lines().collect();
         assert_eq!(
             lines[0],
-            "demand_vphpl,strategy,metric,mean,sd,n,ci_low,ci_high,paper,difference,relative_difference,paper_source"
+            "demand_vphpl,strategy,metric,mean,sd,n,ci_low,ci_high,paper,difference,relative_difference,paper_source,runs_with_collisions"
         );
         assert_eq!(lines.len(), 1 + 5);
         let mut r = csv::Reader::from_reader(summary.as_bytes());
         for rec in r.records() {
-            assert_eq!(rec.unwrap().len(), 12);
+            assert_eq!(rec.unwrap().len(), 13);
         }
         assert!(lines[2].starts_with("1000,none,avg_platoon_length,2.5,,1,,,2.6,"));
     }

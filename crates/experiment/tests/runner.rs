@@ -270,7 +270,8 @@ fn sensitivity_files_have_the_expected_shape() {
             "paper",
             "difference",
             "relative_difference",
-            "paper_source"
+            "paper_source",
+            "runs_with_collisions"
         ]
     );
     let rows: Vec<csv::StringRecord> = r.records().map(|x| x.unwrap()).collect();

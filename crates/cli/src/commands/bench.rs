@@ -51,7 +51,7 @@ pub fn bench(args: &BenchArgs, quiet: bool) -> Result<()> {
     };
     let config = load_with(SCENARIO, &overrides).context("cannot set up the benchmark")?;
     if !args.json {
-        println!(
+        outln!(
             "bench: {} road, {} lanes x {} m, {} % CAV, {} veh/h/lane, {} s at dt {} s, {} repetition(s)",
             SCENARIO,
             config.road.lanes,
@@ -61,7 +61,7 @@ pub fn bench(args: &BenchArgs, quiet: bool) -> Result<()> {
             config.duration_s,
             config.dt_s,
             args.repeat
-        );
+        )?;
     }
     let mut reps = Vec::new();
     for i in 0..args.repeat {
@@ -88,7 +88,7 @@ pub fn bench(args: &BenchArgs, quiet: bool) -> Result<()> {
             vehicles_entered: s.vehicles_entered,
         };
         if !args.json {
-            println!(
+            outln!(
                 "run {}: {} vehicle updates/s ({} updates, {} steps, {} vehicles entered, {:.3} s wall)",
                 i + 1,
                 si(rep.updates_per_second),
@@ -96,7 +96,7 @@ pub fn bench(args: &BenchArgs, quiet: bool) -> Result<()> {
                 rep.steps,
                 rep.vehicles_entered,
                 rep.wall_seconds
-            );
+            )?;
         }
         reps.push(rep);
     }
@@ -119,13 +119,13 @@ pub fn bench(args: &BenchArgs, quiet: bool) -> Result<()> {
             best_updates_per_second: best,
             median_updates_per_second: median,
         };
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        outln!("{}", serde_json::to_string_pretty(&report)?)?;
     } else {
-        println!(
+        outln!(
             "vehicle updates per second: best {}, median {}",
             si(best),
             si(median)
-        );
+        )?;
     }
     Ok(())
 }

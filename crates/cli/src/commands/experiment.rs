@@ -34,17 +34,17 @@ pub fn experiment(args: &ExperimentArgs, quiet: bool) -> Result<()> {
     s.tolerance_pct = args.tolerance;
     network(&mut s, &args.network, name)?;
     let out = run_experiment(name, &s).with_context(|| format!("experiment {name} failed"))?;
-    print!("{}", describe(&out));
+    crate::stdout::print(&describe(&out))?;
     if let Some(p) = &s.write_table {
         let what = if name == ExperimentName::CalibrateFlowAware {
             "the chosen Flow-Aware thresholds"
         } else {
             "the demand scales found"
         };
-        println!(
+        outln!(
             "Wrote {what} to {}; rebuild platoonsim to make them the default.",
             p.display()
-        );
+        )?;
     }
     Ok(())
 }

@@ -10,16 +10,19 @@ pub mod time_space;
 
 use crate::args::{Cli, Command};
 use anyhow::Result;
+use std::process::ExitCode;
 
-/// Run the chosen command.
-pub fn dispatch(cli: Cli) -> Result<()> {
-    match cli.command {
-        Command::Run(args) => run::run(&args, cli.quiet),
+/// Run the chosen command; the exit code of a command that succeeded (`run` has its own for
+/// collisions).
+pub fn dispatch(cli: Cli) -> Result<ExitCode> {
+    let done = match cli.command {
+        Command::Run(args) => return run::run(&args, cli.quiet),
         Command::Bench(args) => bench::bench(&args, cli.quiet),
         Command::Scenarios => scenarios::scenarios(),
         Command::Show(args) => show::show(&args),
         Command::Experiment(args) => experiment::experiment(&args, cli.quiet),
         Command::Reproduce(args) => reproduce::reproduce(&args, cli.quiet),
         Command::TimeSpace(args) => time_space::time_space(&args),
-    }
+    };
+    done.map(|()| ExitCode::SUCCESS)
 }

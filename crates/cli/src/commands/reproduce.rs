@@ -82,14 +82,14 @@ pub fn reproduce(args: &ReproduceArgs, quiet: bool) -> Result<()> {
     let mut outputs = Vec::new();
     for name in ExperimentName::ALL {
         let out = run_experiment(name, &s).with_context(|| format!("experiment {name} failed"))?;
-        print!("{}", describe(&out));
+        crate::stdout::print(&describe(&out))?;
         outputs.push(out);
     }
     let (sr99, demand) = network_settings(args, &s);
     for (name, settings) in ExperimentName::NETWORK.into_iter().zip([&sr99, &demand]) {
         let out =
             run_experiment(name, settings).with_context(|| format!("experiment {name} failed"))?;
-        print!("{}", describe(&out));
+        crate::stdout::print(&describe(&out))?;
         outputs.push(out);
     }
     let mut command = String::from("platoonsim reproduce");
@@ -121,12 +121,12 @@ pub fn reproduce(args: &ReproduceArgs, quiet: bool) -> Result<()> {
         wall_seconds: wall,
     };
     let (md, html) = report::write(&args.grid.out, &input).context("cannot write the report")?;
-    println!(
+    outln!(
         "Report: {} and {}. Total wall time {:.1} s ({:.1} min).",
         md.display(),
         html.display(),
         wall,
         wall / 60.0
-    );
+    )?;
     Ok(())
 }

@@ -1,10 +1,13 @@
 //! `platoonsim run`: one scenario, one seed, files in the output directory.
 
 use crate::args::RunArgs;
-use crate::{output, progress};
+use crate::{output, progress, EXIT_COLLISIONS};
 use anyhow::{Context, Result};
+use std::process::ExitCode;
 
-pub fn run(args: &RunArgs, quiet: bool) -> Result<()> {
+/// Simulate and write the files; the exit code is [`EXIT_COLLISIONS`] if the run had
+/// collisions (a failed run: its results are not physical) unless `--allow-collisions`.
+pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
     let config = args.scenario.load()?;
     let recording = args.recording(&config)?;
     // Create the directory before simulating, so that an unwritable one fails at once.
@@ -17,7 +20,18 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<()> {
         .with_context(|| format!("simulation of scenario '{}' failed", config.name))?;
 
     output::write_run(&args.out, &config, &out)?;
-    println!("{}", output::paragraph(&config, &out.summary, &args.out));
+    // The warning goes first, so that it is on stderr even if stdout is closed below.
+    if let Some(first) = out.collision_events.first() {
+        errln!(
+            "warning: {} collision{} (the run is invalid: vehicles overlapped or ran past the \
+             end of a lane); the first: {}; every one in {}",
+            out.summary.collisions,
+            if out.summary.collisions == 1 { "" } else { "s" },
+            output::describe_collision(first),
+            args.out.join(output::COLLISIONS_FILE).display()
+        );
+    }
+    outln!("{}", output::paragraph(&config, &out.summary, &args.out))?;
     let mut extra = Vec::new();
     if let Some(trips) = &out.trips {
         extra.push(format!("trips.csv ({} rows)", trips.len()));
@@ -26,13 +40,10 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<()> {
         extra.push(format!("trajectories.csv ({} rows)", rows.len()));
     }
     if !extra.is_empty() {
-        println!("Also written: {}.", extra.join(", "));
+        outln!("Also written: {}.", extra.join(", "))?;
     }
-    if out.summary.collisions > 0 {
-        eprintln!(
-            "warning: {} collisions (vehicle pairs overlapping in a step); see summary.json",
-            out.summary.collisions
-        );
+    if out.summary.collisions > 0 && !args.allow_collisions {
+        return Ok(ExitCode::from(EXIT_COLLISIONS));
     }
-    Ok(())
+    Ok(ExitCode::SUCCESS)
 }

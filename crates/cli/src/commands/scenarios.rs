@@ -11,10 +11,10 @@ pub fn scenarios() -> Result<()> {
             .split_whitespace()
             .collect::<Vec<_>>()
             .join(" ");
-        println!("{:width$}  {}", b.name, description);
+        outln!("{:width$}  {}", b.name, description)?;
     }
-    println!(
+    outln!(
         "\nUse a name with `platoonsim run NAME`; `platoonsim show NAME` prints it as a scenario file to copy and edit."
-    );
+    )?;
     Ok(())
 }

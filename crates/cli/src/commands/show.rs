@@ -3,7 +3,6 @@
 use crate::args::{ShowArgs, ShowFormat};
 use crate::output;
 use anyhow::Result;
-use std::io::Write;
 
 pub fn show(args: &ShowArgs) -> Result<()> {
     let config = args.scenario.load()?;
@@ -17,13 +16,5 @@ pub fn show(args: &ShowArgs) -> Result<()> {
         ),
         ShowFormat::Json => String::from_utf8(output::json(&config)?)?,
     };
-    let mut stdout = std::io::stdout().lock();
-    // A closed pipe (`| head`) is not an error worth reporting.
-    match stdout
-        .write_all(text.as_bytes())
-        .and_then(|_| stdout.flush())
-    {
-        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
-        other => Ok(other?),
-    }
+    Ok(crate::stdout::print(&text)?)
 }

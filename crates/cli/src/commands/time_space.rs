@@ -23,7 +23,7 @@ pub fn time_space(args: &TimeSpaceArgs) -> Result<()> {
     let stem = args.stem(lane);
     let files = platoonsim_plot::time_space(&ts, &stem)?;
     for f in files {
-        println!("{}", f.display());
+        outln!("{}", f.display())?;
     }
     Ok(())
 }

@@ -20,6 +20,7 @@ mod sr99_figures;
 use crate::atomic::write_atomic;
 use crate::design::{self, Cell, Labels, Point};
 use crate::runner::{self, Executor, Outcome, Runner};
+use crate::safety;
 use crate::table::{self, SummaryRow};
 use crate::{Error, VERSION};
 use platoonsim_scenario::StrategyKind;
@@ -323,6 +324,7 @@ pub fn run_experiment_with(
         ExperimentName::Sr99 => sr99::markdown(settings, &cells, &rows),
         ExperimentName::Sr99Demand => sr99_demand::markdown(settings, &cells, &rows, &extra),
     };
+    let (body, checks) = with_safety(name, &cells, &outcomes, body, checks);
     let figures = match name {
         ExperimentName::Capacity => figures::capacity(&dir, &cells, &rows)?,
         ExperimentName::Sensitivity => figures::sensitivity(&dir, &cells, &rows)?,
@@ -373,6 +375,50 @@ pub fn run_experiment_with(
     out.wall_seconds = start.elapsed().as_secs_f64();
     write_outputs(&out)?;
     Ok(out)
+}
+
+/// The experiment's body and checks with the safety parts added: a warning first if any run
+/// collided, a `## Safety` table last (not for `calibrate-flow-aware`, whose grid of
+/// thresholds would make it hundreds of rows; its warning still lists the failed cells), and
+/// a check that no run collided.
+pub(crate) fn with_safety(
+    name: ExperimentName,
+    cells: &[Cell],
+    outcomes: &[Outcome],
+    body: String,
+    mut checks: Vec<Check>,
+) -> (String, Vec<Check>) {
+    // Cells of one point (differing only in strategy) on adjacent rows.
+    let group: Option<&[&str]> = match name {
+        ExperimentName::Capacity => Some(&["penetration"]),
+        ExperimentName::Sensitivity => Some(&["demand_vphpl"]),
+        ExperimentName::FlowAware => Some(&[]),
+        ExperimentName::Sr99 => Some(&["penetration"]),
+        ExperimentName::Sr99Demand => Some(&["penetration", "demand_scale"]),
+        ExperimentName::CalibrateFlowAware => None,
+    };
+    let mut md = safety::warning_md(cells, outcomes);
+    md.push_str(&body);
+    if let Some(group) = group {
+        md.push('\n');
+        md.push_str(&safety::section_md(cells, outcomes, group));
+    }
+    let failed: usize = (0..cells.len())
+        .map(|c| safety::collided_runs(outcomes, c))
+        .sum();
+    checks.push(Check {
+        statement: if failed == 0 {
+            format!("no run had a collision ({} runs)", outcomes.len())
+        } else {
+            format!(
+                "no run had a collision: {failed} of {} runs had collisions, their cells are \
+                 invalid (see the warning in summary.md)",
+                outcomes.len()
+            )
+        },
+        passed: failed == 0,
+    });
+    (md, checks)
 }
 
 fn write_file(path: &Path, bytes: &[u8]) -> Result<(), Error> {
