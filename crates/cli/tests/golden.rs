@@ -217,7 +217,10 @@ fn outputs_match_the_golden_digests() {
     assert_eq!(names, want, "the runs in {} differ. {how}", path.display());
     let mut changed = Vec::new();
     for (d, (_, sum, det)) in digests.iter().zip(&stored) {
-        let (now_sum, now_det) = (format!("{:016x}", d.summary), format!("{:016x}", d.detectors));
+        let (now_sum, now_det) = (
+            format!("{:016x}", d.summary),
+            format!("{:016x}", d.detectors),
+        );
         if &now_sum != sum {
             changed.push(format!(
                 "{}: summary.json (without wall_seconds) changed: stored {sum}, now {now_sum}",

@@ -16,9 +16,7 @@
 //! `platoonsim-scenario` (the sim crate does not), so no dev-dependency is needed.
 
 use platoonsim_scenario::{load_with, Overrides, StrategyKind};
-use platoonsim_sim::{
-    run, run_recording, Config, Output, Recording, Summary, TrajectorySpec,
-};
+use platoonsim_sim::{run, run_recording, Config, Output, Recording, Summary, TrajectorySpec};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::Instant;
@@ -329,7 +327,10 @@ fn braking_in_hard_cut_ins_stays_within_the_emergency_limit() {
         (9.0, &[]),
         (
             6.0,
-            &["human.emergency_decel_mps2=6.0", "cav.emergency_decel_mps2=6.0"],
+            &[
+                "human.emergency_decel_mps2=6.0",
+                "cav.emergency_decel_mps2=6.0",
+            ],
         ),
     ];
     let t = Instant::now();
