@@ -264,7 +264,6 @@ fn flow_aware_gate_is_exactly_pd_when_always_met_and_exactly_baseline_when_never
 /// The 3 -> 2 lane drop at 0 and 50 % CAV, seeds 1 and 2 (60 min): no collision, no vehicle
 /// braking harder than the 9 m/s² emergency limit.
 #[test]
-#[ignore = "until the lane-drop fix lands: today the lane drop collides (2-9 events per run)"]
 fn lane_drop_is_collision_free() {
     let path = lane_drop_path();
     let cases: Vec<(f64, u64)> = [0.0, 0.5]
