@@ -3,6 +3,7 @@
 //! something the file gave).
 
 use crate::error::{Problem, ScenarioError};
+use crate::limits;
 use crate::overrides::StrategyKind;
 use crate::raw::{num, render, RawScenario};
 use platoonsim_model::dist::Dist;
@@ -32,7 +33,7 @@ pub mod defaults {
     pub const SPEED_THRESHOLD_KMH: f64 = 90.0;
     pub const RADIUS_M: f64 = 1500.0;
     /// Highest demand accepted (veh/h/lane); above it the entry queue would only grow.
-    pub const MAX_DEMAND_VPHPL: f64 = 10_000.0;
+    pub const MAX_DEMAND_VPHPL: f64 = crate::limits::MAX_DEMAND_VPHPL;
     /// Lanes the engine supports.
     pub const MAX_LANES: u32 = 8;
 }
@@ -222,11 +223,24 @@ pub fn validate(
     let dt_ok = c.check(
         "run.dt_s",
         dt,
-        dt.v > 0.0 && dt.v <= 1.0,
-        "must be in (0, 1] seconds",
+        (limits::DT_MIN_S..=limits::DT_MAX_S).contains(&dt.v),
+        format!(
+            "must be in [{}, {}] s ({})",
+            num(limits::DT_MIN_S),
+            num(limits::DT_MAX_S),
+            limits::DT_REASON
+        ),
     );
     let duration = c.opt(raw.run.duration_s, defaults::DURATION_S);
-    let duration_ok = c.positive("run.duration_s", duration);
+    let duration_ok = c.check(
+        "run.duration_s",
+        duration,
+        duration.v > 0.0 && duration.v <= limits::MAX_DURATION_S,
+        format!(
+            "must be in (0, {}] s (at most 7 simulated days)",
+            num(limits::MAX_DURATION_S)
+        ),
+    );
     let warmup = c.opt(raw.run.warmup_s, defaults::WARMUP_S);
     if duration_ok {
         c.check(
@@ -384,7 +398,14 @@ pub fn validate(
             "at least one [[detectors]] entry (name, position_m) is required",
         );
     }
-    let mut detectors = Vec::with_capacity(raw.detectors.len());
+    if raw.detectors.len() > limits::MAX_DETECTORS {
+        c.push(
+            "detectors",
+            format!("({} entries)", raw.detectors.len()),
+            format!("at most {} [[detectors]] entries", limits::MAX_DETECTORS),
+        );
+    }
+    let mut detectors = Vec::with_capacity(raw.detectors.len().min(limits::MAX_DETECTORS));
     for (i, d) in raw.detectors.iter().enumerate() {
         let field = format!("detectors[{i}].name");
         let name = match &d.name {
@@ -494,6 +515,24 @@ pub fn validate(
     } else {
         c.positive("measurement.aggregation_s", aggregation);
     }
+    // Every interval of every detector and lane is kept until the end of the run.
+    if duration_ok && aggregation.v > 0.0 && aggregation.v.is_finite() {
+        let records =
+            (duration.v / aggregation.v).ceil() * detectors.len() as f64 * f64::from(lanes + 1);
+        if records > limits::MAX_DETECTOR_RECORDS {
+            c.push(
+                "measurement.aggregation_s",
+                aggregation.shown(),
+                format!(
+                    "gives {} detector records (run.duration_s / aggregation_s × {} detectors × \
+                     (lanes + 1)); at most {}: use a longer interval or fewer detectors",
+                    num(records),
+                    detectors.len(),
+                    num(limits::MAX_DETECTOR_RECORDS)
+                ),
+            );
+        }
+    }
 
     // --- [strategy]
     let s = &raw.strategy;
@@ -560,11 +599,32 @@ pub fn validate(
         ),
     );
     let flow = c.opt(s.flow_threshold_vphpl, flow_default);
-    c.positive("strategy.flow_threshold_vphpl", flow);
+    c.check(
+        "strategy.flow_threshold_vphpl",
+        flow,
+        flow.v > 0.0 && flow.v <= limits::MAX_FLOW_THRESHOLD_VPHPL,
+        format!(
+            "must be in (0, {}] veh/h/lane",
+            num(limits::MAX_FLOW_THRESHOLD_VPHPL)
+        ),
+    );
     let speed = c.opt(s.speed_threshold_kmh, speed_default);
-    c.non_negative("strategy.speed_threshold_kmh", speed);
+    c.check(
+        "strategy.speed_threshold_kmh",
+        speed,
+        (0.0..=limits::MAX_SPEED_THRESHOLD_KMH).contains(&speed.v),
+        format!(
+            "must be in [0, {}] km/h",
+            num(limits::MAX_SPEED_THRESHOLD_KMH)
+        ),
+    );
     let radius = c.opt(s.radius_m, defaults::RADIUS_M);
-    c.positive("strategy.radius_m", radius);
+    c.check(
+        "strategy.radius_m",
+        radius,
+        radius.v > 0.0 && radius.v <= limits::MAX_LENGTH_M,
+        format!("must be in (0, {}] m", num(limits::MAX_LENGTH_M)),
+    );
     let pd = PdConfig {
         zone_start_m: zs.v - frame.origin,
         zone_end_m: ze.v - frame.origin,
@@ -594,6 +654,7 @@ pub fn validate(
     if all_finite(&mut c, "lane_change", &raw.lane_change) {
         check_lane_change(&mut c, &raw.lane_change, length);
     }
+    all_finite(&mut c, "safety", &raw.safety);
 
     let config = Config {
         name,
@@ -687,7 +748,14 @@ fn road_size(c: &mut Checker, raw: &RawScenario) -> (u32, Option<f64>) {
         "the road length in metres, > 0",
     );
     let length = length
-        .filter(|&l| c.positive("road.length_m", l))
+        .filter(|&l| {
+            c.check(
+                "road.length_m",
+                l,
+                l.v > 0.0 && l.v <= limits::MAX_LENGTH_M,
+                format!("must be in (0, {}] m", num(limits::MAX_LENGTH_M)),
+            )
+        })
         .map(|n| n.v);
     (lanes, length)
 }
