@@ -119,7 +119,7 @@ fn demand_offset(
     intervals: Option<usize>,
 ) -> Option<f64> {
     let field = "network.demand_offset_s";
-    if !(interval.v.is_finite() && interval.v > 0.0) {
+    if !(limits::MIN_INTERVAL_S..=limits::MAX_DURATION_S).contains(&interval.v) {
         // network.interval_s is reported; only the offset's own range can be checked.
         c.non_negative(field, offset);
         return None;
