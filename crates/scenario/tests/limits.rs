@@ -44,7 +44,8 @@ fn dt_must_divide_the_detector_interval() {
 #[test]
 fn engine_check_repeats_the_essential_limits() {
     let good = load("homogeneous").unwrap();
-    let cases: [(&str, fn(&mut platoonsim_sim::Config)); 4] = [
+    type Edit = fn(&mut platoonsim_sim::Config);
+    let cases: [(&str, Edit); 4] = [
         ("run.dt_s = 1: must be in [0.05, 0.1] s", |c| c.dt_s = 1.0),
         (
             "run.duration_s = 1000000000000: must be in [0, 604800]",

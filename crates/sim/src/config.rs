@@ -441,7 +441,10 @@ impl Config {
                 )
             }));
             for (name, series, hi) in entrances {
-                if let Some(k) = series.iter().position(|q| !(q * net.demand_scale <= hi)) {
+                if let Some(k) = series
+                    .iter()
+                    .position(|q| !(0.0..=hi).contains(&(q * net.demand_scale)))
+                {
                     return Err(format!(
                         "{name}[{k}] = {} (x demand scale {}): must be at most {hi} veh/h \
                          ({MAX_DEMAND_VPHPL} veh/h per entrance lane)",
