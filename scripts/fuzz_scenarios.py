@@ -184,6 +184,8 @@ def main():
     ap.add_argument("--cases", type=int, default=10_000, help="parser cases (show)")
     ap.add_argument("--runs", type=int, default=400, help="short runs among them")
     ap.add_argument("--bin", default=str(ROOT / "target" / "release" / "platoonsim"))
+    ap.add_argument("--run-duration", type=float, default=60.0,
+                    help="simulated seconds of the short runs")
     ap.add_argument("--timeout", type=float, default=20.0, help="seconds per process")
     ap.add_argument("--mem-gib", type=int, default=4, help="address-space limit per process")
     ap.add_argument("--jobs", type=int, default=2)
@@ -209,7 +211,8 @@ def main():
             body = mutate(texts[stem], r, mild=r.random() < 0.7)
             f = d / f"{stem}.toml"
             f.write_bytes(body if isinstance(body, bytes) else body.encode())
-            argv = ["run", str(f), "--duration", "60", "--warmup", "0", "-q", "--out", "out"]
+            argv = ["run", str(f), "--duration", f"{args.run_duration:g}", "--warmup", "0", "-q",
+                    "--out", "out"]
             cases.append({"kind": "run", "argv": argv, "dir": str(d), "seed_of": stem})
         elif r.random() < 0.25:  # --set on a built-in
             name = r.choice(builtins)
@@ -238,8 +241,9 @@ def main():
     for n, (case, detail) in enumerate(violations + collisions):
         dst = keep / f"case{n}"
         shutil.copytree(case["dir"], dst, dirs_exist_ok=True, ignore=shutil.ignore_patterns("out"))
+        argv = [a.replace(case["dir"], str(dst.resolve())) for a in case["argv"]]
         (dst / "REPRODUCE.txt").write_text(
-            "platoonsim " + " ".join(case["argv"]) + "\n\n" + detail + "\n")
+            "platoonsim " + " ".join(argv) + "\n\n" + detail + "\n")
     shutil.rmtree(tmp, ignore_errors=True)
 
     print(f"seed {args.seed}: {len(cases)} cases ({args.cases} parser, {args.runs} runs), "

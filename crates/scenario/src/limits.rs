@@ -45,3 +45,7 @@ pub const MAX_MODEL_MAGNITUDE: f64 = 1_000_000.0;
 /// (km/h) that mean anything.
 pub const MAX_FLOW_THRESHOLD_VPHPL: f64 = MAX_DEMAND_VPHPL;
 pub const MAX_SPEED_THRESHOLD_KMH: f64 = 1_000.0;
+/// Most vehicles a run may bring (the expected arrivals at every entrance over the run):
+/// 350 times the 4-hour SR-99 run. A vehicle waiting in an entry queue takes some 300 bytes,
+/// so an entrance overloaded for days could otherwise take gigabytes.
+pub const MAX_ARRIVALS: f64 = 10_000_000.0;

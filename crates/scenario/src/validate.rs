@@ -380,6 +380,27 @@ pub fn validate(
         );
     }
 
+    // --- the vehicles the run would bring: each one waiting in an entry queue is held in
+    // memory, so the total is bounded even when every rate and the duration are in range.
+    if duration_ok && c.problems.is_empty() {
+        let arrivals = match &net {
+            Some(v) => expected_network_arrivals(&v.network, duration.v),
+            None => raw.demand.vph_per_lane.unwrap_or(0.0) * f64::from(lanes) * duration.v / 3600.0,
+        };
+        if arrivals > limits::MAX_ARRIVALS {
+            c.push(
+                "run.duration_s",
+                duration.shown(),
+                format!(
+                    "with this demand the run brings about {} vehicles; at most {} (a vehicle \
+                     waiting at an entrance is held in memory): shorten the run or lower the demand",
+                    num(arrivals.round()),
+                    num(limits::MAX_ARRIVALS)
+                ),
+            );
+        }
+    }
+
     // --- [[detectors]] (with a [network], generated ones first; these are added)
     let generated = match &net {
         Some(v) => crate::network::detectors(
@@ -758,4 +779,52 @@ fn road_size(c: &mut Checker, raw: &RawScenario) -> (u32, Option<f64>) {
         })
         .map(|n| n.v);
     (lanes, length)
+}
+
+/// The expected number of arrivals at every entrance of a network over `duration_s` (the last
+/// interval's demand holds past the end of the series, as in the engine).
+fn expected_network_arrivals(n: &platoonsim_sim::config::Network, duration_s: f64) -> f64 {
+    let over = |series: &[f64]| -> f64 {
+        let mut total = 0.0;
+        let mut t = 0.0;
+        for (k, q) in series.iter().enumerate() {
+            if t >= duration_s {
+                break;
+            }
+            let end = if k + 1 == series.len() {
+                duration_s
+            } else {
+                (t + n.interval_s).min(duration_s)
+            };
+            total += q * (end - t) / 3600.0;
+            t = end;
+        }
+        total
+    };
+    let ramps: f64 = n.on_ramps.iter().map(|r| over(&r.demand_vph)).sum();
+    (over(&n.mainline_vph) + ramps) * n.demand_scale
+}
+
+#[cfg(test)]
+mod tests {
+    use super::expected_network_arrivals;
+
+    #[test]
+    fn network_arrivals_integrate_the_series_and_hold_the_last_value() {
+        let c = crate::load("sr99").unwrap();
+        let n = c.road.network.unwrap();
+        let per_interval = |k: usize| {
+            let ramps: f64 = n.on_ramps.iter().map(|r| r.demand_vph[k]).sum();
+            (n.mainline_vph[k] + ramps) * n.demand_scale * n.interval_s / 3600.0
+        };
+        let len = n.mainline_vph.len();
+        let series: f64 = (0..len).map(per_interval).sum();
+        let span = len as f64 * n.interval_s;
+        assert!((expected_network_arrivals(&n, span) - series).abs() < 1e-6 * series);
+        // Half the first interval; then one more interval at the last value.
+        let half = expected_network_arrivals(&n, n.interval_s / 2.0);
+        assert!((half - per_interval(0) / 2.0).abs() < 1e-6 * half);
+        let more = expected_network_arrivals(&n, span + n.interval_s);
+        assert!((more - series - per_interval(len - 1)).abs() < 1e-6 * more);
+    }
 }

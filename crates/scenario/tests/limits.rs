@@ -219,3 +219,26 @@ fn trajectory_memory_is_estimated_and_refused_above_4_gib() {
         .check(&c)
         .unwrap();
 }
+
+#[test]
+fn the_vehicles_a_run_brings_are_bounded() {
+    // Every rate and the duration in range, but 8 lanes at 10,000 veh/h for 7 days bring
+    // 13.4 million vehicles, most of them waiting in the entry queue.
+    let p = only(with_set(
+        HOMOGENEOUS,
+        &[
+            "road.lanes=8",
+            "demand.vph_per_lane=10000",
+            "run.duration_s=604800",
+        ],
+    ));
+    assert_eq!(
+        p,
+        "run.duration_s = 604800: with this demand the run brings about 13440000 vehicles; at \
+         most 10000000 (a vehicle waiting at an entrance is held in memory): shorten the run or \
+         lower the demand"
+    );
+    assert!(with_set(HOMOGENEOUS, &["run.duration_s=604800"]).is_ok());
+    // A network: the series integrated over the run, the last value holding past its end.
+    assert!(with_set(SR99, &["run.duration_s=86400"]).is_ok());
+}
