@@ -37,6 +37,16 @@ pub enum ScenarioError {
         source: std::io::Error,
     },
 
+    /// Larger than [`crate::limits::MAX_FILE_BYTES`]; refused before parsing, so that a huge
+    /// file cannot take gigabytes of memory first.
+    #[error("{origin}: {bytes} bytes: a scenario must be at most {limit} bytes (1 MiB; docs/robustness.md)")]
+    TooLarge {
+        origin: String,
+        /// The size found (at least; reading stops just past the limit).
+        bytes: u64,
+        limit: usize,
+    },
+
     /// Not valid TOML (the parser's message carries the line and column).
     #[error("{origin}: not valid TOML: {message}")]
     Syntax { origin: String, message: String },

@@ -40,6 +40,7 @@
 pub mod demand_scales;
 pub mod error;
 pub mod format;
+pub mod limits;
 pub mod network;
 pub mod overrides;
 mod pen_table;
@@ -122,10 +123,7 @@ pub fn resolve(name_or_path: &str) -> Result<Source, ScenarioError> {
                 .join(", "),
         });
     }
-    let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = read_limited(path)?;
     let default_name = path
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
@@ -134,6 +132,39 @@ pub fn resolve(name_or_path: &str) -> Result<Source, ScenarioError> {
         origin: path.display().to_string(),
         default_name,
         text,
+    })
+}
+
+/// A scenario file's text, refused without reading further once it passes
+/// [`limits::MAX_FILE_BYTES`] (a file that grows while read is caught too).
+fn read_limited(path: &Path) -> Result<String, ScenarioError> {
+    use std::io::Read;
+    let io = |source| ScenarioError::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let file = std::fs::File::open(path).map_err(io)?;
+    let size = file.metadata().map_err(io)?.len();
+    let too_large = |bytes: u64| ScenarioError::TooLarge {
+        origin: path.display().to_string(),
+        bytes,
+        limit: limits::MAX_FILE_BYTES,
+    };
+    if size > limits::MAX_FILE_BYTES as u64 {
+        return Err(too_large(size));
+    }
+    let mut bytes = Vec::new();
+    file.take(limits::MAX_FILE_BYTES as u64 + 1)
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
+    if bytes.len() > limits::MAX_FILE_BYTES {
+        return Err(too_large(bytes.len() as u64));
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        io(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("not UTF-8 text ({e})"),
+        ))
     })
 }
 
@@ -170,6 +201,14 @@ pub fn raw_from_toml(
     origin: &str,
     overrides: &Overrides,
 ) -> Result<RawScenario, ScenarioError> {
+    // The same bound as for files, for text from any other source.
+    if text.len() > limits::MAX_FILE_BYTES {
+        return Err(ScenarioError::TooLarge {
+            origin: origin.to_string(),
+            bytes: text.len() as u64,
+            limit: limits::MAX_FILE_BYTES,
+        });
+    }
     let mut doc = raw::parse_document(text, origin)?;
     overrides.apply(&mut doc)?;
     raw::from_document(&doc, origin)

@@ -167,6 +167,18 @@ pub fn parse_set(arg: &str) -> Result<(Vec<Segment>, Value), ScenarioError> {
         arg: arg.to_string(),
         reason,
     };
+    // A value as large as a whole scenario file is refused before it is parsed, as a file is.
+    if arg.len() > crate::limits::MAX_FILE_BYTES {
+        let head: String = arg.chars().take(40).collect();
+        return Err(ScenarioError::Override {
+            arg: format!("{head}…"),
+            reason: format!(
+                "{} bytes: a --set argument must be at most {} bytes (1 MiB), like a scenario file",
+                arg.len(),
+                crate::limits::MAX_FILE_BYTES
+            ),
+        });
+    }
     let (key, raw_value) = arg
         .split_once('=')
         .ok_or_else(|| err("expected KEY=VALUE, e.g. run.seed=3 or human.buffer_s=0.2".into()))?;

@@ -453,12 +453,15 @@ pub fn render(v: &Value) -> String {
     v.to_string()
 }
 
-/// A float the way a user writes it: `7000`, `1.5`, `nan`, `inf`.
+/// A float the way a user writes it: `7000`, `1.5`, `nan`, `inf`; with an exponent (`1e-300`,
+/// `4.3e18`) when the decimal form would be long, so that a message stays readable.
 pub fn num(v: f64) -> String {
     if v.is_nan() {
         "nan".into()
     } else if v.is_infinite() {
         if v > 0.0 { "inf" } else { "-inf" }.into()
+    } else if v != 0.0 && !(1e-6..1e16).contains(&v.abs()) {
+        format!("{v:e}")
     } else {
         format!("{v}")
     }

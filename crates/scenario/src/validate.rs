@@ -3,6 +3,7 @@
 //! something the file gave).
 
 use crate::error::{Problem, ScenarioError};
+use crate::limits;
 use crate::overrides::StrategyKind;
 use crate::raw::{num, render, RawScenario};
 use platoonsim_model::dist::Dist;
@@ -32,7 +33,7 @@ pub mod defaults {
     pub const SPEED_THRESHOLD_KMH: f64 = 90.0;
     pub const RADIUS_M: f64 = 1500.0;
     /// Highest demand accepted (veh/h/lane); above it the entry queue would only grow.
-    pub const MAX_DEMAND_VPHPL: f64 = 10_000.0;
+    pub const MAX_DEMAND_VPHPL: f64 = crate::limits::MAX_DEMAND_VPHPL;
     /// Lanes the engine supports.
     pub const MAX_LANES: u32 = 8;
 }
@@ -222,11 +223,24 @@ pub fn validate(
     let dt_ok = c.check(
         "run.dt_s",
         dt,
-        dt.v > 0.0 && dt.v <= 1.0,
-        "must be in (0, 1] seconds",
+        (limits::DT_MIN_S..=limits::DT_MAX_S).contains(&dt.v),
+        format!(
+            "must be in [{}, {}] s ({})",
+            num(limits::DT_MIN_S),
+            num(limits::DT_MAX_S),
+            limits::DT_REASON
+        ),
     );
     let duration = c.opt(raw.run.duration_s, defaults::DURATION_S);
-    let duration_ok = c.positive("run.duration_s", duration);
+    let duration_ok = c.check(
+        "run.duration_s",
+        duration,
+        duration.v > 0.0 && duration.v <= limits::MAX_DURATION_S,
+        format!(
+            "must be in (0, {}] s (at most 7 simulated days)",
+            num(limits::MAX_DURATION_S)
+        ),
+    );
     let warmup = c.opt(raw.run.warmup_s, defaults::WARMUP_S);
     if duration_ok {
         c.check(
@@ -366,6 +380,27 @@ pub fn validate(
         );
     }
 
+    // --- the vehicles the run would bring: each one waiting in an entry queue is held in
+    // memory, so the total is bounded even when every rate and the duration are in range.
+    if duration_ok && c.problems.is_empty() {
+        let arrivals = match &net {
+            Some(v) => expected_network_arrivals(&v.network, duration.v),
+            None => raw.demand.vph_per_lane.unwrap_or(0.0) * f64::from(lanes) * duration.v / 3600.0,
+        };
+        if arrivals > limits::MAX_ARRIVALS {
+            c.push(
+                "run.duration_s",
+                duration.shown(),
+                format!(
+                    "with this demand the run brings about {} vehicles; at most {} (a vehicle \
+                     waiting at an entrance is held in memory): shorten the run or lower the demand",
+                    num(arrivals.round()),
+                    num(limits::MAX_ARRIVALS)
+                ),
+            );
+        }
+    }
+
     // --- [[detectors]] (with a [network], generated ones first; these are added)
     let generated = match &net {
         Some(v) => crate::network::detectors(
@@ -384,7 +419,14 @@ pub fn validate(
             "at least one [[detectors]] entry (name, position_m) is required",
         );
     }
-    let mut detectors = Vec::with_capacity(raw.detectors.len());
+    if raw.detectors.len() > limits::MAX_DETECTORS {
+        c.push(
+            "detectors",
+            format!("({} entries)", raw.detectors.len()),
+            format!("at most {} [[detectors]] entries", limits::MAX_DETECTORS),
+        );
+    }
+    let mut detectors = Vec::with_capacity(raw.detectors.len().min(limits::MAX_DETECTORS));
     for (i, d) in raw.detectors.iter().enumerate() {
         let field = format!("detectors[{i}].name");
         let name = match &d.name {
@@ -494,6 +536,24 @@ pub fn validate(
     } else {
         c.positive("measurement.aggregation_s", aggregation);
     }
+    // Every interval of every detector and lane is kept until the end of the run.
+    if duration_ok && aggregation.v > 0.0 && aggregation.v.is_finite() {
+        let records =
+            (duration.v / aggregation.v).ceil() * detectors.len() as f64 * f64::from(lanes + 1);
+        if records > limits::MAX_DETECTOR_RECORDS {
+            c.push(
+                "measurement.aggregation_s",
+                aggregation.shown(),
+                format!(
+                    "gives {} detector records (run.duration_s / aggregation_s × {} detectors × \
+                     (lanes + 1)); at most {}: use a longer interval or fewer detectors",
+                    num(records),
+                    detectors.len(),
+                    num(limits::MAX_DETECTOR_RECORDS)
+                ),
+            );
+        }
+    }
 
     // --- [strategy]
     let s = &raw.strategy;
@@ -560,11 +620,32 @@ pub fn validate(
         ),
     );
     let flow = c.opt(s.flow_threshold_vphpl, flow_default);
-    c.positive("strategy.flow_threshold_vphpl", flow);
+    c.check(
+        "strategy.flow_threshold_vphpl",
+        flow,
+        flow.v > 0.0 && flow.v <= limits::MAX_FLOW_THRESHOLD_VPHPL,
+        format!(
+            "must be in (0, {}] veh/h/lane",
+            num(limits::MAX_FLOW_THRESHOLD_VPHPL)
+        ),
+    );
     let speed = c.opt(s.speed_threshold_kmh, speed_default);
-    c.non_negative("strategy.speed_threshold_kmh", speed);
+    c.check(
+        "strategy.speed_threshold_kmh",
+        speed,
+        (0.0..=limits::MAX_SPEED_THRESHOLD_KMH).contains(&speed.v),
+        format!(
+            "must be in [0, {}] km/h",
+            num(limits::MAX_SPEED_THRESHOLD_KMH)
+        ),
+    );
     let radius = c.opt(s.radius_m, defaults::RADIUS_M);
-    c.positive("strategy.radius_m", radius);
+    c.check(
+        "strategy.radius_m",
+        radius,
+        radius.v > 0.0 && radius.v <= limits::MAX_LENGTH_M,
+        format!("must be in (0, {}] m", num(limits::MAX_LENGTH_M)),
+    );
     let pd = PdConfig {
         zone_start_m: zs.v - frame.origin,
         zone_end_m: ze.v - frame.origin,
@@ -594,6 +675,7 @@ pub fn validate(
     if all_finite(&mut c, "lane_change", &raw.lane_change) {
         check_lane_change(&mut c, &raw.lane_change, length);
     }
+    all_finite(&mut c, "safety", &raw.safety);
 
     let config = Config {
         name,
@@ -687,7 +769,62 @@ fn road_size(c: &mut Checker, raw: &RawScenario) -> (u32, Option<f64>) {
         "the road length in metres, > 0",
     );
     let length = length
-        .filter(|&l| c.positive("road.length_m", l))
+        .filter(|&l| {
+            c.check(
+                "road.length_m",
+                l,
+                l.v > 0.0 && l.v <= limits::MAX_LENGTH_M,
+                format!("must be in (0, {}] m", num(limits::MAX_LENGTH_M)),
+            )
+        })
         .map(|n| n.v);
     (lanes, length)
+}
+
+/// The expected number of arrivals at every entrance of a network over `duration_s` (the last
+/// interval's demand holds past the end of the series, as in the engine).
+fn expected_network_arrivals(n: &platoonsim_sim::config::Network, duration_s: f64) -> f64 {
+    let over = |series: &[f64]| -> f64 {
+        let mut total = 0.0;
+        let mut t = 0.0;
+        for (k, q) in series.iter().enumerate() {
+            if t >= duration_s {
+                break;
+            }
+            let end = if k + 1 == series.len() {
+                duration_s
+            } else {
+                (t + n.interval_s).min(duration_s)
+            };
+            total += q * (end - t) / 3600.0;
+            t = end;
+        }
+        total
+    };
+    let ramps: f64 = n.on_ramps.iter().map(|r| over(&r.demand_vph)).sum();
+    (over(&n.mainline_vph) + ramps) * n.demand_scale
+}
+
+#[cfg(test)]
+mod tests {
+    use super::expected_network_arrivals;
+
+    #[test]
+    fn network_arrivals_integrate_the_series_and_hold_the_last_value() {
+        let c = crate::load("sr99").unwrap();
+        let n = c.road.network.unwrap();
+        let per_interval = |k: usize| {
+            let ramps: f64 = n.on_ramps.iter().map(|r| r.demand_vph[k]).sum();
+            (n.mainline_vph[k] + ramps) * n.demand_scale * n.interval_s / 3600.0
+        };
+        let len = n.mainline_vph.len();
+        let series: f64 = (0..len).map(per_interval).sum();
+        let span = len as f64 * n.interval_s;
+        assert!((expected_network_arrivals(&n, span) - series).abs() < 1e-6 * series);
+        // Half the first interval; then one more interval at the last value.
+        let half = expected_network_arrivals(&n, n.interval_s / 2.0);
+        assert!((half - per_interval(0) / 2.0).abs() < 1e-6 * half);
+        let more = expected_network_arrivals(&n, span + n.interval_s);
+        assert!((more - series - per_interval(len - 1)).abs() < 1e-6 * more);
+    }
 }

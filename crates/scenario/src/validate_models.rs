@@ -2,19 +2,30 @@
 //! parameter, well-formed distributions), split from `validate.rs` by responsibility.
 
 use super::Checker;
+use crate::limits;
 use crate::raw::num;
 use platoonsim_model::cav::CavParams;
 use platoonsim_model::human::HumanDists;
 use platoonsim_model::lanechange::LaneChangeDists;
 use toml::Value;
 
-/// Report every non-finite number (TOML allows `nan` and `inf`) in a model section; true if
-/// there is none.
+/// Report every non-finite number (TOML allows `nan` and `inf`) and every number beyond
+/// [`limits::MAX_MODEL_MAGNITUDE`] in a model section; true if there is none.
 pub(super) fn all_finite<T: serde::Serialize>(c: &mut Checker, section: &str, params: &T) -> bool {
     fn walk(c: &mut Checker, path: &str, v: &Value, ok: &mut bool) {
         match v {
             Value::Float(f) if !f.is_finite() => {
                 c.push(path, num(*f), "must be a finite number");
+                *ok = false;
+            }
+            // No physical parameter comes near the bound; beyond it products of parameters
+            // overflow or a loop over (say) a platoon size never ends.
+            Value::Float(f) if f.abs() > limits::MAX_MODEL_MAGNITUDE => {
+                c.push(path, num(*f), magnitude());
+                *ok = false;
+            }
+            Value::Integer(i) if i.unsigned_abs() as f64 > limits::MAX_MODEL_MAGNITUDE => {
+                c.push(path, i.to_string(), magnitude());
                 *ok = false;
             }
             Value::Table(t) => {
@@ -29,6 +40,12 @@ pub(super) fn all_finite<T: serde::Serialize>(c: &mut Checker, section: &str, pa
             }
             _ => {}
         }
+    }
+    fn magnitude() -> String {
+        format!(
+            "must be in [-{m}, {m}]",
+            m = num(limits::MAX_MODEL_MAGNITUDE)
+        )
     }
     let mut ok = true;
     match Value::try_from(params) {
@@ -166,11 +183,11 @@ pub(super) fn check_cav(c: &mut Checker, p: &CavParams) {
         "must be < 0 m/s² (decelerations are negative)",
     );
     pos(c, "cav.inter_platoon_gap_s", p.inter_platoon_gap_s);
-    if p.max_platoon < 1 {
+    if !(1..=limits::MAX_PLATOON).contains(&p.max_platoon) {
         c.push(
             "cav.max_platoon",
             p.max_platoon.to_string(),
-            "must be >= 1 vehicle",
+            format!("must be 1 to {} vehicles", limits::MAX_PLATOON),
         );
     }
     pos(c, "cav.sensor_range_m", p.sensor_range_m);
@@ -183,7 +200,16 @@ pub(super) fn check_cav(c: &mut Checker, p: &CavParams) {
             .collect();
         format!("[{}]", items.join(", "))
     };
-    if shares.is_empty() {
+    if shares.len() > limits::MAX_TIME_GAP_SHARES {
+        c.push(
+            "cav.time_gap_shares",
+            format!("({} pairs)", shares.len()),
+            format!(
+                "at most {} [time_gap_s, share] pairs",
+                limits::MAX_TIME_GAP_SHARES
+            ),
+        );
+    } else if shares.is_empty() {
         c.push(
             "cav.time_gap_shares",
             "[]",

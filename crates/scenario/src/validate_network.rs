@@ -4,6 +4,7 @@
 //! (x_engine = x_file − network.start_m).
 
 use super::{quoted, Checker, Num};
+use crate::limits;
 use crate::network::{
     default_off_id, default_on_id, engine_name, offset_series, offset_step, through_lanes,
     valid_id, Spacing, Stretch, MAX_LANE_COUNT,
@@ -37,17 +38,19 @@ pub(super) struct Checked {
     pub spacing: Spacing,
 }
 
-/// A per-interval series: present, non-empty, every value finite and in [0, `hi`], and (if
-/// `intervals` is given) as long as `network.mainline_vph`. Returns the values (empty if
-/// missing).
+/// A per-interval series: present, non-empty, at most [`limits::MAX_INTERVALS`] long, every
+/// value finite and in [0, `hi`] (`why` explains the bound), and (if `intervals` is given) as
+/// long as `network.mainline_vph`. Returns the values (empty if missing or too long).
 fn series(
     c: &mut Checker,
     field: &str,
     v: &Option<Vec<f64>>,
-    hi: Option<f64>,
+    (hi, why): (f64, &str),
     intervals: Option<usize>,
     what: &str,
 ) -> Vec<f64> {
+    // Only the first few bad values of a series are listed; the rest are counted.
+    const LISTED: usize = 3;
     let Some(v) = v else {
         c.missing(field, what);
         return Vec::new();
@@ -56,15 +59,30 @@ fn series(
         c.push(field, "[]", "must have at least one interval");
         return Vec::new();
     }
-    for (k, &x) in v.iter().enumerate() {
-        let ok = x.is_finite() && x >= 0.0 && hi.is_none_or(|h| x <= h);
-        if !ok {
-            let allowed = match hi {
-                Some(h) => format!("must be in [0, {}]", num(h)),
-                None => "must be a finite number >= 0".to_string(),
-            };
-            c.push(format!("{field}[{k}]"), num(x), allowed);
-        }
+    if v.len() > limits::MAX_INTERVALS {
+        c.push(
+            field,
+            format!("({} values)", v.len()),
+            format!(
+                "must have at most {} intervals (7 days of one-minute intervals)",
+                limits::MAX_INTERVALS
+            ),
+        );
+        return Vec::new();
+    }
+    let allowed = format!("must be in [0, {}]{why}", num(hi));
+    let bad: Vec<usize> = (0..v.len())
+        .filter(|&k| !(v[k].is_finite() && v[k] >= 0.0 && v[k] <= hi))
+        .collect();
+    for &k in bad.iter().take(LISTED) {
+        c.push(format!("{field}[{k}]"), num(v[k]), allowed.clone());
+    }
+    if bad.len() > LISTED {
+        c.push(
+            field,
+            format!("({} values out of range)", bad.len()),
+            format!("every value {allowed}"),
+        );
     }
     if let Some(n) = intervals.filter(|&n| n != v.len()) {
         c.push(
@@ -81,8 +99,14 @@ fn series(
 /// A required finite position; `None` (after reporting) if missing or not finite.
 fn position(c: &mut Checker, field: &str, v: Option<f64>, what: &str) -> Option<f64> {
     let n = c.req(field, v, what)?;
-    c.check(field, n, true, "must be a finite number")
-        .then_some(n.v)
+    let m = limits::MAX_COORDINATE_M;
+    c.check(
+        field,
+        n,
+        n.v.abs() <= m,
+        format!("must be a finite number in [-{}, {}] m", num(m), num(m)),
+    )
+    .then_some(n.v)
 }
 
 /// `network.demand_offset_s`: a whole number of seconds (or a multiple of `network.interval_s`)
@@ -95,7 +119,7 @@ fn demand_offset(
     intervals: Option<usize>,
 ) -> Option<f64> {
     let field = "network.demand_offset_s";
-    if !(interval.v.is_finite() && interval.v > 0.0) {
+    if !(limits::MIN_INTERVAL_S..=limits::MAX_DURATION_S).contains(&interval.v) {
         // network.interval_s is reported; only the offset's own range can be checked.
         c.non_negative(field, offset);
         return None;
@@ -143,6 +167,20 @@ pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -
         "the corridor coordinate of the road end (m), > network.start_m",
     );
     let bounds = match (start, end) {
+        (Some(s), Some(e)) if e > s + limits::MAX_LENGTH_M => {
+            c.value(
+                "network.end_m",
+                e,
+                false,
+                &format!(
+                    "must be at most network.start_m + {} = {} (a corridor is at most {} km long)",
+                    num(limits::MAX_LENGTH_M),
+                    num(s + limits::MAX_LENGTH_M),
+                    num(limits::MAX_LENGTH_M / 1000.0)
+                ),
+            );
+            None
+        }
         (Some(s), Some(e)) if e > s => Some((s, e)),
         (Some(s), Some(e)) => {
             c.value(
@@ -174,18 +212,16 @@ pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -
 
     // --- demand
     let interval = c.opt(n.interval_s, defaults::INTERVAL_S);
-    c.positive("network.interval_s", interval);
-    let mainline = series(
-        c,
-        "network.mainline_vph",
-        &n.mainline_vph,
-        None,
-        None,
-        "the demand at the mainline entrance per interval (veh/h, all lanes)",
+    c.check(
+        "network.interval_s",
+        interval,
+        (limits::MIN_INTERVAL_S..=limits::MAX_DURATION_S).contains(&interval.v),
+        format!(
+            "must be in [{}, {}] s",
+            num(limits::MIN_INTERVAL_S),
+            num(limits::MAX_DURATION_S)
+        ),
     );
-    let intervals = (!mainline.is_empty()).then_some(mainline.len());
-    let offset = c.opt(n.demand_offset_s, defaults::DEMAND_OFFSET_S);
-    let shift = demand_offset(c, offset, interval, intervals);
     let base = c.opt(n.base_demand_multiplier, defaults::BASE_DEMAND_MULTIPLIER);
     c.non_negative("network.base_demand_multiplier", base);
     let scale = c.opt(
@@ -193,14 +229,76 @@ pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -
         crate::demand_scales::default_at(penetration),
     );
     c.non_negative("network.demand_scale", scale);
+    // Entrance demands are capped after scaling, at 10,000 veh/h per entrance lane: the lanes
+    // open at the mainline entrance, one lane for an on-ramp.
+    let product = base.v * scale.v;
+    let product = if product.is_finite() && product > 0.0 {
+        product
+    } else {
+        1.0
+    };
+    let entry_lanes = match n.lanes.first().and_then(|l| l.count) {
+        Some(k) if (1..=MAX_LANE_COUNT).contains(&k) => k,
+        _ => MAX_LANE_COUNT,
+    };
+    let scaled = if base.v * scale.v == 1.0 {
+        String::new()
+    } else {
+        format!(
+            ", divided by network.base_demand_multiplier × network.demand_scale = {}",
+            num(base.v * scale.v)
+        )
+    };
+    let cap = num(limits::MAX_DEMAND_VPHPL);
+    let mainline_cap = (
+        limits::MAX_DEMAND_VPHPL * f64::from(entry_lanes) / product,
+        format!(" veh/h ({cap} veh/h per lane open at the entrance × {entry_lanes} lanes{scaled})"),
+    );
+    let ramp_cap = (
+        limits::MAX_DEMAND_VPHPL / product,
+        format!(" veh/h (an on-ramp is one lane: {cap} veh/h{scaled})"),
+    );
+    let mainline = series(
+        c,
+        "network.mainline_vph",
+        &n.mainline_vph,
+        (mainline_cap.0, &mainline_cap.1),
+        None,
+        "the demand at the mainline entrance per interval (veh/h, all lanes)",
+    );
+    let intervals = (!mainline.is_empty()).then_some(mainline.len());
+    let offset = c.opt(n.demand_offset_s, defaults::DEMAND_OFFSET_S);
+    let shift = demand_offset(c, offset, interval, intervals);
+    let speed_cap = limits::MAX_SPEED_THRESHOLD_KMH;
     let ramp_speed = c.opt(n.ramp_speed_kmh, defaults::RAMP_SPEED_KMH);
-    c.positive("network.ramp_speed_kmh", ramp_speed);
+    c.check(
+        "network.ramp_speed_kmh",
+        ramp_speed,
+        ramp_speed.v > 0.0 && ramp_speed.v <= speed_cap,
+        format!("must be in (0, {}] km/h", num(speed_cap)),
+    );
     // Lane-based desired-speed caps (spec 2.7): off unless given.
     let lane_caps = n.lane_speed_limits_kmh.clone().unwrap_or_default();
-    for (i, &cap) in lane_caps.iter().enumerate() {
+    if lane_caps.len() > limits::MAX_LANE_SPEED_LIMITS {
+        c.push(
+            "network.lane_speed_limits_kmh",
+            format!("({} values)", lane_caps.len()),
+            format!("at most {} values", limits::MAX_LANE_SPEED_LIMITS),
+        );
+    }
+    for (i, &cap) in lane_caps
+        .iter()
+        .enumerate()
+        .take(limits::MAX_LANE_SPEED_LIMITS)
+    {
         let f = format!("network.lane_speed_limits_kmh[{i}]");
         let cap = c.opt(Some(cap), cap);
-        c.positive(&f, cap);
+        c.check(
+            &f,
+            cap,
+            cap.v > 0.0 && cap.v <= speed_cap,
+            format!("must be in (0, {}] km/h", num(speed_cap)),
+        );
     }
     // Cross-lane friction (spec 2.7): off unless given; c_fr in (0, 1], 1 = off.
     if let Some(fr) = n.cross_lane_friction {
@@ -219,6 +317,20 @@ pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -
             "[]",
             "at least one [[network.lanes]] stretch (from_m, to_m, count) is required",
         );
+    }
+    let counts = [
+        ("network.lanes", n.lanes.len(), limits::MAX_STRETCHES),
+        ("network.on_ramps", n.on_ramps.len(), limits::MAX_RAMPS),
+        ("network.off_ramps", n.off_ramps.len(), limits::MAX_RAMPS),
+    ];
+    for (field, len, max) in counts {
+        if len > max {
+            c.push(
+                field,
+                format!("({len} entries)"),
+                format!("at most {max} entries"),
+            );
+        }
     }
     let tile = "the stretches must tile [network.start_m, network.end_m) in order, without gaps or overlaps";
     let mut prev: Option<(f64, String)> =
@@ -363,21 +475,33 @@ pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -
             }
             prev_x = Some(x);
         }
+        let ramp_m = limits::MAX_RAMP_LENGTH_M;
+        let ramp_allowed = format!("must be in [0, {}] m", num(ramp_m));
         let accel = c.opt(r.accel_lane_m, defaults::ACCEL_LANE_M);
-        c.non_negative(&at("accel_lane_m"), accel);
+        c.check(
+            &at("accel_lane_m"),
+            accel,
+            (0.0..=ramp_m).contains(&accel.v),
+            &ramp_allowed,
+        );
         let ramp_len = c.req(
             &at("ramp_length_m"),
             r.ramp_length_m,
             "the ramp roadway length upstream of the merge point (m)",
         );
         if let Some(l) = ramp_len {
-            c.non_negative(&at("ramp_length_m"), l);
+            c.check(
+                &at("ramp_length_m"),
+                l,
+                (0.0..=ramp_m).contains(&l.v),
+                &ramp_allowed,
+            );
         }
         let demand = series(
             c,
             &at("demand_vph"),
             &r.demand_vph,
-            None,
+            (ramp_cap.0, &ramp_cap.1),
             intervals,
             "the ramp demand per interval (veh/h)",
         );
@@ -424,7 +548,7 @@ pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -
             c,
             &at("exit_fraction"),
             &r.exit_fraction,
-            Some(1.0),
+            (1.0, ""),
             intervals,
             "the share of arriving mainline vehicles that exit here, per interval, in [0, 1]",
         );
@@ -438,13 +562,21 @@ pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -
     // --- detector spacing
     let d = &n.detectors;
     let spacing_default = Spacing::default();
+    let spacing = |c: &mut Checker, field: &str, n: Num| {
+        c.check(
+            field,
+            n,
+            (0.0..=limits::MAX_LENGTH_M).contains(&n.v),
+            format!("must be in [0, {}] m", num(limits::MAX_LENGTH_M)),
+        );
+    };
     let up = c.opt(d.upstream_of_ramps_m, spacing_default.upstream_of_ramps_m);
-    c.non_negative("network.detectors.upstream_of_ramps_m", up);
+    spacing(c, "network.detectors.upstream_of_ramps_m", up);
     let down = c.opt(
         d.downstream_of_onramps_m,
         spacing_default.downstream_of_onramps_m,
     );
-    c.non_negative("network.detectors.downstream_of_onramps_m", down);
+    spacing(c, "network.detectors.downstream_of_onramps_m", down);
     let before_end = c.opt(d.before_end_m, spacing_default.before_end_m);
     match length {
         Some(l) => {
@@ -466,6 +598,28 @@ pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -
     // --- demand time offset: every series is read at clock + offset
     let (mut mainline, mut on_ramps, mut off_ramps) = (mainline, on_ramps, off_ramps);
     let mut interval_s = interval.v;
+    // The offset may refine the series to a shorter step (their common divisor): bound the
+    // values that would make before making them.
+    let shift = shift.filter(|&step| {
+        let span = mainline.len() as f64 * interval.v - offset.v;
+        let values = (span / step).round().max(1.0) * (1 + on_ramps.len() + off_ramps.len()) as f64;
+        let ok = values <= limits::MAX_SERIES_VALUES as f64;
+        if !ok {
+            c.push(
+                "network.demand_offset_s",
+                offset.shown(),
+                format!(
+                    "refines the demand series to steps of {} s, {} values in all; at most {}: \
+                     use an offset that is a multiple of network.interval_s = {} s",
+                    num(step),
+                    num(values),
+                    limits::MAX_SERIES_VALUES,
+                    num(interval.v)
+                ),
+            );
+        }
+        ok
+    });
     if let Some(step) = shift {
         let f = |v: &[f64]| offset_series(v, interval.v, offset.v, step);
         mainline = f(&mainline);

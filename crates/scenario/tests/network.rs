@@ -245,7 +245,7 @@ fn ramps_inside_the_corridor_and_in_order() {
     let p = corridor_problems(&["network.on_ramps[0].x_m=nan"]);
     assert_eq!(
         p,
-        vec!["network.on_ramps[0].x_m = nan: must be a finite number"]
+        vec!["network.on_ramps[0].x_m = nan: must be a finite number in [-10000000, 10000000] m"]
     );
 }
 
@@ -270,8 +270,8 @@ fn lane_speed_caps_are_off_by_default_and_checked() {
     assert_eq!(
         p,
         vec![
-            "network.lane_speed_limits_kmh[1] = -1: must be a finite number > 0",
-            "network.lane_speed_limits_kmh[2] = nan: must be a finite number > 0",
+            "network.lane_speed_limits_kmh[1] = -1: must be in (0, 1000] km/h",
+            "network.lane_speed_limits_kmh[2] = nan: must be in (0, 1000] km/h",
         ]
     );
 }
@@ -308,12 +308,12 @@ fn series_are_checked_value_by_value_and_by_length() {
     let p = corridor_problems(&["network.mainline_vph=[3000, -1]"]);
     assert_eq!(
         p,
-        vec!["network.mainline_vph[1] = -1: must be a finite number >= 0"]
+        vec!["network.mainline_vph[1] = -1: must be in [0, 20000] veh/h (10000 veh/h per lane open at the entrance × 2 lanes)"]
     );
     let p = corridor_problems(&["network.on_ramps[1].demand_vph=[300, inf]"]);
     assert_eq!(
         p,
-        vec!["network.on_ramps[1].demand_vph[1] = inf: must be a finite number >= 0"]
+        vec!["network.on_ramps[1].demand_vph[1] = inf: must be in [0, 10000] veh/h (an on-ramp is one lane: 10000 veh/h)"]
     );
     let p = corridor_problems(&["network.off_ramps[0].exit_fraction=[0.1, 1.5]"]);
     assert_eq!(
@@ -344,7 +344,7 @@ fn series_are_checked_value_by_value_and_by_length() {
         "{p:?}"
     );
     assert!(
-        has(&p, "network.interval_s = 0: must be a finite number > 0"),
+        has(&p, "network.interval_s = 0: must be in [1, 604800] s"),
         "{p:?}"
     );
 }
@@ -415,7 +415,7 @@ fn demand_offset_is_checked() {
     // A bad interval is reported once; the offset is then only checked for its sign.
     let p = corridor_problems(&["network.interval_s=0", "network.demand_offset_s=-1"]);
     assert!(
-        has(&p, "network.interval_s = 0: must be a finite number > 0"),
+        has(&p, "network.interval_s = 0: must be in [1, 604800] s"),
         "{p:?}"
     );
     assert!(
@@ -537,7 +537,7 @@ fn detectors_on_a_network() {
     let p = corridor_problems(&["network.detectors.upstream_of_ramps_m=-1"]);
     assert_eq!(
         p,
-        vec!["network.detectors.upstream_of_ramps_m = -1: must be a finite number >= 0"]
+        vec!["network.detectors.upstream_of_ramps_m = -1: must be in [0, 200000] m"]
     );
     let p = corridor_problems(&["measurement.detector=nope"]);
     assert_eq!(

@@ -138,31 +138,44 @@ fn detector_off_the_road() {
 fn negative_lengths() {
     let p = problems(with_set(HOMOGENEOUS, &["road.length_m=-6500"]));
     assert!(
-        has(&p, "road.length_m = -6500: must be a finite number > 0"),
+        has(&p, "road.length_m = -6500: must be in (0, 200000] m"),
         "{p:?}"
     );
     let p = problems(with_set(HOMOGENEOUS, &["strategy.radius_m=-1"]));
-    assert_eq!(
-        p,
-        vec!["strategy.radius_m = -1: must be a finite number > 0"]
-    );
+    assert_eq!(p, vec!["strategy.radius_m = -1: must be in (0, 200000] m"]);
     let p = problems(with_set(HOMOGENEOUS, &["run.duration_s=-5"]));
     assert!(
-        has(&p, "run.duration_s = -5: must be a finite number > 0"),
+        has(
+            &p,
+            "run.duration_s = -5: must be in (0, 604800] s (at most 7 simulated days)"
+        ),
         "{p:?}"
     );
 }
 
 #[test]
-fn dt_outside_0_1() {
-    for bad in ["0", "-0.1", "1.5", "nan"] {
+fn dt_outside_its_range() {
+    // Issue 18 item 5: only [0.05, 0.1] s, with the reason in the message.
+    for bad in [
+        "0", "-0.1", "0.049", "0.11", "1", "1.0", "1.5", "nan", "1e-300",
+    ] {
         let p = problems(with_set(HOMOGENEOUS, &[&format!("run.dt_s={bad}")]));
+        let shown = if bad == "1.0" { "1" } else { bad };
         assert_eq!(
             p,
-            vec![format!("run.dt_s = {bad}: must be in (0, 1] seconds")]
+            vec![format!(
+                "run.dt_s = {shown}: must be in [0.05, 0.1] s (the CACC law is tuned per 0.1 s \
+                 step; larger steps give collisions and braking beyond the limits, \
+                 docs/robustness.md)"
+            )],
+            "{bad}"
         );
     }
-    assert_eq!(with_set(HOMOGENEOUS, &["run.dt_s=1"]).unwrap().dt_s, 1.0);
+    for good in [0.05, 0.1] {
+        let c = with_set(HOMOGENEOUS, &[&format!("run.dt_s={good}")]).unwrap();
+        assert_eq!(c.dt_s, good);
+        assert_eq!(c.check(), Ok(()));
+    }
 }
 
 #[test]
@@ -334,7 +347,7 @@ fn other_ranges() {
         ),
         (
             "cav.max_platoon=0",
-            "cav.max_platoon = 0: must be >= 1 vehicle",
+            "cav.max_platoon = 0: must be 1 to 100 vehicles",
         ),
         (
             "human.smoothing=0.5",

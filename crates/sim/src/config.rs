@@ -320,10 +320,34 @@ pub struct Config {
     pub safety: SafetyParams,
 }
 
+/// Input limits shared by the engine's [`Config::check`] and the scenario crate's validation
+/// (the one place they are defined; docs/robustness.md lists them with the reasons).
+pub mod limits {
+    /// Smallest step Δt (s). The laws are tuned per 0.1 s step and the built-in scenarios
+    /// stay collision-free and within the braking limits on [`DT_MIN_S`, `DT_MAX_S`]
+    /// (docs/robustness.md).
+    pub const DT_MIN_S: f64 = 0.05;
+    /// Largest step Δt (s): the CACC law is tuned per 0.1 s step; larger steps give collisions
+    /// and braking beyond the limits (docs/robustness.md).
+    pub const DT_MAX_S: f64 = 0.1;
+    /// Why Δt is limited, for error messages.
+    pub const DT_REASON: &str = "the CACC law is tuned per 0.1 s step; larger steps give \
+        collisions and braking beyond the limits, docs/robustness.md";
+    /// Longest run (s): 7 simulated days, far beyond any experiment (the paper's longest is
+    /// 4 h), and a bound on the time and memory a run can take.
+    pub const MAX_DURATION_S: f64 = 7.0 * 86_400.0;
+    /// Highest entrance demand per lane (veh/h/lane): five times a lane's capacity; above it
+    /// the entry queue would only grow (and hold every waiting vehicle in memory).
+    pub const MAX_DEMAND_VPHPL: f64 = 10_000.0;
+    /// Longest road or corridor (m).
+    pub const MAX_LENGTH_M: f64 = 200_000.0;
+}
+
 impl Config {
     /// The invariants the engine relies on; `Err` names the field, the value and what is
     /// allowed. (The scenario crate checks the same and more, with file context.)
     pub fn check(&self) -> Result<(), String> {
+        use limits::*;
         let pos = |name: &str, v: f64| -> Result<(), String> {
             if v.is_finite() && v > 0.0 {
                 Ok(())
@@ -331,10 +355,40 @@ impl Config {
                 Err(format!("{name} = {v}: must be a finite number > 0"))
             }
         };
-        pos("run.dt_s", self.dt_s)?;
+        // A range check, with the allowed interval and why in the message.
+        let within = |name: &str, v: f64, lo: f64, hi: f64, why: &str| -> Result<(), String> {
+            if (lo..=hi).contains(&v) {
+                Ok(())
+            } else {
+                Err(format!("{name} = {v}: must be in [{lo}, {hi}]{why}"))
+            }
+        };
+        within(
+            "run.dt_s",
+            self.dt_s,
+            DT_MIN_S,
+            DT_MAX_S,
+            &format!(" s ({DT_REASON})"),
+        )?;
         pos("run.duration_s", self.duration_s)?;
+        within(
+            "run.duration_s",
+            self.duration_s,
+            0.0,
+            MAX_DURATION_S,
+            " s (at most 7 simulated days)",
+        )?;
         pos("road.length_m", self.road.length_m)?;
+        within("road.length_m", self.road.length_m, 0.0, MAX_LENGTH_M, " m")?;
         pos("measurement.aggregation_s", self.aggregation_s)?;
+        // Detector intervals are counted in whole steps.
+        let steps = self.aggregation_s / self.dt_s;
+        if !(steps >= 1.0 && (steps - steps.round()).abs() <= 1e-6 * steps) {
+            return Err(format!(
+                "measurement.aggregation_s = {}: must be a whole number of steps of run.dt_s = {}",
+                self.aggregation_s, self.dt_s
+            ));
+        }
         if !(self.warmup_s.is_finite() && self.warmup_s >= 0.0 && self.warmup_s < self.duration_s) {
             return Err(format!(
                 "run.warmup_s = {}: must be >= 0 and < run.duration_s = {}",
@@ -350,12 +404,13 @@ impl Config {
         if !(1..=8).contains(&self.road.lanes) {
             return Err(format!("road.lanes = {}: must be 1 to 8", self.road.lanes));
         }
-        if !(self.demand.vph_per_lane.is_finite() && self.demand.vph_per_lane >= 0.0) {
-            return Err(format!(
-                "demand.vph_per_lane = {}: must be a finite number >= 0",
-                self.demand.vph_per_lane
-            ));
-        }
+        within(
+            "demand.vph_per_lane",
+            self.demand.vph_per_lane,
+            0.0,
+            MAX_DEMAND_VPHPL,
+            " veh/h/lane",
+        )?;
         for (i, d) in self.detectors.iter().enumerate() {
             if !(d.position_m.is_finite()
                 && d.position_m > 0.0
@@ -369,6 +424,34 @@ impl Config {
         }
         if let Some(net) = &self.road.network {
             net.check(self.road.lanes, self.road.length_m)?;
+            // Scaled entrance demand: the mainline per lane open at the entrance, a ramp as
+            // one lane.
+            let entry_lanes = net.through_lanes.iter().filter(|e| e.from_m == 0.0).count();
+            let cap = |lanes: usize| MAX_DEMAND_VPHPL * lanes.max(1) as f64;
+            let entrances = std::iter::once((
+                "network.mainline_vph".to_string(),
+                &net.mainline_vph,
+                cap(entry_lanes),
+            ))
+            .chain(net.on_ramps.iter().enumerate().map(|(i, r)| {
+                (
+                    format!("network.on_ramps[{i}].demand_vph"),
+                    &r.demand_vph,
+                    cap(1),
+                )
+            }));
+            for (name, series, hi) in entrances {
+                if let Some(k) = series
+                    .iter()
+                    .position(|q| !(0.0..=hi).contains(&(q * net.demand_scale)))
+                {
+                    return Err(format!(
+                        "{name}[{k}] = {} (x demand scale {}): must be at most {hi} veh/h \
+                         ({MAX_DEMAND_VPHPL} veh/h per entrance lane)",
+                        series[k], net.demand_scale
+                    ));
+                }
+            }
         }
         for (i, d) in self.detectors.iter().enumerate() {
             if let DetectorKind::OffRamp { ramp } = d.kind {

@@ -63,8 +63,43 @@ impl Recording {
                 ));
             }
         }
+        let (rows, vehicles, samples) = trajectory_rows_bound(t, cfg);
+        let bytes = rows * std::mem::size_of::<TrajectoryPoint>() as f64;
+        if bytes > MAX_TRAJECTORY_BYTES {
+            const GIB: f64 = (1u64 << 30) as f64;
+            return Err(format!(
+                "--trajectories {} s: the recording could hold up to {rows:.3e} rows ({vehicles:.0} \
+                 vehicles on the road × {samples:.0} samples), {:.1} GiB of memory at {} bytes \
+                 each; at most {:.0} GiB: narrow it with --trajectory-window T0,T1, \
+                 --trajectory-x X0,X1 or a longer period",
+                t.period_s,
+                bytes / GIB,
+                std::mem::size_of::<TrajectoryPoint>(),
+                MAX_TRAJECTORY_BYTES / GIB
+            ));
+        }
         Ok(())
     }
+}
+
+/// Most memory a trajectory recording may take (bytes): it is held until the end of the run.
+pub const MAX_TRAJECTORY_BYTES: f64 = 4.0 * (1u64 << 30) as f64;
+
+/// Upper bound of the trajectory rows of a run: (rows, vehicles, samples). The vehicles are at
+/// most the sampled length × the lateral lanes / the jam spacing (the shortest vehicle plus
+/// the smallest jam gap, at least 1 m: vehicles do not overlap); the samples are the multiples
+/// of the period inside the window and the run.
+pub fn trajectory_rows_bound(t: &TrajectorySpec, cfg: &Config) -> (f64, f64, f64) {
+    let origin = cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m);
+    let (lo, hi) = (origin, origin + cfg.road.length_m);
+    let (x0, x1) = t.x_m.map_or((lo, hi), |(a, b)| (a.max(lo), b.min(hi)));
+    let spacing = (cfg.human.length_m.min + cfg.human.jam_gap_m.min).max(1.0);
+    let vehicles = ((x1 - x0).max(0.0) / spacing).ceil() * f64::from(cfg.road.lanes);
+    let (t0, t1) = t
+        .window_s
+        .map_or((0.0, cfg.duration_s), |(a, b)| (a, b.min(cfg.duration_s)));
+    let samples = ((t1 / t.period_s).floor() - (t0 / t.period_s).ceil().max(1.0) + 1.0).max(0.0);
+    (vehicles * samples, vehicles, samples)
 }
 
 /// The number of steps in `period_s` if it is a positive multiple of `dt_s` (within a relative
