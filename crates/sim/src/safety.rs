@@ -12,7 +12,7 @@ use crate::summary::{CollisionEvent, CollisionKind};
 use crate::vehicle::{Kind, Vehicle};
 use platoonsim_model::safety as law;
 
-/// Per vehicle kind (index `Kind as usize`: human 0, CAV 1).
+/// Per vehicle kind.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct ByKind<T> {
     pub human: T,
@@ -36,12 +36,20 @@ impl<T: Copy + std::ops::Add<Output = T>> ByKind<T> {
 /// The run's safety accumulators.
 #[derive(Clone, Debug)]
 pub struct Safety {
-    /// Emergency deceleration b_e per kind (m/s², positive).
-    pub emergency_decel: ByKind<f64>,
+    /// Emergency deceleration b_e by kind (human 0, CAV 1; m/s², positive).
+    pub emergency_decel: [f64; 2],
     /// The CAV's normal braking limit b (negative); a human's is its own `human.max_decel`.
     pub cav_max_decel: f64,
+    /// The least severe normal limit any vehicle can have (negative): no vehicle braking
+    /// less than this is in an emergency.
+    loosest_normal: f64,
+    /// An applied acceleration below this needs a look (a new largest deceleration, or an
+    /// emergency): max(−`max_decel`, `loosest_normal`). One comparison per vehicle and step.
+    watch: f64,
     /// TTC* (s).
     pub ttc_threshold_s: f64,
+    /// TTC below which a pair needs a look: max(TTC*, smallest TTC so far).
+    pub ttc_horizon_s: f64,
     /// Largest applied deceleration, whole run (m/s², positive).
     pub max_decel: f64,
     pub emergency_brakings: ByKind<u64>,
@@ -60,13 +68,16 @@ pub struct Safety {
 
 impl Safety {
     pub fn new(cfg: &Config) -> Safety {
+        let h = &cfg.human.max_decel;
+        let loosest_normal = h.max.max(h.mean).max(cfg.cav.max_decel);
+        let threshold = cfg.safety.ttc_threshold_s;
         Safety {
-            emergency_decel: ByKind {
-                human: cfg.human.emergency_decel_mps2,
-                cav: cfg.cav.emergency_decel_mps2,
-            },
+            emergency_decel: [cfg.human.emergency_decel_mps2, cfg.cav.emergency_decel_mps2],
             cav_max_decel: cfg.cav.max_decel,
-            ttc_threshold_s: cfg.safety.ttc_threshold_s,
+            loosest_normal,
+            watch: 0.0_f64.max(loosest_normal),
+            ttc_threshold_s: threshold,
+            ttc_horizon_s: threshold,
             max_decel: 0.0,
             emergency_brakings: ByKind::default(),
             conflicts: ByKind::default(),
@@ -82,10 +93,7 @@ impl Safety {
     /// The vehicle's emergency limit b_e (positive).
     #[inline]
     pub fn limit(&self, kind: Kind) -> f64 {
-        match kind {
-            Kind::Human => self.emergency_decel.human,
-            Kind::Cav => self.emergency_decel.cav,
-        }
+        self.emergency_decel[kind as usize]
     }
 
     /// The vehicle's normal braking limit b (negative).
@@ -102,12 +110,53 @@ impl Safety {
     /// measurement window.
     #[inline]
     pub fn on_applied(&mut self, v: &Vehicle, a_prev: f64, a: f64, in_window: bool) {
+        if a < self.watch {
+            self.on_hard_braking(v, a_prev, a, in_window);
+        }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn on_hard_braking(&mut self, v: &Vehicle, a_prev: f64, a: f64, in_window: bool) {
         if -a > self.max_decel {
             self.max_decel = -a;
+            self.watch = (-self.max_decel).max(self.loosest_normal);
         }
         let normal = self.normal(v);
         if in_window && law::is_emergency(a, normal) && !law::is_emergency(a_prev, normal) {
             *self.emergency_brakings.get_mut(v.kind) += 1;
+        }
+    }
+
+    /// A follower `fol` closing in on leader `lead_id` (speed `lead_v`) with net gap `gap`,
+    /// within `ttc_horizon_s` of it: the smallest TTC, TET, TIT and conflict episodes.
+    #[cold]
+    #[inline(never)]
+    pub fn on_close(
+        &mut self,
+        fol: &mut Vehicle,
+        lead_id: u64,
+        gap: f64,
+        lead_v: f64,
+        step: u64,
+        dt: f64,
+    ) {
+        let Some(ttc) = law::ttc(gap, fol.v, lead_v) else {
+            return;
+        };
+        if ttc < self.min_ttc_s {
+            self.min_ttc_s = ttc;
+            self.ttc_horizon_s = self.ttc_threshold_s.max(ttc);
+        }
+        if ttc < self.ttc_threshold_s {
+            let (tet, tit) = law::exposure(ttc, self.ttc_threshold_s, dt);
+            *self.tet_s.get_mut(fol.kind) += tet;
+            *self.tit_s2.get_mut(fol.kind) += tit;
+            if !(fol.conflict_step == step - 1 && fol.conflict_leader == lead_id) {
+                *self.conflicts.get_mut(fol.kind) += 1;
+            }
+            fol.conflict_step = step;
+            fol.conflict_leader = lead_id;
         }
     }
 

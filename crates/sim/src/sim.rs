@@ -553,7 +553,7 @@ impl Simulation {
             safety,
             ..
         } = self;
-        let threshold = safety.ttc_threshold_s;
+        let mut horizon = safety.ttc_horizon_s;
         std::mem::swap(&mut safety.overlapping, &mut safety.overlapping_now);
         safety.overlapping_now.clear();
         for (l, lane) in lanes.iter_mut().enumerate() {
@@ -588,29 +588,13 @@ impl Simulation {
                         sorted = false;
                     }
                 }
-                if in_window {
-                    let closing = fol.v - lead.v;
-                    // TTC = g / closing, divided out only when it is below the threshold or
-                    // the smallest so far.
-                    let g = gap.max(0.0);
-                    if closing > 0.0 && g < closing * threshold.max(safety.min_ttc_s) {
-                        let ttc = g / closing;
-                        if ttc < safety.min_ttc_s {
-                            safety.min_ttc_s = ttc;
-                        }
-                        if ttc < threshold {
-                            let (tet, tit) = law::exposure(ttc, threshold, dt);
-                            let (kind, lead_id) = (fol.kind, lead.id);
-                            *safety.tet_s.get_mut(kind) += tet;
-                            *safety.tit_s2.get_mut(kind) += tit;
-                            let fol = &mut vehicles[fi];
-                            if !(fol.conflict_step == step - 1 && fol.conflict_leader == lead_id) {
-                                *safety.conflicts.get_mut(kind) += 1;
-                            }
-                            fol.conflict_step = step;
-                            fol.conflict_leader = lead_id;
-                        }
-                    }
+                // TTC = g / closing, divided out only when it is below the threshold or the
+                // smallest so far (`ttc_horizon_s`, the larger of the two).
+                let closing = fol.v - lead.v;
+                if in_window && closing > 0.0 && gap < closing * horizon {
+                    let (lead_id, lead_v) = (lead.id, lead.v);
+                    safety.on_close(&mut vehicles[fi], lead_id, gap, lead_v, step, dt);
+                    horizon = safety.ttc_horizon_s;
                 }
                 li = fi;
             }

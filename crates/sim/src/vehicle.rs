@@ -5,11 +5,11 @@ use platoonsim_model::cav::Family;
 use platoonsim_model::human::HumanParams;
 use platoonsim_model::lanechange::{LaneChangeParams, Side};
 
-/// Vehicle type.
+/// Vehicle type (`as usize`: human 0, CAV 1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kind {
-    Human,
-    Cav,
+    Human = 0,
+    Cav = 1,
 }
 
 /// Driving mode of the lane-change state machine (spec 4.1).
