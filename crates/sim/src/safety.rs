@@ -77,7 +77,8 @@ impl Safety {
             loosest_normal,
             watch: 0.0_f64.max(loosest_normal),
             ttc_threshold_s: threshold,
-            ttc_horizon_s: threshold,
+            // max(TTC*, smallest TTC so far = ∞).
+            ttc_horizon_s: f64::INFINITY,
             max_decel: 0.0,
             emergency_brakings: ByKind::default(),
             conflicts: ByKind::default(),
