@@ -216,20 +216,21 @@ fn assert_same_run(what: &str, a: &Output, b: &Output) {
     );
 }
 
-/// Flow-Aware organizes exactly when flow < ρ_q and speed > ρ_v (strategy.rs). ρ_q = 10⁹
-/// veh/h/lane and ρ_v = 0 km/h are met by every broadcast (a crossing vehicle moves), so the
-/// run is the PD run; ρ_q = 10⁻⁶ veh/h/lane and ρ_v = 10⁶ km/h are met only by an empty road,
-/// which 2,000 veh/h/lane never gives after the first interval, so the run is the baseline.
+/// Flow-Aware organizes exactly when flow < ρ_q and speed > ρ_v (strategy.rs). ρ_q = 10,000
+/// veh/h/lane (the largest allowed, above any lane's flow) and ρ_v = 0 km/h are met by every
+/// broadcast (a crossing vehicle moves), so the run is the PD run; ρ_q = 10⁻⁶ veh/h/lane and
+/// ρ_v = 500 km/h are never met together (no vehicle drives at 500 km/h), so the run is the
+/// baseline.
 /// Both differ from each other (the gate is not vacuous).
 #[test]
 fn flow_aware_gate_is_exactly_pd_when_always_met_and_exactly_baseline_when_never_met() {
     let always = [
-        "strategy.flow_threshold_vphpl=1e9",
+        "strategy.flow_threshold_vphpl=10000",
         "strategy.speed_threshold_kmh=0.0",
     ];
     let never = [
         "strategy.flow_threshold_vphpl=1e-6",
-        "strategy.speed_threshold_kmh=1e6",
+        "strategy.speed_threshold_kmh=500",
     ];
     let configs = [
         gate_config(StrategyKind::Pd, &[]),
