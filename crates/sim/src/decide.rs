@@ -470,13 +470,10 @@ impl Simulation {
                 here.enter_right,
             ),
         ] {
-            // `Geometry::can_enter` of the lane on that side (none right of lane 0).
-            if !open || w <= 0.0 {
-                continue;
-            }
-            // Not into a lane that ends where the driver would already have to leave it (a
-            // lane drop ahead: its mandatory desire there is positive), issue 18.
-            if self.ends_too_soon(v, target) {
+            // `Geometry::can_enter` of the lane on that side (none right of lane 0); not into a
+            // lane that ends where the driver would already have to leave it (a lane drop
+            // ahead: its mandatory desire there is positive), issue 18.
+            if !open || w <= 0.0 || (!self.geom.plain && self.ends_too_soon(v, target)) {
                 continue;
             }
             let v_ant = self.anticipated_speed(s, v, target, j as usize, v_cur);
@@ -488,13 +485,11 @@ impl Simulation {
     /// Does lane `target` end so soon ahead of `v` that a driver who moved into it would at
     /// once want to leave it again (mandatory desire γ_m > 0 for its wall, one change)? A
     /// discretionary change into such a lane ends at the wall (issue 18: 3 → 2 lane drops).
-    #[inline]
+    #[inline(never)]
     fn ends_too_soon(&self, v: &Vehicle, target: usize) -> bool {
-        !self.geom.plain
-            && self
-                .geom
-                .wall_ahead(target as u32, v.x)
-                .is_some_and(|w| lcm::mandatory_desire(&v.lc, w - v.x, v.v, 1) > 0.0)
+        self.geom
+            .wall_ahead(target as u32, v.x)
+            .is_some_and(|w| lcm::mandatory_desire(&v.lc, w - v.x, v.v, 1) > 0.0)
     }
 
     /// Spec 4.2 "Anticipatory": in the two rightmost through lanes within the anticipation

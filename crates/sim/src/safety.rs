@@ -50,6 +50,8 @@ pub struct Safety {
     pub ttc_threshold_s: f64,
     /// TTC below which a pair needs a look: max(TTC*, smallest TTC so far).
     pub ttc_horizon_s: f64,
+    /// The current step is in the measurement window (set by the invariant phase).
+    pub in_window: bool,
     /// Largest applied deceleration, whole run (m/s², positive).
     pub max_decel: f64,
     pub emergency_brakings: ByKind<u64>,
@@ -79,6 +81,7 @@ impl Safety {
             ttc_threshold_s: threshold,
             // max(TTC*, smallest TTC so far = ∞).
             ttc_horizon_s: f64::INFINITY,
+            in_window: false,
             max_decel: 0.0,
             emergency_brakings: ByKind::default(),
             conflicts: ByKind::default(),
@@ -130,7 +133,8 @@ impl Safety {
     }
 
     /// A follower `fol` closing in on leader `lead_id` (speed `lead_v`) with net gap `gap`,
-    /// within `ttc_horizon_s` of it: the smallest TTC, TET, TIT and conflict episodes.
+    /// within `ttc_horizon_s` of it (or overlapping it): in the measurement window, the
+    /// smallest TTC, TET, TIT and conflict episodes.
     #[cold]
     #[inline(never)]
     pub fn on_close(
@@ -142,6 +146,9 @@ impl Safety {
         step: u64,
         dt: f64,
     ) {
+        if !self.in_window {
+            return;
+        }
         let Some(ttc) = law::ttc(gap, fol.v, lead_v) else {
             return;
         };

@@ -553,7 +553,10 @@ impl Simulation {
             safety,
             ..
         } = self;
-        let mut horizon = safety.ttc_horizon_s;
+        // Outside the measurement window only an overlapping pair passes the test below, and
+        // `on_close` ignores it there.
+        safety.in_window = in_window;
+        let mut horizon = if in_window { safety.ttc_horizon_s } else { 0.0 };
         std::mem::swap(&mut safety.overlapping, &mut safety.overlapping_now);
         safety.overlapping_now.clear();
         for (l, lane) in lanes.iter_mut().enumerate() {
@@ -561,42 +564,32 @@ impl Simulation {
             let Some((&first, rest)) = lane.split_first() else {
                 continue;
             };
-            // Each record is looked up once: the follower becomes the next pair's leader.
-            let mut li = first as usize;
-            check_finite(&vehicles[li], l, t)?;
+            // Each record is looked up once: what the next pair needs of the follower (then its
+            // leader) is kept in locals.
+            let v0 = &vehicles[first as usize];
+            check_finite(v0, l, t)?;
+            let (mut li, mut lead_rear, mut lead_x, mut lead_v) = (first, v0.rear(), v0.x, v0.v);
             for &s in rest.iter() {
-                let fi = s as usize;
-                let fol = &vehicles[fi];
+                let fol = &vehicles[s as usize];
                 check_finite(fol, l, t)?;
-                let lead = &vehicles[li];
-                let gap = lead.rear() - fol.x;
+                let (fx, fv, frear) = (fol.x, fol.v, fol.rear());
+                let gap = lead_rear - fx;
                 if gap < 0.0 {
-                    let pair = (fol.id, lead.id);
-                    if !safety.overlapping.contains(&pair) {
-                        safety.collide(
-                            t,
-                            CollisionKind::RearEnd,
-                            l,
-                            fol.x + origin,
-                            fol,
-                            Some(lead),
-                            -gap,
-                        );
-                    }
-                    safety.overlapping_now.push(pair);
-                    if fol.x > lead.x {
+                    overlap(safety, vehicles, li, s, l, t, origin);
+                    if fx > lead_x {
                         sorted = false;
                     }
                 }
                 // TTC = g / closing, divided out only when it is below the threshold or the
                 // smallest so far (`ttc_horizon_s`, the larger of the two).
-                let closing = fol.v - lead.v;
-                if in_window && closing > 0.0 && gap < closing * horizon {
-                    let (lead_id, lead_v) = (lead.id, lead.v);
-                    safety.on_close(&mut vehicles[fi], lead_id, gap, lead_v, step, dt);
+                // One comparison per pair: a pair that is not closing in gives a bound ≤ 0,
+                // which only an overlap passes (`on_close` then finds no TTC).
+                if gap < (fv - lead_v) * horizon {
+                    let lead_id = vehicles[li as usize].id;
+                    safety.on_close(&mut vehicles[s as usize], lead_id, gap, lead_v, step, dt);
                     horizon = safety.ttc_horizon_s;
                 }
-                li = fi;
+                (li, lead_rear, lead_x, lead_v) = (s, frear, fx, fv);
             }
             if !sorted {
                 lane.sort_by(|&a, &b| vehicles[b as usize].x.total_cmp(&vehicles[a as usize].x));
@@ -757,19 +750,58 @@ impl Simulation {
     }
 }
 
+/// A rear-end collision starts when the pair (follower in slot `f`, leader in slot `ld`)
+/// overlaps and did not at the end of the previous step (phase 7).
+#[cold]
+#[inline(never)]
+fn overlap(
+    safety: &mut Safety,
+    vehicles: &[Vehicle],
+    ld: u32,
+    f: u32,
+    lane: usize,
+    t: f64,
+    origin: f64,
+) {
+    let (lead, fol) = (&vehicles[ld as usize], &vehicles[f as usize]);
+    let pair = (fol.id, lead.id);
+    if !safety.overlapping.contains(&pair) {
+        let gap = lead.rear() - fol.x;
+        safety.collide(
+            t,
+            CollisionKind::RearEnd,
+            lane,
+            fol.x + origin,
+            fol,
+            Some(lead),
+            -gap,
+        );
+    }
+    safety.overlapping_now.push(pair);
+}
+
 /// A non-finite state is an engine error (phase 7).
+#[inline(always)]
 fn check_finite(v: &Vehicle, lane: usize, t: f64) -> Result<(), String> {
-    if v.x.is_finite() && v.v.is_finite() && v.a.is_finite() {
+    // The sum is finite exactly when the three are: they are bounded far below overflow (a
+    // road of at most 200 km, speeds and accelerations of vehicles), and ∞ − ∞ is NaN.
+    if (v.x + v.v + v.a).is_finite() {
         return Ok(());
     }
-    Err(format!(
+    Err(non_finite(v, lane, t))
+}
+
+#[cold]
+#[inline(never)]
+fn non_finite(v: &Vehicle, lane: usize, t: f64) -> String {
+    format!(
         "vehicle {} in lane {} has a non-finite state at t = {t:.1} s (x = {}, v = {}, a = {})",
         v.id,
         lane + 1,
         v.x,
         v.v,
         v.a
-    ))
+    )
 }
 
 /// Short name of a strategy (summary field).
