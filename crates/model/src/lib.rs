@@ -2,7 +2,8 @@
 //!
 //! Every function here is a pure function of small `Copy` inputs (speeds, gaps,
 //! parameters); nothing reads the world. The engine (`platoonsim-sim`) assembles
-//! the inputs. Section numbers ("spec 2.3") refer to `shared/docs/model-spec.md`.
+//! the inputs. Section numbers ("spec 2.3") refer to the project's model reference,
+//! `docs/model-reference.md`: "spec 2.3" is its section 2.3.
 //!
 //! | module | what | spec |
 //! |---|---|---|
