@@ -7,24 +7,34 @@ mod common;
 use common::{num, platoonsim, read_csv, s, scratch, stderr, stdout};
 use std::process::{Command, Output, Stdio};
 
-/// A minute of the homogeneous road at 50 % CAV whose CAVs see only 1 m ahead: the
-/// controllers notice their leader too late and run into it (15 collisions on this branch).
-fn colliding(out: &str, extra: &[&str]) -> Output {
+/// The arguments of a quiet run of the homogeneous road for `duration` s with `warmup` s of
+/// warm-up, then `options`, written to `out`.
+fn homogeneous_run<'a>(
+    duration: &'a str,
+    warmup: &'a str,
+    options: &[&'a str],
+    out: &'a str,
+) -> Vec<&'a str> {
     let mut args = vec![
         "run",
         "homogeneous",
         "--duration",
-        "60",
+        duration,
         "--warmup",
-        "0",
-        "--penetration",
-        "0.5",
-        "--set",
-        "cav.sensor_range_m=1",
-        "--out",
-        out,
-        "-q",
+        warmup,
     ];
+    args.extend_from_slice(options);
+    args.extend_from_slice(&["--out", out, "-q"]);
+    args
+}
+
+/// 50 % CAV whose CAVs see only 1 m ahead: the controllers notice their leader too late and
+/// run into it.
+const BLIND_CAVS: [&str; 4] = ["--penetration", "0.5", "--set", "cav.sensor_range_m=1"];
+
+/// A minute of the homogeneous road with [`BLIND_CAVS`] (15 collisions on this branch).
+fn colliding(out: &str, extra: &[&str]) -> Output {
+    let mut args = homogeneous_run("60", "0", &BLIND_CAVS, out);
     args.extend_from_slice(extra);
     platoonsim(&args)
 }
@@ -106,17 +116,7 @@ fn a_run_with_collisions_writes_them_and_exits_with_3() {
     );
 
     // A run without collisions in the same directory removes the stale file.
-    let o = platoonsim(&[
-        "run",
-        "homogeneous",
-        "--duration",
-        "120",
-        "--warmup",
-        "30",
-        "--out",
-        s(&dir),
-        "-q",
-    ]);
+    let o = platoonsim(&homogeneous_run("120", "30", &[], s(&dir)));
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert_eq!(stderr(&o), "");
     assert!(!dir.join("collisions.csv").exists());
@@ -144,17 +144,7 @@ fn into_closed_pipe(args: &[&str]) -> Output {
 #[test]
 fn a_closed_pipe_exits_quietly_with_141() {
     let dir = scratch("pipe");
-    let run = [
-        "run",
-        "homogeneous",
-        "--duration",
-        "60",
-        "--warmup",
-        "0",
-        "--out",
-        s(&dir),
-        "-q",
-    ];
+    let run = homogeneous_run("60", "0", &[], s(&dir));
     for args in [
         &["show", "sr99"][..],
         &["show", "homogeneous", "--format", "json"],
@@ -173,21 +163,7 @@ fn a_closed_pipe_exits_quietly_with_141() {
     let (reader, writer) = std::io::pipe().unwrap();
     drop(reader);
     let o = Command::new(env!("CARGO_BIN_EXE_platoonsim"))
-        .args([
-            "run",
-            "homogeneous",
-            "--duration",
-            "60",
-            "--warmup",
-            "0",
-            "--penetration",
-            "0.5",
-            "--set",
-            "cav.sensor_range_m=1",
-            "--out",
-            s(&dir),
-            "-q",
-        ])
+        .args(homogeneous_run("60", "0", &BLIND_CAVS, s(&dir)))
         .stdout(writer.try_clone().unwrap())
         .stderr(writer)
         .output()

@@ -16,6 +16,14 @@ fn only(r: Result<platoonsim_sim::Config, ScenarioError>) -> String {
     p[0].clone()
 }
 
+/// The single problem of `text` with `sets` applied, which must start with `start`.
+#[track_caller]
+fn only_starting(text: &str, sets: &[&str], start: &str) -> String {
+    let p = only(with_set(text, sets));
+    assert!(p.starts_with(start), "{p}");
+    p
+}
+
 #[test]
 fn dt_range_at_both_ends() {
     for good in ["0.05", "0.1", "0.075", "0.2"] {
@@ -77,13 +85,10 @@ fn engine_check_repeats_the_essential_limits() {
 
 #[test]
 fn known_reproductions_are_clear_errors() {
-    let p = only(with_set(
+    let p = only_starting(
         SR99,
         &["network.on_ramps[3].demand_vph=[4294967296, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0]"],
-    ));
-    assert!(
-        p.starts_with("network.on_ramps[3].demand_vph[0] = 4294967296: must be in [0, "),
-        "{p}"
+        "network.on_ramps[3].demand_vph[0] = 4294967296: must be in [0, ",
     );
     assert!(p.contains("an on-ramp is one lane: 10000 veh/h"), "{p}");
     let p = only(with_set(HOMOGENEOUS, &["run.duration_s=1e12"]));
@@ -103,13 +108,10 @@ fn network_demand_cap_follows_the_scale_and_the_entrance_lanes() {
     // The small corridor has 2 lanes at the entrance: 20,000 veh/h at scale 1, 10,000 at 2.
     let corridor = include_str!("fixtures/small_corridor.toml");
     assert!(with_set(corridor, &["network.mainline_vph=[20000, 0]"]).is_ok());
-    let p = only(with_set(
+    only_starting(
         corridor,
         &["network.mainline_vph=[20000, 0]", "network.demand_scale=2"],
-    ));
-    assert!(
-        p.starts_with("network.mainline_vph[0] = 20000: must be in [0, 10000] veh/h (10000 veh/h per lane open at the entrance × 2 lanes, divided by network.base_demand_multiplier × network.demand_scale = 2)"),
-        "{p}"
+        "network.mainline_vph[0] = 20000: must be in [0, 10000] veh/h (10000 veh/h per lane open at the entrance × 2 lanes, divided by network.base_demand_multiplier × network.demand_scale = 2)",
     );
 }
 
@@ -126,10 +128,10 @@ fn lengths_counts_and_arrays_are_bounded() {
         p,
         "cav.time_gap_shares = (200 pairs): at most 100 [time_gap_s, share] pairs"
     );
-    let p = only(with_set(HOMOGENEOUS, &["cav.max_platoon=4000000000"]));
-    assert!(
-        p.starts_with("cav.max_platoon = 4000000000: must be in [-1000000, 1000000]"),
-        "{p}"
+    only_starting(
+        HOMOGENEOUS,
+        &["cav.max_platoon=4000000000"],
+        "cav.max_platoon = 4000000000: must be in [-1000000, 1000000]",
     );
     let p = problems(with_set(SR99, &["network.end_m=500000"]));
     assert!(
@@ -143,13 +145,10 @@ fn lengths_counts_and_arrays_are_bounded() {
         p,
         "network.on_ramps[0].ramp_length_m = 1000000000: must be in [0, 10000] m"
     );
-    let p = only(with_set(
+    only_starting(
         HOMOGENEOUS,
         &["measurement.aggregation_s=0.1", "run.duration_s=604800"],
-    ));
-    assert!(
-        p.starts_with("measurement.aggregation_s = 0.1: gives 72576000 detector records"),
-        "{p}"
+        "measurement.aggregation_s = 0.1: gives 72576000 detector records",
     );
     let detectors: Vec<String> = (0..1001)
         .map(|i| format!("[[detectors]]\nname = \"d{i}\"\nposition_m = 100\n"))
