@@ -14,7 +14,6 @@
 use crate::atomic::{write_atomic, write_atomic_with};
 use anyhow::{Context, Result};
 use platoonsim_experiment::detectors::Scope;
-use platoonsim_sim::vehicle::Kind;
 use platoonsim_sim::{
     CollisionEvent, Config, DetectorRecord, Output, Summary, TrajectoryPoint, Trip, TripStatus,
 };
@@ -111,13 +110,6 @@ pub fn off_ramp_name(config: &Config, k: usize) -> String {
         )
 }
 
-fn kind_name(kind: Kind) -> &'static str {
-    match kind {
-        Kind::Human => "human",
-        Kind::Cav => "cav",
-    }
-}
-
 /// The columns of `trips.csv`, in order.
 pub const TRIP_COLUMNS: [&str; 14] = [
     "id",
@@ -157,7 +149,7 @@ pub fn trips_csv(config: &Config, trips: &[Trip]) -> Result<Vec<u8>> {
         };
         w.write_record([
             t.id.to_string(),
-            kind_name(t.kind).to_string(),
+            t.kind.as_str().to_string(),
             entrance_name(config, t.origin),
             destination,
             status.to_string(),
@@ -259,7 +251,7 @@ pub fn write_trajectories(w: &mut dyn Write, rows: &[TrajectoryPoint]) -> std::i
             "{},{},{},{},{},{},{},{}",
             r.t_s,
             r.id,
-            kind_name(r.kind),
+            r.kind.as_str(),
             r.lane + 1,
             r.x_m,
             r.v_mps,

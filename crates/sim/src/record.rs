@@ -267,23 +267,37 @@ impl TrajectoryRecorder {
     }
 }
 
-/// The trip of `v`, which left in the step that ends at step `left_step` (`None`: still on the
-/// road). `off_ramp`: it left by that off-ramp; `entry_x` is its entry position (engine).
+/// How a trip ended, as the engine knows it when it records the trip.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum TripEnd {
+    /// Left by this off-ramp.
+    OffRamp(usize),
+    /// Left at the mainline end (where it meant to, or after missing its off-ramp).
+    RoadEnd,
+    /// Ran past the end of its lane and was removed.
+    Collided,
+    /// Still on the road at the end of the run.
+    OnRoad,
+}
+
+/// The trip of `v`, which ended as `end` in the step that ends at step `left_step` (`None`:
+/// still on the road); `entry_x` is its entry position (engine).
 pub(crate) fn trip_of(
     v: &Vehicle,
+    end: TripEnd,
     left_step: Option<u64>,
-    off_ramp: Option<usize>,
     entry_x: f64,
     origin_m: f64,
     dt: f64,
 ) -> Trip {
-    let status = match (left_step, off_ramp) {
-        (None, _) => TripStatus::InNetwork,
-        (Some(_), Some(r)) => TripStatus::Exited { off_ramp: Some(r) },
-        (Some(_), None) if v.planned_exit != NO_EXIT => TripStatus::MissedExitThenEnd {
+    let status = match end {
+        TripEnd::OnRoad => TripStatus::InNetwork,
+        TripEnd::Collided => TripStatus::Collided,
+        TripEnd::OffRamp(r) => TripStatus::Exited { off_ramp: Some(r) },
+        TripEnd::RoadEnd if v.planned_exit != NO_EXIT => TripStatus::MissedExitThenEnd {
             missed: v.planned_exit as usize,
         },
-        (Some(_), None) => TripStatus::Exited { off_ramp: None },
+        TripEnd::RoadEnd => TripStatus::Exited { off_ramp: None },
     };
     Trip {
         id: v.id,

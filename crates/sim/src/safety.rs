@@ -187,20 +187,12 @@ impl Safety {
             lane: lane as u32 + 1,
             x_m,
             vehicle: v.id,
-            vehicle_kind: kind_name(v.kind),
+            vehicle_kind: v.kind.as_str(),
             v_mps: v.v,
             other: other.map(|o| o.id),
-            other_kind: other.map(|o| kind_name(o.kind)),
+            other_kind: other.map(|o| o.kind.as_str()),
             other_v_mps: other.map(|o| o.v),
             overlap_m,
         });
-    }
-}
-
-/// "human" or "cav", as in the trip and trajectory records.
-pub fn kind_name(k: Kind) -> &'static str {
-    match k {
-        Kind::Human => "human",
-        Kind::Cav => "cav",
     }
 }

@@ -6,7 +6,7 @@ use crate::here::HereTables;
 use crate::insert::Entrance;
 use crate::metrics::Metrics;
 use crate::network::Geometry;
-use crate::record::{trip_of, Recorder, Recording, TrajectoryRecorder};
+use crate::record::{trip_of, Recorder, Recording, TrajectoryRecorder, TripEnd};
 use crate::safety::Safety;
 use crate::sense::{Sensed, NONE};
 use crate::summary::CollisionKind;
@@ -201,11 +201,11 @@ impl Simulation {
         self.cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m)
     }
 
-    /// Record the trip of slot `s` if trips are recorded: it left by `off_ramp` (or the end) in
-    /// this step, or (`left == false`) is still on the road at the end of the run.
+    /// Record the trip of slot `s` if trips are recorded: it ended as `end` in this step (or
+    /// is still on the road at the end of the run).
     #[cold]
     #[inline(never)]
-    fn record_trip(&mut self, s: u32, left: bool, off_ramp: Option<usize>) {
+    fn record_trip(&mut self, s: u32, end: TripEnd) {
         let origin_m = self.origin_m();
         let Some(trips) = self.rec.trips.as_mut() else {
             return;
@@ -215,8 +215,8 @@ impl Simulation {
             0 => 0.0,
             i => self.geom.on_ramps[i as usize - 1].x,
         };
-        let left_step = left.then_some(self.step + 1);
-        trips.push(trip_of(v, left_step, off_ramp, entry_x, origin_m, self.dt));
+        let left_step = (end != TripEnd::OnRoad).then_some(self.step + 1);
+        trips.push(trip_of(v, end, left_step, entry_x, origin_m, self.dt));
     }
 
     /// Simulated time (s).
@@ -414,10 +414,7 @@ impl Simulation {
             self.lanes[l as usize].retain(|&o| o != s);
             self.metrics.on_exit_in_network(&self.vehicles[s as usize]);
             if self.rec.trips.is_some() {
-                self.record_trip(s, true, None);
-                if let Some(trip) = self.rec.trips.as_mut().and_then(|t| t.last_mut()) {
-                    trip.status = crate::record::TripStatus::Collided;
-                }
+                self.record_trip(s, TripEnd::Collided);
             }
             self.free.push(s);
         }
@@ -436,7 +433,7 @@ impl Simulation {
                 self.lanes[l].remove(0);
                 self.metrics.on_exit(&self.vehicles[s as usize]);
                 if self.rec.trips.is_some() {
-                    self.record_trip(s, true, None);
+                    self.record_trip(s, TripEnd::RoadEnd);
                 }
                 self.free.push(s);
             }
@@ -473,7 +470,7 @@ impl Simulation {
                 }
                 self.metrics.on_exit(&self.vehicles[s as usize]);
                 if self.rec.trips.is_some() {
-                    self.record_trip(s, true, Some(exit));
+                    self.record_trip(s, TripEnd::OffRamp(exit));
                 }
                 self.free.push(s);
             }
@@ -610,7 +607,7 @@ impl Simulation {
             let mut on_road: Vec<u32> = self.lanes.iter().flatten().copied().collect();
             on_road.sort_unstable_by_key(|&s| self.vehicles[s as usize].id);
             for s in on_road {
-                self.record_trip(s, false, None);
+                self.record_trip(s, TripEnd::OnRoad);
             }
             self.rec.trips.take().unwrap_or_default()
         });

@@ -12,6 +12,16 @@ pub enum Kind {
     Cav = 1,
 }
 
+impl Kind {
+    /// `human` or `cav`, as in the trip, trajectory and collision records.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Kind::Human => "human",
+            Kind::Cav => "cav",
+        }
+    }
+}
+
 /// Driving mode of the lane-change state machine (spec 4.1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Mode {
