@@ -402,7 +402,7 @@ pub fn wrap(text: &str, width: usize) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use platoonsim_sim::vehicle::ModeLabel;
+    use platoonsim_sim::vehicle::{Kind, ModeLabel};
 
     fn record(speed: Option<f64>) -> DetectorRecord {
         DetectorRecord {
