@@ -213,9 +213,10 @@ fn sensitivity_files_have_the_expected_shape() {
         .unwrap()
         .starts_with(b"\x89PNG"));
     assert_eq!(res.figures.len(), 1);
-    assert_eq!(run_files(&dir.join("runs")).len(), 16);
+    // 4 demands × 3 strategies (none, pd, dedicated) × 2 seeds.
+    assert_eq!(run_files(&dir.join("runs")).len(), 24);
 
-    // runs.csv: header + 16 rows, every row as wide as the header.
+    // runs.csv: header + 24 rows, every row as wide as the header.
     let text = fs::read_to_string(dir.join("runs.csv")).unwrap();
     let mut r = csv::Reader::from_reader(text.as_bytes());
     let header: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
@@ -240,15 +241,15 @@ fn sensitivity_files_have_the_expected_shape() {
     }
     assert!(!header.iter().any(|h| h == "wall_seconds"));
     let rows: Vec<csv::StringRecord> = r.records().map(|x| x.unwrap()).collect();
-    assert_eq!(rows.len(), 16);
+    assert_eq!(rows.len(), 24);
     assert!(rows.iter().all(|x| x.len() == header.len()));
     let dq = header
         .iter()
         .position(|h| h == "discharge_change_pct")
         .unwrap();
     for row in &rows {
-        // ΔQ only on the PD rows.
-        assert_eq!(row[2] == *"pd", !row[dq].is_empty(), "{row:?}");
+        // ΔQ only on the organizing rows (PD and dedicated), against the baseline.
+        assert_eq!(row[2] != *"none", !row[dq].is_empty(), "{row:?}");
     }
 
     // summary.csv: a row per cell and metric; Table 3 values on the right rows.
@@ -303,10 +304,14 @@ fn sensitivity_files_have_the_expected_shape() {
         serde_json::from_slice(&fs::read(dir.join("run.json")).unwrap()).unwrap();
     assert_eq!(prov["experiment"], "sensitivity");
     assert_eq!(prov["seeds"], serde_json::json!([1, 2]));
-    assert_eq!(prov["cells"].as_array().unwrap().len(), 8);
-    assert_eq!(prov["cells"][7]["labels"]["strategy"], "pd");
-    assert_eq!(prov["cells"][7]["scenario"]["strategy"]["kind"], "pd");
-    assert_eq!(prov["cells"][7]["keys"].as_array().unwrap().len(), 2);
+    assert_eq!(prov["cells"].as_array().unwrap().len(), 12);
+    assert_eq!(prov["cells"][10]["labels"]["strategy"], "pd");
+    assert_eq!(prov["cells"][10]["scenario"]["strategy"]["kind"], "pd");
+    assert_eq!(
+        prov["cells"][11]["scenario"]["strategy"]["kind"],
+        "dedicated"
+    );
+    assert_eq!(prov["cells"][11]["keys"].as_array().unwrap().len(), 2);
     assert!(prov["version"].is_string());
 }
 
@@ -368,7 +373,8 @@ fn capacity_baseline_mean_discharge_leaves_out_the_filling_road() {
         ..settings(&out, 2, 1)
     };
     let res = run_experiment_with(ExperimentName::Capacity, &s, &simulate).unwrap();
-    assert_eq!(res.outcomes.len(), 9);
+    // 5 baseline cells, 4 PD and 4 dedicated cells, 1 seed.
+    assert_eq!(res.outcomes.len(), 13);
     for o in res.outcomes.iter().filter(|o| o.cell < 5) {
         // Stage 1: a steady entrance queue discharges evenly, so the mean flow over the
         // window is close to its highest 5-min flow. With the filling first 5 min in the

@@ -5,7 +5,10 @@
 //! stage-1 mean capacity of that penetration (rounded to 1 veh/h/lane), warm-up, then PD in
 //! the control section to the end; capacity = the highest 5-min discharge after the warm-up.
 //!
-//! Both stages also report the mean queue discharge (`discharge_flow_vphpl`): stage 1 over
+//! Stage 3 (ours, not in the paper): the dedicated lane (docs/organizers.md) as stage 2, at
+//! the same input demand.
+//!
+//! All stages also report the mean queue discharge (`discharge_flow_vphpl`): stage 1 over
 //! the run less its first interval, in which the empty road fills ([`FILL_S`]; that interval
 //! is never the highest, so the capacity is the same as over the whole run), stage 2 after
 //! the warm-up. The highest of several 5-min flows lies further above the mean the more the
@@ -36,15 +39,20 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
     let mut outcomes = run_cells(runner, &stage1, seeds, 0)?;
 
     let mut stage2 = Vec::new();
-    for (i, &p) in PENETRATIONS.iter().enumerate().skip(1) {
-        let cap = table::stats(&outcomes, i, CAPACITY).mean;
-        if !(cap.is_finite() && cap > 0.0) {
-            return Err(Error::Other(format!(
-                "capacity: no baseline capacity at penetration {p} (stage 1 gave {cap})"
-            )));
+    for (stage, kind) in [
+        ("pd", StrategyKind::PD),
+        ("dedicated", StrategyKind::DEDICATED),
+    ] {
+        for (i, &p) in PENETRATIONS.iter().enumerate().skip(1) {
+            let cap = table::stats(&outcomes, i, CAPACITY).mean;
+            if !(cap.is_finite() && cap > 0.0) {
+                return Err(Error::Other(format!(
+                    "capacity: no baseline capacity at penetration {p} (stage 1 gave {cap})"
+                )));
+            }
+            let pt = point(s, p, cap.round(), kind);
+            stage2.push(cell(&[("stage", stage.into())], pt)?);
         }
-        let pt = point(s, p, cap.round(), StrategyKind::PD);
-        stage2.push(cell(&[("stage", "pd".into())], pt)?);
     }
     outcomes.extend(run_cells(runner, &stage2, seeds, stage1.len())?);
     let mut cells = stage1;
@@ -86,8 +94,11 @@ pub(super) fn markdown(
         "paper",
         "difference",
         "PD vs baseline",
+        "Dedicated-lane capacity (ours)",
+        "dedicated vs baseline",
         "Baseline mean discharge",
         "PD mean discharge",
+        "Dedicated mean discharge",
     ]
     .iter()
     .map(|h| h.to_string())
@@ -132,6 +143,15 @@ pub(super) fn markdown(
             }
             _ => String::new(),
         };
+        let dl_cell = find(cells, &[("stage", "dedicated"), ("penetration", &pen)]);
+        let dl = dl_cell.and_then(row_of);
+        let dl_versus = match (b, dl) {
+            (Some(b), Some(dl)) => format!(
+                "{} %",
+                signed(100.0 * (dl.stats.mean - b.stats.mean) / b.stats.mean, 1)
+            ),
+            _ => String::new(),
+        };
         table_rows.push(vec![
             format!("{} %", num(100.0 * p)),
             b.map_or("–".into(), |r| pm(&r.stats, 0)),
@@ -142,8 +162,11 @@ pub(super) fn markdown(
             paper(pd),
             diff(pd),
             versus,
+            dl.map_or("–".into(), |r| pm(&r.stats, 0)),
+            dl_versus,
             mean(b_cell),
             mean(pd_cell),
+            mean(dl_cell),
         ]);
     }
     md.push_str("Capacity in veh/h/lane.\n\n");
@@ -192,10 +215,10 @@ pub(super) fn markdown(
     }
     md.push_str("\n## Against the paper\n\n");
     md.push_str(&paper_comparison(rows, |r| {
-        let stage = if r.labels.get("stage") == Some("pd") {
-            "PD capacity"
-        } else {
-            "baseline capacity"
+        let stage = match r.labels.get("stage") {
+            Some("pd") => "PD capacity",
+            Some("dedicated") => "dedicated-lane capacity",
+            _ => "baseline capacity",
         };
         format!(
             "{stage} at {} % CAV",

@@ -85,7 +85,7 @@ pub(super) fn capacity(
             .map(|&p| find(cells, &[("stage", stage), ("penetration", &num(p))]))
             .collect()
     };
-    let (base, pd) = (pick("baseline"), pick("pd"));
+    let (base, pd, dl) = (pick("baseline"), pick("pd"), pick("dedicated"));
     let m = "max_sustained_flow_vphpl";
     let mut s = vec![
         series(
@@ -95,6 +95,12 @@ pub(super) fn capacity(
             Style::Line,
         ),
         series("PD lane, 95 % CI", &x, curve(rows, &pd, m), Style::Dashed),
+        series(
+            "dedicated lane (ours), 95 % CI",
+            &x,
+            curve(rows, &dl, m),
+            Style::Line,
+        ),
     ];
     s.extend(markers("paper, baseline (text)", &x, paper(rows, &base, m)));
     s.extend(markers("paper, PD lane (text)", &x, paper(rows, &pd, m)));
@@ -107,7 +113,7 @@ pub(super) fn capacity(
     };
     line_chart(&chart, &dir.join("capacity")).map_err(plot_error)?;
     Ok(vec![Figure {
-        title: "Capacity vs CAV penetration: baseline and PD lane, mean and 95 % confidence band; markers: the paper's values stated in its text".into(),
+        title: "Capacity vs CAV penetration: baseline, PD lane and dedicated lane (ours), mean and 95 % confidence band; markers: the paper's values stated in its text".into(),
         stem: "capacity".into(),
     }])
 }
@@ -125,7 +131,7 @@ pub(super) fn sensitivity(
             .map(|&d| find(cells, &[("demand_vphpl", &num(d)), ("strategy", strategy)]))
             .collect()
     };
-    let (b, po) = (pick("none"), pick("pd"));
+    let (b, po, dl) = (pick("none"), pick("pd"), pick("dedicated"));
     let panel = |metric: &str, title: &str, y_label: &str| {
         let mut s = vec![
             series(
@@ -139,6 +145,12 @@ pub(super) fn sensitivity(
                 &x,
                 curve(rows, &po, metric),
                 Style::Dashed,
+            ),
+            series(
+                "dedicated lane (DL, ours), 95 % CI",
+                &x,
+                curve(rows, &dl, metric),
+                Style::Line,
             ),
         ];
         s.extend(markers("paper B", &x, paper(rows, &b, metric)));

@@ -89,8 +89,10 @@ impl ExperimentName {
     pub fn total_runs(self, s: &Settings) -> usize {
         s.seeds as usize
             * match self {
-                ExperimentName::Capacity => 2 * capacity::PENETRATIONS.len() - 1,
-                ExperimentName::Sensitivity => 2 * sensitivity::DEMANDS.len(),
+                ExperimentName::Capacity => 3 * capacity::PENETRATIONS.len() - 2,
+                ExperimentName::Sensitivity => {
+                    sensitivity::STRATEGIES.len() * sensitivity::DEMANDS.len()
+                }
                 ExperimentName::FlowAware => 3,
                 ExperimentName::CalibrateFlowAware => {
                     calibrate::PENETRATIONS.len() * calibrate::cells_per_penetration(s)

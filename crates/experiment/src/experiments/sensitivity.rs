@@ -3,6 +3,8 @@
 //! in the control section). Metrics after the warm-up: lane changes per vehicle (and per CAV
 //! and per human), L̄, P_P, discharge flow, and the relative discharge change
 //! ΔQ = 100 (Q_PO − Q_B) / Q_B per seed pair (`discharge_change_pct`, on the PD cells).
+//! Beside the paper's two strategies, the dedicated lane (ours; docs/organizers.md) in the
+//! same set-up, with its ΔQ against the same baseline.
 
 use super::{cell, checks_md, find, metric_label, point, run_cells, Check, Done, Settings};
 use crate::design::num;
@@ -13,24 +15,33 @@ use platoonsim_scenario::StrategyKind;
 
 pub const DEMANDS: [f64; 4] = [1000.0, 1500.0, 2000.0, 2500.0];
 pub const PENETRATION: f64 = 0.5;
+/// The baseline first: the others' ΔQ is against it.
+pub const STRATEGIES: [StrategyKind; 3] = [
+    StrategyKind::NONE,
+    StrategyKind::PD,
+    StrategyKind::DEDICATED,
+];
 
 pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {
     let mut cells = Vec::new();
     for &d in &DEMANDS {
-        for k in [StrategyKind::NONE, StrategyKind::PD] {
+        for k in STRATEGIES {
             cells.push(cell(&[], point(s, PENETRATION, d, k))?);
         }
     }
     let mut outcomes = run_cells(runner, &cells, seeds, 0)?;
-    for i in (0..cells.len()).step_by(2) {
-        table::add_paired(
-            &mut outcomes,
-            i,
-            i + 1,
-            "discharge_flow_vphpl",
-            "discharge_change_pct",
-            true,
-        );
+    let n = STRATEGIES.len();
+    for i in (0..cells.len()).step_by(n) {
+        for k in 1..n {
+            table::add_paired(
+                &mut outcomes,
+                i,
+                i + k,
+                "discharge_flow_vphpl",
+                "discharge_change_pct",
+                true,
+            );
+        }
     }
     Ok(Done::new(cells, outcomes))
 }
@@ -122,6 +133,48 @@ pub(super) fn markdown(
     }
     md.push_str(&md_table(&header2, &trs2));
 
+    md.push_str(
+        "\nThe dedicated lane (ours, not in the paper; docs/organizers.md): the same set-up, the \
+         leftmost lane for CAVs only in the control section after the warm-up (human drivers \
+         leave it before the zone and do not enter it); ΔQ per seed pair against the same \
+         baseline. PO repeated for comparison.\n\n",
+    );
+    let header3: Vec<String> = [
+        "Demand (veh/h/lane)",
+        "LC/veh PO",
+        "LC/veh DL",
+        "L̄ PO",
+        "L̄ DL",
+        "P_P PO",
+        "P_P DL",
+        "ΔQ PO (%)",
+        "ΔQ DL (%)",
+        "conflicts PO",
+        "conflicts DL",
+    ]
+    .iter()
+    .map(|h| h.to_string())
+    .collect();
+    let mut trs3 = Vec::new();
+    for &d in &DEMANDS {
+        let dem = num(d);
+        let mut r = vec![dem.clone()];
+        for metric in [
+            "lane_changes_per_vehicle",
+            "avg_platoon_length",
+            "platooning_probability",
+            "discharge_change_pct",
+            "conflicts",
+        ] {
+            for strategy in ["pd", "dedicated"] {
+                let dec = decimals(metric);
+                r.push(row_of(&dem, strategy, metric).map_or("–".into(), |x| pm(&x.stats, dec)));
+            }
+        }
+        trs3.push(r);
+    }
+    md.push_str(&md_table(&header3, &trs3));
+
     // Issue 3's targets.
     let mean =
         |d: f64, st: &str, m: &str| row_of(&num(d), st, m).map_or(f64::NAN, |r| r.stats.mean);
@@ -198,6 +251,27 @@ pub(super) fn markdown(
             signed(dq(2500.0), 2)
         ),
         passed: dq(2500.0) <= -5.0,
+    });
+
+    let dl: Vec<(f64, f64, f64)> = DEMANDS
+        .iter()
+        .map(|&d| {
+            (
+                d,
+                mean(d, "dedicated", "avg_platoon_length"),
+                mean(d, "none", "avg_platoon_length"),
+            )
+        })
+        .collect();
+    checks.push(Check {
+        statement: format!(
+            "the dedicated lane raises L̄ above the baseline's at every demand (ours): {}",
+            dl.iter()
+                .map(|(d, x, b)| format!("{} vs {} at {}", fixed(*x, 2), fixed(*b, 2), num(*d)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        passed: dl.iter().all(|(_, x, b)| x > b),
     });
 
     md.push_str("\n## Against the paper\n\n");
