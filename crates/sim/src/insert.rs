@@ -182,6 +182,7 @@ fn create(cfg: &Config, id: u64, x: f64, t: f64, origin: u32) -> Vehicle {
         mode: Mode::Cf,
         relax: Relaxation::None,
         family: Family::Speed,
+        regime: None,
         last_lc_step: NEVER,
         last_lc_side: None,
         lane_changes: 0,

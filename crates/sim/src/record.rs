@@ -7,7 +7,8 @@
 //! off, the cost is one branch per vehicle that leaves and one per step.
 
 use crate::config::Config;
-use crate::vehicle::{Kind, ModeLabel, Vehicle, NO_EXIT};
+use crate::vehicle::{Kind, ModeLabel, Vehicle, NEVER, NO_EXIT};
+use platoonsim_model::cav::CavMode;
 
 /// What to record besides the summary and the detectors.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -168,6 +169,11 @@ pub struct TrajectoryPoint {
     pub lane: u32,
     pub kind: Kind,
     pub mode: ModeLabel,
+    /// An automated CAV's control regime in the last step (`None`: a human, or manual).
+    pub regime: Option<CavMode>,
+    /// Position in its CACC string after the step: 1 leads a string or drives alone (every
+    /// human), k the k-th vehicle of a string (at most 100, the limit of `cav.max_platoon`).
+    pub platoon_pos: u8,
 }
 
 /// Simulated time of step `step`: `step / n` when a second is a whole number n of steps (so
@@ -247,8 +253,18 @@ impl TrajectoryRecorder {
         let t = step_time(step, self.dt);
         let start = self.rows.len();
         for lane in lanes {
+            // String positions from the sticky memberships: a vehicle is a member when the
+            // predecessor it joined is the one directly ahead of it now (a lane change in this
+            // step left its string).
+            let (mut ahead_id, mut ahead_pos) = (NEVER, 0u8);
             for &s in lane {
                 let v = &vehicles[s as usize];
+                let pos = if v.string_pred != NEVER && v.string_pred == ahead_id {
+                    ahead_pos.saturating_add(1)
+                } else {
+                    1
+                };
+                (ahead_id, ahead_pos) = (v.id, pos);
                 if v.x >= self.x_lo && v.x <= self.x_hi {
                     self.rows.push(TrajectoryPoint {
                         t_s: t,
@@ -259,6 +275,8 @@ impl TrajectoryRecorder {
                         v_mps: v.v,
                         a_mps2: v.a,
                         mode: v.mode_label(),
+                        regime: v.regime,
+                        platoon_pos: pos,
                     });
                 }
             }

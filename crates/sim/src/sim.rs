@@ -24,6 +24,8 @@ pub(crate) struct Decision {
     pub accel: f64,
     pub mode: crate::vehicle::Mode,
     pub family: platoonsim_model::cav::Family,
+    /// The control regime of an automated CAV's controller in this step (`None`: manual).
+    pub regime: Option<platoonsim_model::cav::CavMode>,
     /// Effective CAV time gap after this step (spec 3.5 transitions).
     pub time_gap: f64,
     /// Lane change to execute after integration.
@@ -373,6 +375,7 @@ impl Simulation {
                 }
                 veh.mode = d.mode;
                 veh.family = d.family;
+                veh.regime = d.regime;
                 veh.time_gap_s = d.time_gap;
                 if d.takeover {
                     veh.relax = Relaxation::Since(step);
