@@ -15,7 +15,7 @@
   const KIND = { cav: [0, 114, 178], human: [150, 150, 150] };
   const OTHER_KIND = [120, 80, 160];
   const NO_PLATOON_CAV = [150, 190, 215];
-  const HUMAN_FADED = [205, 205, 205];
+  const HUMAN_FADED = [246, 246, 246];
   // Distinct platoon colours (no grey or light blue, which mean "not in a platoon").
   const PLATOON = [[213, 94, 0], [0, 158, 115], [204, 121, 167], [230, 159, 0], [0, 90, 200],
     [160, 40, 40], [110, 160, 20], [120, 60, 170], [0, 150, 170], [200, 60, 120]];
@@ -56,7 +56,7 @@
     el('colour').appendChild(o);
     colourModes.push('regime');
   }
-  let W = 0, H = 0, laneH = 16, roadTop = 34;
+  let W = 0, H = 0, laneH = 16, roadTop = 44;
 
   function resize() {
     // Lanes of 10 to 24 px; room above for the scale and below for the ramps.
@@ -185,7 +185,7 @@
       const xa = Math.max(-5, sx(a)), xb = Math.min(W + 5, sx(b));
       if (xb > xa) { ctx.fillStyle = style; ctx.fillRect(xa, y0, xb - xa, y1 - y0); }
     };
-    band(road.control_m[0], road.control_m[1], top - 14, top - 4, 'rgba(120,120,200,0.35)');
+    band(road.control_m[0], road.control_m[1], top - 12, top - 4, 'rgba(120,120,200,0.35)');
     for (const s of road.segments) {
       const y = laneY(s.lane) - laneH / 2;
       band(s.from_m, s.to_m, y + 1, y + laneH - 1, s.accel ? '#d9d4c4' : '#c9c9c9');
@@ -197,6 +197,7 @@
     if (road.pd_zone_m) {
       const on = t >= road.pd_window_s[0] && t <= road.pd_window_s[1];
       const y = laneY(road.pd_lane) - laneH / 2;
+      band(road.pd_zone_m[0], road.pd_zone_m[1], y + 1, y + laneH - 1, on ? 'rgba(0,150,70,0.22)' : 'rgba(0,150,70,0.08)');
       band(road.pd_zone_m[0], road.pd_zone_m[1], y + 1, y + 3, on ? 'rgba(0,120,60,0.9)' : 'rgba(0,120,60,0.25)');
     }
     // Lane lines between adjacent lanes.
@@ -253,7 +254,7 @@
     }
     ctx.stroke();
     ctx.fillStyle = '#555';
-    ctx.fillText('control section', Math.max(2, sx(road.control_m[0]) + 2), top - 16);
+    ctx.fillText('control section', Math.max(2, sx(road.control_m[0]) + 2), top - 15);
   }
 
   function niceStep(m) {
@@ -497,7 +498,7 @@
     }
     h += '<div class="note" style="margin-top:6px">road: grey lanes, beige acceleration lanes, dark bar = lane end, '
       + 'slanted stubs = ramps, blue band = control section'
-      + (road.pd_zone_m ? ', green line = PD lane (bright while active)' : '')
+      + (road.pd_zone_m ? ', green = PD lane in its zone (brighter while active)' : '')
       + ', dashed = detectors; vehicles ' + L.toFixed(1) + ' m long'
       + (meta.collisions.length ? `; <b style="color:#d00">${meta.collisions.length} collisions</b> (red X)` : '') + '</div>';
     el('legend').innerHTML = h;
