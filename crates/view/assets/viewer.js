@@ -223,7 +223,7 @@
       ctx.stroke();
     };
     ctx.font = '11px system-ui, sans-serif';
-    for (const r of road.on_ramps) ramp(r.x_m, r.adds_lane ? r.lane : r.lane, -1);
+    for (const r of road.on_ramps) ramp(r.x_m, r.lane, -1);
     for (const r of road.off_ramps) ramp(r.x_m, r.lane, 1);
     ctx.fillStyle = '#555';
     for (const r of road.on_ramps.concat(road.off_ramps)) {

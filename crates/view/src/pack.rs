@@ -43,9 +43,7 @@ impl Blob {
         b: impl Iterator<Item = u8>,
     ) {
         // Typed arrays need their start aligned to the element size.
-        while self.data.len() % 4 != 0 {
-            self.data.push(0);
-        }
+        self.data.resize(self.data.len().next_multiple_of(4), 0);
         self.data.extend(b);
         self.sections.push(Section { name, kind, len });
     }
