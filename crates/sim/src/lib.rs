@@ -8,7 +8,7 @@
 //!
 //! Modules by phase: `sense` (neighbours, platoons), `decide` (lane-change decisions and
 //! accelerations), `execute` (lane changes), `insert` (arrivals, insertion), `detector`,
-//! `metrics`, `strategy` (platoon organization), `rng` (named random streams).
+//! `metrics`, `organize` (platoon organization: the `Organizer` trait and the strategies), `rng` (named random streams).
 
 pub mod config;
 mod decide;
@@ -18,12 +18,12 @@ mod here;
 mod insert;
 pub mod metrics;
 pub mod network;
+pub mod organize;
 pub mod record;
 pub mod rng;
 mod safety;
 mod sense;
 mod sim;
-mod strategy;
 pub mod summary;
 pub mod vehicle;
 mod yielding;
@@ -32,8 +32,9 @@ pub use config::{
     Config, Demand, DetectorKind, DetectorSpec, FlowAwareConfig, LaneExtent, Network, OffRamp,
     OnRamp, PdConfig, Road, Strategy,
 };
+pub use organize::{Advice, LaneChoice, Organizer, StrategyKind, STRATEGIES};
 pub use record::{Recording, TrajectoryPoint, TrajectorySpec, Trip, TripStatus};
-pub use sim::{strategy_name, Simulation};
+pub use sim::Simulation;
 pub use summary::{CollisionEvent, CollisionKind, DetectorRecord, Output, Summary};
 
 /// Progress callback: called with (simulated seconds so far, total seconds) every simulated minute.

@@ -1,11 +1,12 @@
 //! The simulation state and the step.
 
-use crate::config::{Config, DetectorKind, Strategy};
+use crate::config::{Config, DetectorKind};
 use crate::detector::{Detector, Passage};
 use crate::here::HereTables;
 use crate::insert::Entrance;
 use crate::metrics::Metrics;
 use crate::network::Geometry;
+use crate::organize::{self, Organizer};
 use crate::record::{trip_of, Recorder, Recording, TrajectoryRecorder, TripEnd};
 use crate::safety::Safety;
 use crate::sense::{Sensed, NONE};
@@ -89,8 +90,10 @@ pub struct Simulation {
     /// Vehicles past the end of their lane in this step's integrate phase: (slot, lane, wall).
     pub(crate) crashed: Vec<(u32, u32, f64)>,
     pub(crate) vehicle_updates: u64,
-    /// Flow-Aware condition per road cell of `FA_CELL_M` (from the latest broadcasts).
-    pub(crate) fa_cells: Vec<bool>,
+    /// The platoon-organization strategy (`organize`), and whether it advises CAVs and
+    /// human drivers (asked once: a strategy that advises nobody costs nothing per vehicle).
+    pub(crate) organizer: Box<dyn Organizer>,
+    pub(crate) advise: [bool; 2],
     /// Optional trip and trajectory records (`record.rs`); off unless [`Simulation::record`].
     pub(crate) rec: Recorder,
 }
@@ -136,7 +139,7 @@ impl Simulation {
         let lane_caps_mps = cfg.road.network.as_ref().map_or(Vec::new(), |n| {
             n.lane_speed_limits_kmh.iter().map(|c| c / 3.6).collect()
         });
-        Ok(Simulation {
+        let mut sim = Simulation {
             dt,
             step: 0,
             total_steps: steps(cfg.duration_s),
@@ -173,10 +176,30 @@ impl Simulation {
             safety: Safety::new(&cfg),
             crashed: Vec::new(),
             vehicle_updates: 0,
-            fa_cells: Vec::new(),
+            organizer: Box::new(crate::organize::NoOrganizer),
+            advise: [false; 2],
             rec: Recorder::default(),
             cfg,
-        })
+        };
+        let organizer = organize::build(&sim.cfg);
+        sim.install(organizer);
+        Ok(sim)
+    }
+
+    /// Organize platoons with `organizer` instead of the strategy the config names (a
+    /// strategy of the library user's own; docs/organizers.md). The summary's `strategy` is
+    /// then the organizer's name. Must be called before the first step.
+    pub fn set_organizer(&mut self, organizer: Box<dyn Organizer>) -> Result<(), String> {
+        if self.step > 0 {
+            return Err("the organizer must be set before the first step".into());
+        }
+        self.install(organizer);
+        Ok(())
+    }
+
+    fn install(&mut self, organizer: Box<dyn Organizer>) {
+        self.advise = [organizer.advises_humans(), organizer.advises_cavs()];
+        self.organizer = organizer;
     }
 
     /// Also record what `recording` asks for (trips, trajectories); they come back in
@@ -294,7 +317,7 @@ impl Simulation {
             for d in &mut self.detectors {
                 d.close_interval();
             }
-            self.update_flow_aware();
+            self.broadcast();
         }
         if let Some(t) = self.rec.trajectories.as_mut() {
             if t.due(self.step) {
@@ -658,7 +681,7 @@ impl Simulation {
             scenario: cfg.name.clone(),
             penetration: cfg.penetration,
             demand_vphpl: cfg.demand.vph_per_lane,
-            strategy: strategy_name(&cfg.strategy).to_string(),
+            strategy: self.organizer.name().to_string(),
             seed: cfg.seed,
             dt_s: cfg.dt_s,
             duration_s: cfg.duration_s,
@@ -710,6 +733,18 @@ impl Simulation {
             trips,
             trajectories,
         }
+    }
+
+    /// At the end of an aggregation interval: the detectors' broadcasts to the organizer
+    /// (the Flow-Aware condition is recomputed from them).
+    fn broadcast(&mut self) {
+        let interval = self.cfg.aggregation_s;
+        let casts: Vec<_> = self
+            .detectors
+            .iter()
+            .filter_map(|d| d.broadcast(interval).map(|b| (d.position_m, b)))
+            .collect();
+        self.organizer.on_broadcasts(&self.geom, &casts);
     }
 
     /// Renumber the slots in lane order, front first (memory locality only: neighbours in a
@@ -802,13 +837,4 @@ fn non_finite(v: &Vehicle, lane: usize, t: f64) -> String {
         v.v,
         v.a
     )
-}
-
-/// Short name of a strategy (summary field).
-pub fn strategy_name(s: &Strategy) -> &'static str {
-    match s {
-        Strategy::None => "none",
-        Strategy::Pd { .. } => "pd",
-        Strategy::FlowAware { .. } => "flow-aware",
-    }
 }
