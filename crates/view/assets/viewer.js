@@ -196,9 +196,11 @@
     }
     if (road.pd_zone_m) {
       const on = t >= road.pd_window_s[0] && t <= road.pd_window_s[1];
-      const y = laneY(road.pd_lane) - laneH / 2;
-      band(road.pd_zone_m[0], road.pd_zone_m[1], y + 1, y + laneH - 1, on ? 'rgba(0,150,70,0.22)' : 'rgba(0,150,70,0.08)');
-      band(road.pd_zone_m[0], road.pd_zone_m[1], y + 1, y + 3, on ? 'rgba(0,120,60,0.9)' : 'rgba(0,120,60,0.25)');
+      for (const p of road.organized) {
+        const y = laneY(p.lane) - laneH / 2;
+        band(p.from_m, p.to_m, y + 1, y + laneH - 1, on ? 'rgba(0,150,70,0.22)' : 'rgba(0,150,70,0.08)');
+        band(p.from_m, p.to_m, y + 1, y + 3, on ? 'rgba(0,120,60,0.9)' : 'rgba(0,120,60,0.25)');
+      }
     }
     // Lane lines between adjacent lanes.
     ctx.strokeStyle = '#fff';
@@ -498,7 +500,7 @@
     }
     h += '<div class="note" style="margin-top:6px">road: grey lanes, beige acceleration lanes, dark bar = lane end, '
       + 'slanted stubs = ramps, blue band = control section'
-      + (road.pd_zone_m ? ', green = PD lane in its zone (brighter while active)' : '')
+      + (road.pd_zone_m ? `, green = ${road.strategy === 'dedicated' ? 'dedicated' : 'PD'} lane in its zone (brighter while active)` : '')
       + ', dashed = detectors; vehicles ' + L.toFixed(1) + ' m long'
       + (meta.collisions.length ? `; <b style="color:#d00">${meta.collisions.length} collisions</b> (red X)` : '') + '</div>';
     el('legend').innerHTML = h;

@@ -30,6 +30,88 @@ pub struct Ramp {
     pub adds_lane: bool,
 }
 
+/// A stretch of one lane (output numbering and coordinates).
+#[derive(Debug, Serialize, PartialEq)]
+pub struct LanePiece {
+    pub lane: u32,
+    pub from_m: f64,
+    pub to_m: f64,
+}
+
+/// `strategy.pd.lane` as written to scenario.json: absent or `"leftmost"`, `"rightmost"`, or
+/// `{"index": i}` (engine index); a bare number is read as the scenario file's lane number
+/// (1 = rightmost).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum LaneChoice {
+    Leftmost,
+    Rightmost,
+    Index(u32),
+}
+
+fn lane_choice(v: Option<&Value>) -> Result<LaneChoice> {
+    let Some(v) = v.filter(|v| !v.is_null()) else {
+        return Ok(LaneChoice::Leftmost);
+    };
+    let index = |i: Option<u64>| i.and_then(|i| u32::try_from(i).ok());
+    match v {
+        Value::String(s) if s == "leftmost" => Ok(LaneChoice::Leftmost),
+        Value::String(s) if s == "rightmost" => Ok(LaneChoice::Rightmost),
+        Value::Number(n) => match index(n.as_u64()) {
+            Some(l) if l >= 1 => Ok(LaneChoice::Index(l - 1)),
+            _ => bail!("key strategy.pd.lane = {v}: expected a lane number from 1"),
+        },
+        Value::Object(o) => match index(o.get("index").and_then(Value::as_u64)) {
+            Some(i) => Ok(LaneChoice::Index(i)),
+            None => bail!("key strategy.pd.lane = {v}: expected {{\"index\": N}}"),
+        },
+        _ => bail!("key strategy.pd.lane = {v}: expected \"leftmost\", \"rightmost\" or a lane"),
+    }
+}
+
+/// The organized lane's pieces over the zone [a, b) (engine coordinates), from the through
+/// lanes `(engine lane, from, to)`.
+fn organized_pieces(
+    through: &[(u32, f64, f64)],
+    choice: LaneChoice,
+    a: f64,
+    b: f64,
+    origin: f64,
+) -> Vec<LanePiece> {
+    let mut cuts: Vec<f64> = vec![a, b];
+    for t in through {
+        cuts.extend([t.1, t.2].into_iter().filter(|&x| x > a && x < b));
+    }
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup();
+    let mut out: Vec<LanePiece> = Vec::new();
+    for w in cuts.windows(2) {
+        let mid = 0.5 * (w[0] + w[1]);
+        let open = || {
+            through
+                .iter()
+                .filter(|t| t.1 <= mid && mid < t.2)
+                .map(|t| t.0)
+        };
+        let (Some(lo), Some(hi)) = (open().min(), open().max()) else {
+            continue;
+        };
+        let lane = match choice {
+            LaneChoice::Leftmost => hi,
+            LaneChoice::Rightmost => lo,
+            LaneChoice::Index(i) => i.clamp(lo, hi),
+        } + 1;
+        match out.last_mut() {
+            Some(p) if p.lane == lane && p.to_m == w[0] + origin => p.to_m = w[1] + origin,
+            _ => out.push(LanePiece {
+                lane,
+                from_m: w[0] + origin,
+                to_m: w[1] + origin,
+            }),
+        }
+    }
+    out
+}
+
 #[derive(Debug, Serialize)]
 pub struct Detector {
     pub name: String,
@@ -59,8 +141,10 @@ pub struct Road {
     /// The PD zone and window, for `pd` and `flow-aware`.
     pub pd_zone_m: Option<[f64; 2]>,
     pub pd_window_s: Option<[f64; 2]>,
-    /// The PD lane (the leftmost).
-    pub pd_lane: u32,
+    /// The organized lane (PD or dedicated) inside the zone: one piece per stretch where it is
+    /// the same lane (`strategy.pd.lane`: the leftmost or rightmost through lane at each
+    /// position, or a lane held within the through lanes).
+    pub organized: Vec<LanePiece>,
     /// Vehicle body length drawn (m): the mean of `human.length_m`, which every vehicle draws.
     pub vehicle_length_m: f64,
 }
@@ -109,6 +193,7 @@ impl Road {
         let mut on_ramps = Vec::new();
         let mut off_ramps = Vec::new();
         let mut top = lanes;
+        let mut through: Vec<(u32, f64, f64)> = (0..lanes).map(|l| (l, 0.0, length)).collect();
         match network {
             None => {
                 for l in 1..=lanes {
@@ -126,7 +211,7 @@ impl Road {
                     .get("through_lanes")
                     .and_then(Value::as_array)
                     .ok_or_else(|| anyhow!("key road.network.through_lanes is missing"))?;
-                let mut through = Vec::new();
+                through.clear();
                 for (i, e) in extents.iter().enumerate() {
                     let lane = num(e, "lane")
                         .map_err(|err| anyhow!("road.network.through_lanes[{i}]: {err}"))?;
@@ -237,15 +322,17 @@ impl Road {
         let pd = strategy
             .and_then(|st| st.get("pd"))
             .filter(|p| !p.is_null());
-        let (pd_zone_m, pd_window_s) = match pd {
-            Some(p) => (
-                Some([
-                    num(p, "zone_start_m")? + origin,
-                    num(p, "zone_end_m")? + origin,
-                ]),
-                Some([num(p, "start_s")?, num(p, "end_s")?]),
-            ),
-            None => (None, None),
+        let (pd_zone_m, pd_window_s, organized) = match pd {
+            Some(p) => {
+                let (a, b) = (num(p, "zone_start_m")?, num(p, "zone_end_m")?);
+                let choice = lane_choice(p.get("lane"))?;
+                (
+                    Some([a + origin, b + origin]),
+                    Some([num(p, "start_s")?, num(p, "end_s")?]),
+                    organized_pieces(&through, choice, a, b, origin),
+                )
+            }
+            None => (None, None, vec![]),
         };
         let vehicle_length_m = num(s, "human.length_m.mean").unwrap_or(4.0);
         if !(vehicle_length_m > 0.0 && vehicle_length_m < 100.0) {
@@ -270,7 +357,7 @@ impl Road {
             strategy: kind,
             pd_zone_m,
             pd_window_s,
-            pd_lane: top,
+            organized,
             vehicle_length_m,
         })
     }
@@ -301,7 +388,12 @@ mod tests {
         });
         let r = Road::from_scenario(&s).unwrap();
         assert_eq!(r.lanes, 4);
-        assert_eq!(r.pd_lane, 4);
+        // The leftmost through lane: output lane 4 until its drop at engine 2000 m, then 3.
+        let piece = |lane, from_m, to_m| LanePiece { lane, from_m, to_m };
+        assert_eq!(
+            r.organized,
+            vec![piece(4, -500.0, 1500.0), piece(3, 1500.0, 2500.0)]
+        );
         assert_eq!((r.start_m, r.end_m), (-500.0, 2500.0));
         // The lane drop of engine lane 3 (output 4) at 2000 m.
         assert!(r.segments.contains(&Segment {
@@ -330,6 +422,23 @@ mod tests {
         assert_eq!(r.detectors[0].x_m, -400.0);
         assert_eq!(r.pd_zone_m, Some([-500.0, 2500.0]));
         assert_eq!(r.vehicle_length_m, 4.5);
+    }
+
+    #[test]
+    fn the_organized_lane_follows_strategy_pd_lane() {
+        let piece = |lane, from_m, to_m| LanePiece { lane, from_m, to_m };
+        let through = [(0, 0.0, 3000.0), (1, 0.0, 3000.0), (2, 1000.0, 3000.0)];
+        let right = organized_pieces(&through, LaneChoice::Rightmost, 500.0, 2000.0, 0.0);
+        assert_eq!(right, vec![piece(1, 500.0, 2000.0)]);
+        let index = lane_choice(Some(&json!({"index": 2}))).unwrap();
+        let held = organized_pieces(&through, index, 500.0, 2000.0, 0.0);
+        assert_eq!(
+            held,
+            vec![piece(2, 500.0, 1000.0), piece(3, 1000.0, 2000.0)]
+        );
+        assert_eq!(lane_choice(Some(&json!(2))).unwrap(), LaneChoice::Index(1));
+        let e = lane_choice(Some(&json!("middle"))).unwrap_err().to_string();
+        assert!(e.contains("strategy.pd.lane = \"middle\""), "{e}");
     }
 
     #[test]
