@@ -159,3 +159,103 @@ fn a_library_user_can_pass_an_organizer_of_their_own() {
     started.step().unwrap();
     assert!(started.set_organizer(Box::new(MiddleLane)).is_err());
 }
+
+// ---------------------------------------------------------------- events
+
+#[path = "../examples/lane_change_reasons.rs"]
+mod lane_change_reasons;
+
+#[test]
+fn lane_changes_counted_from_events_agree_with_the_summary() {
+    use platoonsim_sim::{Kind as K, Summary};
+    let sr99 = |p: f64, k: StrategyKind| {
+        let o = Overrides {
+            penetration: Some(p),
+            strategy: Some(k),
+            duration_s: Some(1800.0),
+            warmup_s: Some(600.0),
+            ..Overrides::default()
+        };
+        load_with("sr99", &o).unwrap()
+    };
+    for c in [
+        config(StrategyKind::DEDICATED, 1, &[]),
+        sr99(0.4, StrategyKind::PD),
+    ] {
+        let plain = platoonsim_sim::run(&c, None).unwrap().summary;
+        let (out, n) = lane_change_reasons::run_counted(c.clone());
+        // Observing does not change the run.
+        let same = |s: &Summary| Summary {
+            wall_seconds: 0.0,
+            ..s.clone()
+        };
+        assert_eq!(same(&out.summary), same(&plain));
+        let s = &out.summary;
+        println!("{}: {:?}", c.name, n.by_reason);
+        assert_eq!(n.per_vehicle(None), s.lane_changes_per_vehicle);
+        assert_eq!(n.per_vehicle(Some(K::Cav)), s.lane_changes_per_cav);
+        assert_eq!(n.per_vehicle(Some(K::Human)), s.lane_changes_per_human);
+        let reason = |kind: &str, r: &str| n.by_reason.get(&(kind, r)).copied().unwrap_or(0);
+        assert!(reason("cav", "organizing") > 50, "{:?}", n.by_reason);
+        assert_eq!(reason("human", "organizing"), 0);
+        assert!(reason("human", "mandatory") > 0, "{:?}", n.by_reason);
+    }
+}
+
+/// Emergency brakings and mode changes from the event stream.
+#[derive(Debug, Default)]
+struct SafetyCounter {
+    warmup_s: f64,
+    brakings: [u64; 2],
+    yields: u64,
+    regimes: u64,
+    last_t: f64,
+}
+
+impl platoonsim_sim::Observer for SafetyCounter {
+    fn on_step(&mut self, sim: &Simulation, events: &[platoonsim_sim::Event]) {
+        use platoonsim_sim::{Event, ModeLabel};
+        for e in events {
+            assert!(e.t_s() >= self.last_t, "events in time order");
+            assert_eq!(e.t_s(), sim.time_s(), "stamped with the end of the step");
+            self.last_t = e.t_s();
+            match e {
+                Event::EmergencyBraking { t_s, kind, .. } if *t_s > self.warmup_s => {
+                    self.brakings[*kind as usize] += 1;
+                }
+                Event::ModeChange {
+                    to: ModeLabel::Ycf, ..
+                } => self.yields += 1,
+                Event::ModeChange {
+                    regime_from,
+                    regime_to,
+                    ..
+                } if regime_from.is_some() && regime_to.is_some() => self.regimes += 1,
+                _ => {}
+            }
+        }
+    }
+}
+
+#[test]
+fn emergency_brakings_and_mode_changes_come_as_events() {
+    let c = config(StrategyKind::DEDICATED, 2, &[]);
+    let mut sim = Simulation::new(c.clone()).unwrap();
+    sim.observe(Box::new(SafetyCounter {
+        warmup_s: c.warmup_s,
+        ..SafetyCounter::default()
+    }))
+    .unwrap();
+    while !sim.finished() {
+        sim.step().unwrap();
+    }
+    let n = sim.observer::<SafetyCounter>().unwrap();
+    let (brakings, yields, regimes) = (n.brakings, n.yields, n.regimes);
+    let s = sim.finish(0.0).summary;
+    println!("brakings {brakings:?}, yields {yields}, regime changes {regimes}");
+    assert_eq!(
+        brakings,
+        [s.emergency_brakings_human, s.emergency_brakings_cav]
+    );
+    assert!(yields > 10 && regimes > 100, "{yields} {regimes}");
+}

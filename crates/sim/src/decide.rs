@@ -3,6 +3,7 @@
 //! yielding (spec 4.5), and its acceleration: the human model (spec 2) for humans and CAVs
 //! driving manually, CAV control (spec 3) for automated CAVs.
 
+use crate::events::LaneChangeReason;
 use crate::network::NO_LANE;
 use crate::organize::Advice;
 use crate::sense::{Neighbours, NONE};
@@ -46,6 +47,7 @@ impl Simulation {
                     regime: None,
                     time_gap: 0.0,
                     change: None,
+                    why: LaneChangeReason::Discretionary,
                     takeover: false,
                 },
             );
@@ -188,6 +190,7 @@ impl Simulation {
             regime: None,
             time_gap: v.time_gap_s,
             change: None,
+            why: LaneChangeReason::Discretionary,
             takeover: false,
         }
     }
@@ -259,6 +262,7 @@ impl Simulation {
             regime: Some(cmd.mode),
             time_gap,
             change: None,
+            why: LaneChangeReason::Discretionary,
             takeover: false,
         }
     }
@@ -724,6 +728,13 @@ impl Simulation {
                 regime: None,
                 time_gap: v.time_gap_s,
                 change: change.then_some(d.side),
+                why: if d.mandatory {
+                    LaneChangeReason::Mandatory
+                } else if d.organize {
+                    LaneChangeReason::Organizing
+                } else {
+                    LaneChangeReason::Discretionary
+                },
                 takeover,
             },
             Gaps {

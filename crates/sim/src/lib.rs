@@ -13,6 +13,7 @@
 pub mod config;
 mod decide;
 pub mod detector;
+pub mod events;
 mod execute;
 mod here;
 mod insert;
@@ -32,10 +33,12 @@ pub use config::{
     Config, Demand, DetectorKind, DetectorSpec, FlowAwareConfig, LaneExtent, Network, OffRamp,
     OnRamp, PdConfig, Road, Strategy,
 };
+pub use events::{Departure, Event, LaneChangeReason, Observer};
 pub use organize::{Advice, LaneChoice, Organizer, StrategyKind, STRATEGIES};
 pub use record::{Recording, TrajectoryPoint, TrajectorySpec, Trip, TripStatus};
 pub use sim::Simulation;
 pub use summary::{CollisionEvent, CollisionKind, DetectorRecord, Output, Summary};
+pub use vehicle::{Kind, ModeLabel, Vehicle};
 
 /// Progress callback: called with (simulated seconds so far, total seconds) every simulated minute.
 pub type Progress<'a> = &'a mut dyn FnMut(f64, f64);

@@ -7,6 +7,8 @@
 //! off, the cost is one branch per vehicle that leaves and one per step.
 
 use crate::config::Config;
+use crate::events::{Departure, Event, Observer};
+use crate::sim::Simulation;
 use crate::vehicle::{Kind, ModeLabel, Vehicle, NEVER, NO_EXIT};
 use platoonsim_model::cav::CavMode;
 
@@ -187,11 +189,36 @@ pub fn step_time(step: u64, dt: f64) -> f64 {
     }
 }
 
-/// The recorders of a running simulation.
+/// The recorders of a running simulation: an [`Observer`] of exits (trips) and steps
+/// (trajectory samples).
 #[derive(Debug, Default)]
 pub(crate) struct Recorder {
     pub trips: Option<Vec<Trip>>,
     pub trajectories: Option<TrajectoryRecorder>,
+    /// Entry position (engine) per entrance: 0 the mainline, i + 1 on-ramp i.
+    pub entry_x: Vec<f64>,
+    pub origin_m: f64,
+    pub dt: f64,
+}
+
+impl Observer for Recorder {
+    fn on_step(&mut self, sim: &Simulation, _events: &[Event]) {
+        if let Some(t) = self.trajectories.as_mut() {
+            if t.due(sim.step) {
+                t.sample(sim.step, &sim.vehicles, &sim.lanes);
+            }
+        }
+    }
+
+    fn on_exit(&mut self, v: &Vehicle, how: Departure, t_s: f64) {
+        let Some(trips) = self.trips.as_mut() else {
+            return;
+        };
+        // The step that ends at t_s (`step_time` inverted: exact for any run length).
+        let left_step = (how != Departure::OnRoad).then(|| (t_s / self.dt).round() as u64);
+        let entry_x = self.entry_x[v.origin as usize];
+        trips.push(trip_of(v, how, left_step, entry_x, self.origin_m, self.dt));
+    }
 }
 
 #[derive(Debug)]
@@ -286,17 +313,7 @@ impl TrajectoryRecorder {
 }
 
 /// How a trip ended, as the engine knows it when it records the trip.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum TripEnd {
-    /// Left by this off-ramp.
-    OffRamp(usize),
-    /// Left at the mainline end (where it meant to, or after missing its off-ramp).
-    RoadEnd,
-    /// Ran past the end of its lane and was removed.
-    Collided,
-    /// Still on the road at the end of the run.
-    OnRoad,
-}
+pub(crate) use crate::events::Departure as TripEnd;
 
 /// The trip of `v`, which ended as `end` in the step that ends at step `left_step` (`None`:
 /// still on the road); `entry_x` is its entry position (engine).

@@ -120,6 +120,8 @@ pub struct Vehicle {
     pub conflict_leader: u64,
     /// Entered during the measurement window: counts in the statistics (read when it leaves).
     pub measured: bool,
+    /// The driving mode and regime last reported to observers (`events.rs`).
+    pub(crate) reported: (ModeLabel, Option<CavMode>),
 }
 
 impl Vehicle {
@@ -208,6 +210,7 @@ mod tests {
         assert!(offset_of!(Vehicle, origin) > offset_of!(Vehicle, rng));
         assert!(offset_of!(Vehicle, planned_exit) > offset_of!(Vehicle, rng));
         assert!(offset_of!(Vehicle, measured) > offset_of!(Vehicle, rng));
+        assert!(offset_of!(Vehicle, reported) > offset_of!(Vehicle, rng));
         let end_of_rng = offset_of!(Vehicle, rng) + size_of::<Stream>();
         assert_eq!(size_of::<Vehicle>(), end_of_rng.next_multiple_of(64));
     }
