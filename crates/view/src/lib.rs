@@ -3,8 +3,8 @@
 //! self-contained HTML page that replays the run on a Canvas 2D (no network access, no server).
 //!
 //! The page is the files under `assets/` (embedded at compile time) with two blocks filled
-//! in: a JSON block ([`page`]) describing the road, the frames and the tables, and a base64 block
-//! with the vehicle samples packed into typed arrays and gzip-compressed ([`tracks`], [`pack`]).
+//! in: a JSON block (`page.rs`) describing the road, the frames and the tables, and a base64 block
+//! with the vehicle samples packed into typed arrays and gzip-compressed (`tracks.rs`, `pack.rs`).
 //! This crate depends on no engine crate: it reads the files by their header names, so a file
 //! with extra columns still works, and what it shows is what the run wrote.
 
@@ -17,7 +17,7 @@ mod tracks;
 use anyhow::{bail, Context, Result};
 use std::path::Path;
 
-pub use tracks::{Packed, TRAJECTORY_REQUIRED};
+pub use tracks::TRAJECTORY_REQUIRED;
 
 /// A built page and what went into it.
 pub struct View {

@@ -63,7 +63,8 @@ impl Blob {
         None
     }
 
-    /// Raw (uncompressed) size in bytes.
+    /// Raw (uncompressed) size in bytes (for tests).
+    #[cfg(test)]
     pub fn raw_len(&self) -> usize {
         self.data.len()
     }

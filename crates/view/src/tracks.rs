@@ -40,7 +40,7 @@ pub struct Packed {
     pub regimes: Vec<String>,
     pub platoon_column: bool,
     pub accel_column: bool,
-    /// Speed contour: `nt` x `nx` cells (time-major), mean speed in [`SPEED_UNIT_KMH`], [`NONE`]
+    /// Speed contour: `nt` x `nx` cells (time-major), mean speed in `SPEED_UNIT_KMH`, `NONE`
     /// where no sample fell.
     pub contour: Contour,
 }
