@@ -54,6 +54,11 @@ pub enum Command {
     /// it is in the lane, coloured by speed (0-120 km/h), CAVs thick and humans thin. Writes
     /// STEM.png and STEM.svg.
     TimeSpace(TimeSpaceArgs),
+    /// Write a self-contained HTML replay of a run made with --trajectories (default
+    /// RUN_DIR/view.html): the road to scale, every vehicle coloured by kind, speed, platoon or
+    /// driving mode, play/pause/step, zoom and pan, a minimap, detectors and a speed contour.
+    /// Opens offline in any current browser; loads nothing from the network.
+    View(ViewArgs),
 }
 
 /// Which scenario, and what to change in it. Overrides act on the scenario file before it
@@ -184,6 +189,11 @@ pub struct RunArgs {
     #[arg(long)]
     pub trips: bool,
 
+    /// Also write OUT/view.html, the replay of `platoonsim view` (needs --trajectories; add
+    /// --trips for the trips of clicked vehicles).
+    #[arg(long, requires = "trajectories")]
+    pub view: bool,
+
     /// Also write trajectories.csv: lane, position, speed, acceleration and driving mode of
     /// every vehicle on the road every PERIOD_S seconds of simulated time (a positive multiple
     /// of the time step run.dt_s, 0.1 s by default). Large: a 4-hour corridor run sampled every
@@ -286,6 +296,18 @@ fn pair(v: &Option<Vec<f64>>) -> Option<(String, Option<(f64, f64)>)> {
         _ => None,
     };
     Some((text, p))
+}
+
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    /// A run's output directory holding trajectories.csv and scenario.json (detectors.csv,
+    /// trips.csv and collisions.csv are used when present).
+    #[arg(value_name = "RUN_DIR")]
+    pub dir: PathBuf,
+
+    /// The HTML file to write (default: RUN_DIR/view.html).
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
 }
 
 #[derive(Debug, Args)]

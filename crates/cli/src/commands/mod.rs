@@ -7,6 +7,7 @@ pub mod run;
 pub mod scenarios;
 pub mod show;
 pub mod time_space;
+pub mod view;
 
 use crate::args::{Cli, Command};
 use anyhow::Result;
@@ -23,6 +24,7 @@ pub fn dispatch(cli: Cli) -> Result<ExitCode> {
         Command::Experiment(args) => experiment::experiment(&args, cli.quiet),
         Command::Reproduce(args) => reproduce::reproduce(&args, cli.quiet),
         Command::TimeSpace(args) => time_space::time_space(&args),
+        Command::View(args) => view::view(&args),
     };
     done.map(|()| ExitCode::SUCCESS)
 }

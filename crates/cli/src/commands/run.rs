@@ -42,6 +42,11 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
     if !extra.is_empty() {
         outln!("Also written: {}.", extra.join(", "))?;
     }
+    if args.view {
+        let file = args.out.join(super::view::DEFAULT_FILE);
+        super::view::write(&args.out, &file)?;
+        outln!("Replay: {}", file.display())?;
+    }
     if out.summary.collisions > 0 && !args.allow_collisions {
         return Ok(ExitCode::from(EXIT_COLLISIONS));
     }

@@ -1,0 +1,82 @@
+//! The replay viewer: [`build`] reads a run directory (`trajectories.csv` and `scenario.json`,
+//! with `detectors.csv`, `trips.csv` and `collisions.csv` where present) and returns one
+//! self-contained HTML page that replays the run on a Canvas 2D (no network access, no server).
+//!
+//! The page is the files under `assets/` (embedded at compile time) with two blocks filled
+//! in: a JSON block (`page.rs`) describing the road, the frames and the tables, and a base64 block
+//! with the vehicle samples packed into typed arrays and gzip-compressed (`tracks.rs`, `pack.rs`).
+//! This crate depends on no engine crate: it reads the files by their header names, so a file
+//! with extra columns still works, and what it shows is what the run wrote.
+
+mod pack;
+mod page;
+mod road;
+mod tables;
+mod tracks;
+
+use anyhow::{bail, Context, Result};
+use std::path::Path;
+
+pub use tracks::TRAJECTORY_REQUIRED;
+
+/// A built page and what went into it.
+pub struct View {
+    pub html: String,
+    /// Vehicle samples (rows of `trajectories.csv`).
+    pub rows: usize,
+    /// Distinct vehicle ids.
+    pub vehicles: usize,
+    /// Frames (sample times) of the replay.
+    pub frames: usize,
+    /// Whether platoon membership comes from the `platoon_pos` column (else it is inferred).
+    pub platoon_column: bool,
+}
+
+/// Build the page for the run in `dir`. Errors name the file and, for a bad row, the line and
+/// the column.
+pub fn build(dir: &Path) -> Result<View> {
+    let traj = dir.join("trajectories.csv");
+    if !traj.is_file() {
+        bail!(
+            "{} not found: the viewer replays a run's trajectories; make them with `platoonsim \
+             run ... --trajectories PERIOD_S --out {}`",
+            traj.display(),
+            dir.display()
+        );
+    }
+    let scenario_path = dir.join("scenario.json");
+    let scenario_text = std::fs::read_to_string(&scenario_path).with_context(|| {
+        format!(
+            "cannot read {} (the run's resolved scenario, written by `platoonsim run`)",
+            scenario_path.display()
+        )
+    })?;
+    let scenario: serde_json::Value = serde_json::from_str(&scenario_text)
+        .with_context(|| format!("{} is not valid JSON", scenario_path.display()))?;
+    let road = road::Road::from_scenario(&scenario)
+        .with_context(|| format!("in {}", scenario_path.display()))?;
+
+    let file =
+        std::fs::File::open(&traj).with_context(|| format!("cannot read {}", traj.display()))?;
+    let packed = tracks::read_and_pack(std::io::BufReader::new(file), &traj, &road)?;
+
+    let detectors = tables::detectors(&dir.join("detectors.csv"))?;
+    let trips = tables::trips(&dir.join("trips.csv"), &packed.ids)?;
+    let collisions = tables::collisions(&dir.join("collisions.csv"))?;
+
+    let meta = page::Meta {
+        road: &road,
+        packed: &packed,
+        detectors: &detectors,
+        trips: &trips,
+        collisions: &collisions,
+    };
+    let html = page::render(&meta)?;
+    Ok(View {
+        html,
+        rows: packed.rows,
+        vehicles: packed.ids.len(),
+        frames: packed.frames.len(),
+        platoon_column: packed.platoon_column,
+    })
+}

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Every test: the Rust workspace, then the viewer's browser tests (tests/browser: headless
+# Chromium from Debian's package driven by playwright-core). README and .ci/run call this.
+# With --install it first installs what the browser tests need (Debian's chromium, the npm
+# packages of tests/browser/package-lock.json); without it a missing browser skips them,
+# except under CI=true, where it fails.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+if [ "${1:-}" = "--install" ]; then
+    if ! command -v chromium >/dev/null 2>&1; then
+        apt-get update
+        DEBIAN_FRONTEND=noninteractive apt-get install -y chromium
+    fi
+    (cd tests/browser && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund)
+fi
+
+echo "== cargo test --workspace --release"
+cargo test --workspace --release
+
+echo "== browser tests (tests/browser)"
+if ! command -v node >/dev/null 2>&1 || [ ! -d tests/browser/node_modules ]; then
+    if [ "${CI:-}" = "true" ]; then
+        echo "error: node or tests/browser/node_modules is missing (run scripts/test-all.sh --install)" >&2
+        exit 1
+    fi
+    echo "skipped: needs node and npm; run scripts/test-all.sh --install (or npm ci in tests/browser)" >&2
+    exit 0
+fi
+# The tests start the release binary built above.
+cargo build --release -p platoonsim --quiet
+(cd tests/browser && node --test)
