@@ -11,6 +11,7 @@
 //! | [`human`] | human car following: min(Newell, IDM free term, Gipps), smoothing | 2 |
 //! | [`cav`] | CAV control: speed regulation, ACC, CACC, safety override, limits | 3 |
 //! | [`lanechange`] | lane-change desire, anticipated-minimum-gap acceptance, relaxation | 4 |
+//! | [`driver`] | the lane-change decision procedure, rule by rule | 4.2, 4.3, 4.7 |
 //! | [`safety`] | emergency braking limit, time to collision, TET/TIT exposure | docs/safety.md |
 //!
 //! Conventions: SI units inside (m, s, m/s, m/s²); decelerations are negative
@@ -19,6 +20,7 @@
 
 pub mod cav;
 pub mod dist;
+pub mod driver;
 pub mod human;
 pub mod lanechange;
 pub mod safety;

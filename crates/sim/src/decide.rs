@@ -10,6 +10,7 @@ use crate::sense::{Neighbours, NONE};
 use crate::sim::{Decision, Simulation};
 use crate::vehicle::{Kind, Mode, Relaxation, Vehicle, NEVER, NO_EXIT};
 use platoonsim_model::cav::{self, Family};
+use platoonsim_model::driver;
 use platoonsim_model::human;
 use platoonsim_model::lanechange::{self as lcm, Side};
 use platoonsim_model::{bounded, Leader, Relax};
@@ -166,9 +167,7 @@ impl Simulation {
                     return blc;
                 }
                 let mut a = self.automated_decision(s, v, nb, leader, wall);
-                if g.lag_ok {
-                    a.accel = a.accel.min(g.a_ant.max(0.0));
-                }
+                a.accel = driver::held_back(a.accel, g.lag_ok, g.a_ant);
                 if a.mode == Mode::Cf {
                     a.mode = Mode::Blc {
                         side: d.side,
@@ -294,7 +293,7 @@ impl Simulation {
         // (checked before the scans below; `desire` has no side effects).
         let since = if v.last_lc_step != NEVER {
             let since = (self.step - v.last_lc_step) as f64 * self.dt;
-            if since < v.lc.min_interval_s {
+            if driver::too_soon_after_change(&v.lc, since) {
                 return None;
             }
             Some(since)
@@ -316,7 +315,7 @@ impl Simulation {
             self.mandatory(s, v, None)
         };
         let [left, right] = self.discretionary(s, v, nb, self.is_follower(s, v));
-        let (side, gamma) = combine(mandatory, left, right, v.lc.mandatory_weight)?;
+        let (side, gamma) = driver::combine(mandatory, left, right, v.lc.mandatory_weight)?;
         settle(v, since, side, gamma, mandatory.is_some(), false)
     }
 
@@ -352,7 +351,7 @@ impl Simulation {
         };
         let (side, gamma) = if let Some((lane, strength)) = join {
             // γ_d = 0 in the organized lane (spec 4.7).
-            (toward(v.lane, lane)?, strength)
+            (driver::toward(v.lane, lane)?, strength)
         } else {
             let [mut left, mut right] = self.discretionary(s, v, nb, self.is_follower(s, v));
             if let Some((lane, from_m)) = avoid {
@@ -366,7 +365,7 @@ impl Simulation {
                     right = None;
                 }
             }
-            combine(mandatory, left, right, v.lc.mandatory_weight)?
+            driver::combine(mandatory, left, right, v.lc.mandatory_weight)?
         };
         settle(v, since, side, gamma, mandatory.is_some(), join.is_some())
     }
@@ -390,7 +389,7 @@ impl Simulation {
             .organizer
             .advise(v, self.step as f64 * self.dt, &self.geom)
         {
-            Advice::Join { lane, .. } => toward(v.lane, lane),
+            Advice::Join { lane, .. } => driver::toward(v.lane, lane),
             _ => None,
         }
     }
@@ -701,10 +700,12 @@ impl Simulation {
                 // Discretionary changes must not have to brake behind the new leader (spec
                 // 4.3); a mandatory change, and a move toward the PD lane "regardless of the
                 // speed difference" (`cav.organize_regardless_of_speed` [D] 6.22), need not.
-                lcm::accept_lead_gap(h, &v.lc, l.gap_m, v.v, l.v_mps)
-                    && (d.mandatory
-                        || (d.organize && self.cfg.cav.organize_regardless_of_speed)
-                        || a_ant >= 0.0)
+                driver::lead_acceptable(
+                    lcm::accept_lead_gap(h, &v.lc, l.gap_m, v.v, l.v_mps),
+                    d.mandatory,
+                    d.organize && self.cfg.cav.organize_regardless_of_speed,
+                    a_ant,
+                )
             }
         };
         let lag_ok = if tf == NONE {
@@ -715,23 +716,21 @@ impl Simulation {
         };
         // Only a platoon leader changes lanes: a follower splits first (spec 3.6.4).
         let must_split = self.sensed[s as usize].linked;
-        let change = lead_ok && lag_ok && !must_split;
-        let target = if change {
-            a_cur
-        } else if d.mandatory {
-            if lag_ok {
-                a_cur.min(a_ant.max(h.comfort_decel)) // BLC-Sync
-            } else if d.gamma > v.lc.slow_down_desire && !self.keeps_pace(s, v, tf) {
-                // BLC-Slow: drop back to the next gap.
-                a_cur.min(h.comfort_decel)
-            } else {
-                a_cur
-            }
-        } else if lag_ok && !lead_ok {
-            a_cur.min(a_ant.max(0.0)) // discretionary sync, no deceleration
-        } else {
-            a_cur
-        };
+        let change = driver::change_now(lead_ok, lag_ok, must_split);
+        // BLC-Slow only for a mandatory change with the lag gap closed (evaluated lazily:
+        // `keeps_pace` reads the follower).
+        let slow =
+            d.mandatory && !lag_ok && d.gamma > v.lc.slow_down_desire && !self.keeps_pace(s, v, tf);
+        let target = driver::blc_target(
+            a_cur,
+            a_ant,
+            h.comfort_decel,
+            change,
+            d.mandatory,
+            lead_ok,
+            lag_ok,
+            slow,
+        );
         (
             Decision {
                 accel: human::smooth_accel(v.a, target, h.smoothing),
@@ -773,16 +772,14 @@ impl Simulation {
             return false;
         }
         let f = &self.vehicles[tf as usize];
-        if matches!(f.mode, Mode::Ycf { to, .. } if to == v.id) {
-            return true;
-        }
-        f.v > v.v
-            && (v.v < CREEP_SPEED_MPS || (!self.geom.plain && self.sensed[s as usize].here.accel))
+        driver::keeps_pace(
+            matches!(f.mode, Mode::Ycf { to, .. } if to == v.id),
+            f.v,
+            v.v,
+            !self.geom.plain && self.sensed[s as usize].here.accel,
+        )
     }
 }
-
-/// Creep speed of spec 4.3 (5 mph): BLC does not slow a vehicle below it beside faster traffic.
-const CREEP_SPEED_MPS: f64 = 2.23;
 
 /// ρ_jam of the anticipation rule (spec 4.2): 1000/6 veh/km.
 const RHO_JAM_PER_KM: f64 = 1000.0 / 6.0;
@@ -848,37 +845,8 @@ impl Simulation {
     }
 }
 
-/// γ from the mandatory desire (if any) and the discretionary desires [left, right] (spec 4.2):
-/// γ = γ_m + κ γ_d on the mandatory side (the other side's discretionary desire is 0), else
-/// the larger discretionary desire (left on a tie); `None` without any.
-#[inline]
-fn combine(
-    mandatory: Option<(Side, f64)>,
-    left: Option<f64>,
-    right: Option<f64>,
-    kappa: f64,
-) -> Option<(Side, f64)> {
-    match mandatory {
-        Some((side, gm)) => {
-            let gd = if side == Side::Left { left } else { right }.unwrap_or(0.0);
-            Some((side, gm + kappa * gd))
-        }
-        None => match (left, right) {
-            (None, None) => None,
-            (Some(l), None) => Some((Side::Left, l)),
-            (None, Some(r)) => Some((Side::Right, r)),
-            (Some(l), Some(r)) => Some(if r > l {
-                (Side::Right, r)
-            } else {
-                (Side::Left, l)
-            }),
-        },
-    }
-}
-
 /// The desire if it passes the driver's threshold, after the second part of the
-/// anti-oscillation rule (spec 4.2): no quick return to the lane just left (`since`: seconds
-/// since the last change).
+/// anti-oscillation rule (spec 4.2; `since`: seconds since the last change).
 #[inline]
 fn settle(
     v: &Vehicle,
@@ -889,14 +857,11 @@ fn settle(
     organize: bool,
 ) -> Option<Desire> {
     if let Some(since) = since {
-        if gamma < 1.0
-            && v.last_lc_side == Some(opposite(side))
-            && since < v.lc.return_factor * v.lc.min_interval_s
-        {
+        if driver::quick_return(&v.lc, since, gamma, side, v.last_lc_side) {
             return None;
         }
     }
-    (gamma > v.lc.threshold).then_some(Desire {
+    driver::wants_change(&v.lc, gamma).then_some(Desire {
         side,
         gamma,
         mandatory,
@@ -904,23 +869,7 @@ fn settle(
     })
 }
 
-/// The side from `lane` toward `target`, `None` when there.
-#[inline]
-fn toward(lane: u32, target: u32) -> Option<Side> {
-    match lane.cmp(&target) {
-        std::cmp::Ordering::Less => Some(Side::Left),
-        std::cmp::Ordering::Greater => Some(Side::Right),
-        std::cmp::Ordering::Equal => None,
-    }
-}
-
-/// The other side.
-pub(crate) fn opposite(s: Side) -> Side {
-    match s {
-        Side::Left => Side::Right,
-        Side::Right => Side::Left,
-    }
-}
+pub(crate) use platoonsim_model::driver::opposite;
 
 /// A uniform draw in [0, 1) for the pair (driver, requester): "a fresh U(0,1) at each new
 /// request" (spec 4.5), reproducible without storing anything.

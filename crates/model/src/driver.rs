@@ -1,0 +1,310 @@
+//! The lane-change decision procedure (spec 4.2, 4.3, 4.7), rule by rule, as pure functions.
+//! The engine's decide phase (`crates/sim/src/decide.rs`) gathers the inputs from the
+//! neighbourhood and calls these in the documented order; each rule is unit-tested here.
+//!
+//! | rule | function | spec / docs/model-choices.md |
+//! |---|---|---|
+//! | no desire within the minimum interval after a change | [`too_soon_after_change`] | 4.2 anti-oscillation |
+//! | no quick return to the lane just left (γ < 1) | [`quick_return`] | 4.2 anti-oscillation |
+//! | γ = γ_m + κ γ_d on the mandatory side, else the larger γ_d (left on a tie) | [`combine`] | 4.2 |
+//! | organizing: toward the organized lane, none in it | [`toward`] | 4.7 |
+//! | a change needs γ above the threshold | [`wants_change`] | 4.2 |
+//! | the lead gap: discretionary changes must not brake behind the new leader | [`lead_acceptable`] | 4.3, 6.22 |
+//! | only a platoon leader changes: a follower splits first | [`change_now`] | 3.6.4 |
+//! | BLC-Sync, BLC-Slow, discretionary sync | [`blc_target`] | 4.3 |
+//! | the deadlock exceptions to BLC-Slow | [`keeps_pace`] | 4.3 \[D\] |
+//! | automation held back while the driver waits to organize | [`held_back`] | 6.20 `cav.organize_while_automated` \[D\] |
+//!
+//! | constant | unit | value | meaning |
+//! |---|---|---|---|
+//! | [`CREEP_SPEED_MPS`] | m/s | 2.23 | spec 4.3's 5 mph: BLC-Slow does not stop a vehicle beside faster traffic below it |
+
+use crate::lanechange::{LaneChangeParams, Side};
+
+/// Creep speed of spec 4.3 (5 mph, m/s).
+pub const CREEP_SPEED_MPS: f64 = 2.23;
+
+/// The other side.
+#[inline]
+pub fn opposite(s: Side) -> Side {
+    match s {
+        Side::Left => Side::Right,
+        Side::Right => Side::Left,
+    }
+}
+
+/// Anti-oscillation, first part: no desire at all within the minimum interval after a change
+/// (`since_s`: seconds since the last change).
+#[inline]
+pub fn too_soon_after_change(p: &LaneChangeParams, since_s: f64) -> bool {
+    since_s < p.min_interval_s
+}
+
+/// Anti-oscillation, second part: a desire below 1 back toward the lane just left
+/// (`last_side`: the side of the last change) within `return_factor` minimum intervals is
+/// dropped.
+#[inline]
+pub fn quick_return(
+    p: &LaneChangeParams,
+    since_s: f64,
+    gamma: f64,
+    side: Side,
+    last_side: Option<Side>,
+) -> bool {
+    gamma < 1.0 && last_side == Some(opposite(side)) && since_s < p.return_factor * p.min_interval_s
+}
+
+/// γ from the mandatory desire (if any) and the discretionary desires [left, right]:
+/// γ = γ_m + κ γ_d on the mandatory side (the other side's discretionary desire is 0), else
+/// the larger discretionary desire, left on a tie; `None` without any.
+#[inline]
+pub fn combine(
+    mandatory: Option<(Side, f64)>,
+    left: Option<f64>,
+    right: Option<f64>,
+    kappa: f64,
+) -> Option<(Side, f64)> {
+    match mandatory {
+        Some((side, gm)) => {
+            let gd = if side == Side::Left { left } else { right }.unwrap_or(0.0);
+            Some((side, gm + kappa * gd))
+        }
+        None => match (left, right) {
+            (None, None) => None,
+            (Some(l), None) => Some((Side::Left, l)),
+            (None, Some(r)) => Some((Side::Right, r)),
+            (Some(l), Some(r)) => Some(if r > l {
+                (Side::Right, r)
+            } else {
+                (Side::Left, l)
+            }),
+        },
+    }
+}
+
+/// The side from `lane` toward `target` (lanes counted from the right), `None` when there.
+#[inline]
+pub fn toward(lane: u32, target: u32) -> Option<Side> {
+    match lane.cmp(&target) {
+        std::cmp::Ordering::Less => Some(Side::Left),
+        std::cmp::Ordering::Greater => Some(Side::Right),
+        std::cmp::Ordering::Equal => None,
+    }
+}
+
+/// A desire leads to a lane-change attempt only above the driver's threshold.
+#[inline]
+pub fn wants_change(p: &LaneChangeParams, gamma: f64) -> bool {
+    gamma > p.threshold
+}
+
+/// The lead gap is acceptable: the gap rule holds (`gap_ok`, `accept_lead_gap`) and, for a
+/// discretionary change, the driver need not brake behind the new leader (`a_ant` ≥ 0). A
+/// mandatory change, and an organizing one when `regardless` (`cav.organize_regardless_of_speed`),
+/// skip the second part.
+#[inline]
+pub fn lead_acceptable(gap_ok: bool, mandatory: bool, regardless: bool, a_ant: f64) -> bool {
+    gap_ok && (mandatory || regardless || a_ant >= 0.0)
+}
+
+/// Change in this step: both gaps acceptable and not a CACC follower (a follower splits first).
+#[inline]
+pub fn change_now(lead_ok: bool, lag_ok: bool, follower: bool) -> bool {
+    lead_ok && lag_ok && !follower
+}
+
+/// The target acceleration in BLC (before the change; `a_cur` behind the current leader,
+/// `a_ant` behind the target-lane leader with relaxed gaps, `comfort` the comfortable
+/// deceleration, negative): changing now or nothing to adapt, `a_cur`; mandatory with the lag
+/// gap open, BLC-Sync min(a_cur, max(a_ant, comfort)); mandatory with the lag gap closed and
+/// `slow` (γ above the slow-down desire and no exception), BLC-Slow min(a_cur, comfort);
+/// discretionary with only the lead gap closed, the sync without braking, min(a_cur,
+/// max(a_ant, 0)).
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub fn blc_target(
+    a_cur: f64,
+    a_ant: f64,
+    comfort: f64,
+    change: bool,
+    mandatory: bool,
+    lead_ok: bool,
+    lag_ok: bool,
+    slow: bool,
+) -> f64 {
+    if change {
+        a_cur
+    } else if mandatory {
+        if lag_ok {
+            a_cur.min(a_ant.max(comfort))
+        } else if slow {
+            a_cur.min(comfort)
+        } else {
+            a_cur
+        }
+    } else if lag_ok && !lead_ok {
+        a_cur.min(a_ant.max(0.0))
+    } else {
+        a_cur
+    }
+}
+
+/// The exceptions to BLC-Slow \[D\]: the target-lane follower is yielding to this vehicle
+/// (slowing down too would leave both waiting for the other), or it is faster (it passes by
+/// itself) and this vehicle is in an acceleration lane or already below the creep speed.
+#[inline]
+pub fn keeps_pace(follower_yields: bool, follower_v: f64, v: f64, in_accel_lane: bool) -> bool {
+    follower_yields || (follower_v > v && (v < CREEP_SPEED_MPS || in_accel_lane))
+}
+
+/// An automated CAV whose driver waits for a gap toward its organized lane: with the lag gap
+/// open, no acceleration beyond what the target-lane leader allows (and never braking for it).
+#[inline]
+pub fn held_back(a_auto: f64, lag_ok: bool, a_ant: f64) -> f64 {
+    if lag_ok {
+        a_auto.min(a_ant.max(0.0))
+    } else {
+        a_auto
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use Side::{Left, Right};
+
+    fn p() -> LaneChangeParams {
+        LaneChangeParams::default()
+    }
+
+    #[test]
+    fn no_desire_within_the_minimum_interval() {
+        let p = p();
+        assert!(too_soon_after_change(&p, 0.9 * p.min_interval_s));
+        assert!(!too_soon_after_change(&p, p.min_interval_s));
+    }
+
+    #[test]
+    fn no_quick_return_below_full_desire() {
+        let (p, t) = (p(), p().min_interval_s * 1.01);
+        assert!(quick_return(&p, t, 0.5, Left, Some(Right)));
+        assert!(
+            !quick_return(&p, t, 1.0, Left, Some(Right)),
+            "γ = 1 returns"
+        );
+        assert!(
+            !quick_return(&p, t, 0.5, Left, Some(Left)),
+            "same side again"
+        );
+        assert!(!quick_return(
+            &p,
+            p.return_factor * p.min_interval_s,
+            0.5,
+            Left,
+            Some(Right)
+        ));
+    }
+
+    #[test]
+    fn mandatory_adds_the_discretionary_part_of_its_side() {
+        assert_eq!(
+            combine(Some((Left, 0.5)), Some(0.4), Some(0.9), 0.5),
+            Some((Left, 0.7))
+        );
+        assert_eq!(
+            combine(Some((Right, 0.5)), Some(0.4), None, 0.5),
+            Some((Right, 0.5))
+        );
+    }
+
+    #[test]
+    fn discretionary_takes_the_larger_side_left_on_a_tie() {
+        assert_eq!(combine(None, Some(0.3), Some(0.4), 0.5), Some((Right, 0.4)));
+        assert_eq!(combine(None, Some(0.4), Some(0.4), 0.5), Some((Left, 0.4)));
+        assert_eq!(combine(None, None, Some(0.2), 0.5), Some((Right, 0.2)));
+        assert_eq!(combine(None, None, None, 0.5), None);
+    }
+
+    #[test]
+    fn organizing_moves_toward_the_lane_and_stops_in_it() {
+        assert_eq!(toward(0, 2), Some(Left));
+        assert_eq!(toward(2, 0), Some(Right));
+        assert_eq!(toward(1, 1), None);
+    }
+
+    #[test]
+    fn a_desire_must_pass_the_threshold() {
+        let p = p();
+        assert!(wants_change(&p, p.threshold + 1e-9));
+        assert!(!wants_change(&p, p.threshold));
+    }
+
+    #[test]
+    fn discretionary_changes_do_not_brake_behind_the_new_leader() {
+        assert!(!lead_acceptable(true, false, false, -0.1));
+        assert!(lead_acceptable(true, true, false, -0.1), "mandatory");
+        assert!(
+            lead_acceptable(true, false, true, -0.1),
+            "organizing regardless"
+        );
+        assert!(
+            !lead_acceptable(false, true, true, 1.0),
+            "the gap rule always holds"
+        );
+    }
+
+    #[test]
+    fn a_cacc_follower_splits_before_it_changes() {
+        assert!(change_now(true, true, false));
+        assert!(!change_now(true, true, true));
+        assert!(!change_now(true, false, false));
+    }
+
+    #[test]
+    fn blc_sync_slow_and_discretionary_sync() {
+        let blc = |change, mandatory, lead_ok, lag_ok, slow| {
+            blc_target(1.0, -3.0, -2.0, change, mandatory, lead_ok, lag_ok, slow)
+        };
+        assert_eq!(blc(true, true, true, true, true), 1.0, "changing: a_cur");
+        assert_eq!(
+            blc(false, true, false, true, false),
+            -2.0,
+            "sync, no harder than comfort"
+        );
+        assert_eq!(
+            blc(false, true, false, false, true),
+            -2.0,
+            "slow: drop back"
+        );
+        assert_eq!(blc(false, true, false, false, false), 1.0, "no slow: a_cur");
+        assert_eq!(
+            blc(false, false, false, true, false),
+            0.0,
+            "discretionary sync: no braking"
+        );
+        assert_eq!(
+            blc(false, false, true, false, true),
+            1.0,
+            "discretionary, lag closed"
+        );
+    }
+
+    #[test]
+    fn blc_slow_spares_a_yielded_to_or_creeping_driver() {
+        assert!(keeps_pace(true, 0.0, 5.0, false), "the follower yields");
+        assert!(
+            keeps_pace(false, 3.0, 2.0, false),
+            "below creep speed, faster follower"
+        );
+        assert!(keeps_pace(false, 9.0, 8.0, true), "in an acceleration lane");
+        assert!(!keeps_pace(false, 9.0, 8.0, false));
+        assert!(!keeps_pace(false, 1.0, 2.0, true), "a slower follower");
+    }
+
+    #[test]
+    fn automation_holds_back_for_the_target_lane_without_braking() {
+        assert_eq!(held_back(1.0, true, 0.5), 0.5);
+        assert_eq!(held_back(1.0, true, -2.0), 0.0);
+        assert_eq!(held_back(1.0, false, -2.0), 1.0);
+    }
+}
