@@ -319,7 +319,7 @@ pub fn validate(
     if c.problems.is_empty() {
         // The engine's own invariants; the checks above are stricter, so this is a safety net.
         if let Err(message) = config.check() {
-            c.push("(engine check)", "-", message);
+            c.push("(engine check)", "-", message.to_string());
         }
     }
     if c.problems.is_empty() {

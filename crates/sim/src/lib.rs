@@ -13,6 +13,7 @@
 pub mod config;
 mod decide;
 pub mod detector;
+mod error;
 mod execute;
 mod here;
 mod insert;
@@ -32,6 +33,7 @@ pub use config::{
     Config, Demand, DetectorKind, DetectorSpec, FlowAwareConfig, LaneExtent, Network, OffRamp,
     OnRamp, PdConfig, Road, Strategy,
 };
+pub use error::SimError;
 pub use record::{Recording, TrajectoryPoint, TrajectorySpec, Trip, TripStatus};
 pub use sim::{strategy_name, Simulation};
 pub use summary::{CollisionEvent, CollisionKind, DetectorRecord, Output, Summary};
@@ -42,7 +44,7 @@ pub type Progress<'a> = &'a mut dyn FnMut(f64, f64);
 /// Run a whole simulation: validate, step to the end, and collect the outputs.
 /// Single-threaded and deterministic: the same config gives bit-identical outputs (except
 /// `wall_seconds`).
-pub fn run(config: &Config, progress: Option<Progress<'_>>) -> Result<Output, String> {
+pub fn run(config: &Config, progress: Option<Progress<'_>>) -> Result<Output, SimError> {
     run_recording(config, &Recording::default(), progress)
 }
 
@@ -53,7 +55,7 @@ pub fn run_recording(
     config: &Config,
     recording: &Recording,
     mut progress: Option<Progress<'_>>,
-) -> Result<Output, String> {
+) -> Result<Output, SimError> {
     let start = std::time::Instant::now();
     let mut sim = Simulation::new(config.clone())?;
     sim.record(recording)?;

@@ -1,5 +1,6 @@
 //! The simulation state and the step.
 
+use crate::error::SimError;
 use crate::config::{Config, DetectorKind, Strategy};
 use crate::detector::{Detector, Passage};
 use crate::here::HereTables;
@@ -95,7 +96,7 @@ pub struct Simulation {
 
 impl Simulation {
     /// Build a simulation from a validated config.
-    pub fn new(cfg: Config) -> Result<Simulation, String> {
+    pub fn new(cfg: Config) -> Result<Simulation, SimError> {
         cfg.check()?;
         let dt = cfg.dt_s;
         let n_lanes = cfg.road.lanes as usize;
@@ -180,10 +181,12 @@ impl Simulation {
     /// Also record what `recording` asks for (trips, trajectories); they come back in
     /// [`Output::trips`] and [`Output::trajectories`]. Recording reads the state and never
     /// changes the simulation. Must be called before the first step.
-    pub fn record(&mut self, recording: &Recording) -> Result<(), String> {
+    pub fn record(&mut self, recording: &Recording) -> Result<(), SimError> {
         recording.check(&self.cfg)?;
         if self.step > 0 {
-            return Err("recording must be enabled before the first step".into());
+            return Err(SimError::Recording(
+                "recording must be enabled before the first step".into(),
+            ));
         }
         let origin = self.origin_m();
         self.rec = Recorder {
@@ -276,7 +279,7 @@ impl Simulation {
     ///    virtual entry queue.
     /// 6. **detectors**: crossings and occupancy; interval close and broadcast.
     /// 7. **invariants**: no overlap (counted; a panic in debug builds), all states finite.
-    pub fn step(&mut self) -> Result<(), String> {
+    pub fn step(&mut self) -> Result<(), SimError> {
         self.sense();
         self.decide();
         self.integrate();
@@ -538,7 +541,7 @@ impl Simulation {
     /// each lane's (leader, follower) pairs at the end of the step. A pair whose follower's
     /// front is past its leader's rear is a collision when it starts (it was not overlapping at
     /// the end of the previous step). Keeps each lane sorted even after a collision.
-    fn check_invariants(&mut self) -> Result<(), String> {
+    fn check_invariants(&mut self) -> Result<(), SimError> {
         let step = self.step;
         let t = crate::record::step_time(step, self.dt);
         let dt = self.dt;
@@ -779,7 +782,7 @@ fn overlap(
 
 /// A non-finite state is an engine error (phase 7).
 #[inline(always)]
-fn check_finite(v: &Vehicle, lane: usize, t: f64) -> Result<(), String> {
+fn check_finite(v: &Vehicle, lane: usize, t: f64) -> Result<(), SimError> {
     // The sum is finite exactly when the three are: they are bounded far below overflow (a
     // road of at most 200 km, speeds and accelerations of vehicles), and ∞ − ∞ is NaN.
     if (v.x + v.v + v.a).is_finite() {
@@ -790,15 +793,15 @@ fn check_finite(v: &Vehicle, lane: usize, t: f64) -> Result<(), String> {
 
 #[cold]
 #[inline(never)]
-fn non_finite(v: &Vehicle, lane: usize, t: f64) -> String {
-    format!(
-        "vehicle {} in lane {} has a non-finite state at t = {t:.1} s (x = {}, v = {}, a = {})",
-        v.id,
-        lane + 1,
-        v.x,
-        v.v,
-        v.a
-    )
+fn non_finite(v: &Vehicle, lane: usize, t: f64) -> SimError {
+    SimError::NonFinite {
+        vehicle: v.id,
+        lane: lane + 1,
+        t_s: t,
+        x_m: v.x,
+        v_mps: v.v,
+        a_mps2: v.a,
+    }
 }
 
 /// Short name of a strategy (summary field).

@@ -72,7 +72,6 @@ pub fn bench(args: &BenchArgs, quiet: bool) -> Result<()> {
         );
         let start = Instant::now();
         let out = progress::run_with_bar(&config, &bar)
-            .map_err(anyhow::Error::msg)
             .context("benchmark simulation failed")?;
         let wall = start.elapsed().as_secs_f64();
         let s = &out.summary;
