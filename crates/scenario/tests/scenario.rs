@@ -89,10 +89,9 @@ fn homogeneous_strategy_defaults_follow_the_road_and_the_run() {
         panic!()
     };
     assert_eq!((pd.start_s, pd.end_s), (600.0, 1800.0));
-    // Thresholds: the calibrated table at the run's penetration (50 %).
-    let (q, v) = platoonsim_scenario::thresholds::default_at(0.5, (0.0, 0.0));
-    assert_eq!(thresholds.flow_threshold_vphpl, q);
-    assert_eq!(thresholds.speed_threshold_kmh, v);
+    // Thresholds: the table homogeneous.toml names, at the run's penetration (50 %).
+    assert_eq!(thresholds.flow_threshold_vphpl, 2750.0);
+    assert_eq!(thresholds.speed_threshold_kmh, 97.0);
     assert_eq!(thresholds.radius_m, 1500.0);
     // Between calibrated rows the thresholds are interpolated; an explicit value wins.
     let at = |pen: f64, set: &[&str]| {
