@@ -476,8 +476,12 @@ impl Config {
 }
 
 impl Config {
-    /// The paper's homogeneous road with the spec defaults (the same values as the built-in
-    /// `homogeneous` scenario file; handy for tests and benchmarks of the engine alone).
+    /// The paper's homogeneous road with the spec defaults, for the engine's own tests and
+    /// benchmarks, which cannot read scenario files. A mirror, not a definition: the road is
+    /// defined by the built-in scenario file `crates/scenario/scenarios/homogeneous.toml`, and
+    /// the scenario crate's test `homogeneous_config_mirrors_the_scenario_file` requires this
+    /// config to equal the file loaded with the same five values (and [`Config::with_pd`] to
+    /// equal it with `strategy.kind = "pd"`). Code outside tests loads the file.
     pub fn homogeneous(
         penetration: f64,
         demand_vphpl: f64,
