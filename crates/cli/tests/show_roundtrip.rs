@@ -43,7 +43,10 @@ fn shown_file_runs_as_the_scenario(test: &str, scenario: &str, flags: &[&str]) {
     }
     let summary = summary_without_wall_time(&direct);
     assert_eq!(summary_without_wall_time(&from_file), summary, "{test}");
-    assert!(summary["vehicles_exited"].as_u64().unwrap() > 100, "{summary}");
+    assert!(
+        summary["vehicles_exited"].as_u64().unwrap() > 100,
+        "{summary}"
+    );
     assert_eq!(summary["collisions"], 0, "{summary}");
 }
 
@@ -98,7 +101,8 @@ fn own_corridor(dir: &Path) -> String {
     let text = text.replace(
         "demand_scale = 1.0",
         "demand_scale_table = \"tables/scales.toml\"",
-    ) + "\n[strategy]\nkind = \"flow-aware\"\nthresholds_table = \"tables/thresholds.toml\"\n";
+    )
+        + "\n[strategy]\nkind = \"flow-aware\"\nthresholds_table = \"tables/thresholds.toml\"\n";
     let file = dir.join("corridor.toml");
     std::fs::write(&file, text).unwrap();
     s(&file).to_string()
@@ -111,7 +115,14 @@ fn show_of_a_corridor_of_ones_own_runs_as_the_corridor() {
     shown_file_runs_as_the_scenario(
         "own-corridor",
         &file,
-        &["--penetration", "0.6", "--duration", "600", "--warmup", "120"],
+        &[
+            "--penetration",
+            "0.6",
+            "--duration",
+            "600",
+            "--warmup",
+            "120",
+        ],
     );
     // The shown file carries the values of the tables, not the references.
     let o = platoonsim(&["show", &file, "--penetration", "0.5"]);
@@ -144,7 +155,14 @@ fn a_corridor_of_ones_own_gets_no_sr99_scale_and_no_thresholds() {
     let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(json["road"]["network"]["demand_scale"], 1.0);
     // Flow-Aware needs thresholds it names: the error says which keys and where the tables are.
-    let o = platoonsim(&["run", s(&file), "--strategy", "flow-aware", "--out", s(&dir.join("o"))]);
+    let o = platoonsim(&[
+        "run",
+        s(&file),
+        "--strategy",
+        "flow-aware",
+        "--out",
+        s(&dir.join("o")),
+    ]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     let err = stderr(&o);
     for part in [

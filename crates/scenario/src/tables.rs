@@ -143,8 +143,7 @@ mod tests {
         assert_eq!(rows[0].demand_scale, 1.2);
         let e = demand_scales("missing.toml", Some(&dir)).unwrap_err();
         assert!(
-            e.to_string().starts_with("cannot read ")
-                && e.to_string().contains("missing.toml"),
+            e.to_string().starts_with("cannot read ") && e.to_string().contains("missing.toml"),
             "{e}"
         );
         std::fs::remove_dir_all(&dir).unwrap();

@@ -235,7 +235,11 @@ pub(super) fn check_network(
     // one: no corridor gets another corridor's calibration silently.
     let table_scale = n.demand_scale_table.as_deref().and_then(|r| {
         match crate::tables::demand_scales(r, base_dir) {
-            Ok(rows) => Some(demand_scales::at(&rows, penetration, demand_scales::FALLBACK)),
+            Ok(rows) => Some(demand_scales::at(
+                &rows,
+                penetration,
+                demand_scales::FALLBACK,
+            )),
             Err(e) => {
                 c.push(
                     "network.demand_scale_table",

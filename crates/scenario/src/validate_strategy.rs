@@ -4,9 +4,9 @@
 use super::run::Run;
 use super::{defaults, quoted, Checker, Frame, Num};
 use crate::limits;
-use crate::thresholds;
 use crate::overrides::StrategyKind;
 use crate::raw::{num, RawStrategy};
+use crate::thresholds;
 use platoonsim_sim::{FlowAwareConfig, PdConfig, Strategy};
 use std::path::Path;
 
@@ -77,19 +77,24 @@ pub(super) fn check_strategy(
     }
     // Unset thresholds come from the table the file names, at this penetration (issue 3 item
     // 4); without a table they have no default, and Flow-Aware needs both.
-    let table = s.thresholds_table.as_deref().and_then(|r| {
-        match crate::tables::thresholds(r, base_dir) {
-            Ok(rows) => Some(thresholds::at(&rows, run.penetration.v, (f64::NAN, f64::NAN))),
-            Err(e) => {
-                c.push(
-                    "strategy.thresholds_table",
-                    quoted(r),
-                    format!("must name a table of Flow-Aware thresholds by penetration: {e}"),
-                );
-                None
-            }
-        }
-    });
+    let table =
+        s.thresholds_table
+            .as_deref()
+            .and_then(|r| match crate::tables::thresholds(r, base_dir) {
+                Ok(rows) => Some(thresholds::at(
+                    &rows,
+                    run.penetration.v,
+                    (f64::NAN, f64::NAN),
+                )),
+                Err(e) => {
+                    c.push(
+                        "strategy.thresholds_table",
+                        quoted(r),
+                        format!("must name a table of Flow-Aware thresholds by penetration: {e}"),
+                    );
+                    None
+                }
+            });
     let flow = threshold(
         c,
         (kind, s.thresholds_table.is_some()),

@@ -11,7 +11,10 @@ use platoonsim_sim::Strategy;
 const SMALL_CORRIDOR: &str = include_str!("fixtures/small_corridor.toml");
 
 /// The small corridor without its `demand_scale` line, at penetration `p`.
-fn corridor_at(p: f64, sets: &[&str]) -> Result<platoonsim_sim::Config, platoonsim_scenario::ScenarioError> {
+fn corridor_at(
+    p: f64,
+    sets: &[&str],
+) -> Result<platoonsim_sim::Config, platoonsim_scenario::ScenarioError> {
     let text = SMALL_CORRIDOR.replace("demand_scale = 1.0", "");
     assert!(!text.contains("demand_scale"));
     let mut set = vec![format!("run.penetration={p}")];
@@ -36,7 +39,14 @@ fn a_corridor_of_ones_own_runs_at_demand_scale_one_at_any_penetration() {
 
 #[test]
 fn a_corridor_that_names_a_demand_scale_table_gets_its_scale() {
-    let scale = |p: f64, sets: &[&str]| corridor_at(p, sets).unwrap().road.network.unwrap().demand_scale;
+    let scale = |p: f64, sets: &[&str]| {
+        corridor_at(p, sets)
+            .unwrap()
+            .road
+            .network
+            .unwrap()
+            .demand_scale
+    };
     let sr99 = "network.demand_scale_table=sr99_demand_scales";
     assert_eq!(scale(0.6, &[sr99]), 1.17);
     assert_eq!(scale(1.0, &[sr99]), 1.27);
@@ -87,7 +97,10 @@ fn flow_aware_without_thresholds_says_which_keys_to_set_and_where_the_tables_are
     );
     // One given: only the other is missing.
     let p = problems(flow_aware(&["strategy.speed_threshold_kmh=80"]));
-    assert_eq!(p, vec![format!("strategy.flow_threshold_vphpl = (missing): {why}")]);
+    assert_eq!(
+        p,
+        vec![format!("strategy.flow_threshold_vphpl = (missing): {why}")]
+    );
     // Other strategies need no thresholds.
     for kind in ["none", "pd"] {
         with_set(SMALL, &[&format!("strategy.kind={kind}")]).unwrap();
@@ -97,9 +110,10 @@ fn flow_aware_without_thresholds_says_which_keys_to_set_and_where_the_tables_are
 #[test]
 fn flow_aware_takes_thresholds_from_the_file_or_the_table_it_names() {
     let thresholds = |c: platoonsim_sim::Config| match c.strategy {
-        Strategy::FlowAware { thresholds, .. } => {
-            (thresholds.flow_threshold_vphpl, thresholds.speed_threshold_kmh)
-        }
+        Strategy::FlowAware { thresholds, .. } => (
+            thresholds.flow_threshold_vphpl,
+            thresholds.speed_threshold_kmh,
+        ),
         other => panic!("{other:?}"),
     };
     let given = flow_aware(&[
@@ -170,13 +184,19 @@ fn relative_table_paths_are_read_from_the_scenario_files_directory() {
         panic!("{:?}", c.strategy)
     };
     assert_eq!(
-        (thresholds.flow_threshold_vphpl, thresholds.speed_threshold_kmh),
+        (
+            thresholds.flow_threshold_vphpl,
+            thresholds.speed_threshold_kmh
+        ),
         (2100.0, 88.0)
     );
     // The same text without its directory does not find the tables.
     let e = from_toml(&text, "text", "t", &Overrides::default()).unwrap_err();
     let p: Vec<String> = e.problems().iter().map(|p| p.field.clone()).collect();
-    assert_eq!(p, vec!["network.demand_scale_table", "strategy.thresholds_table"]);
+    assert_eq!(
+        p,
+        vec!["network.demand_scale_table", "strategy.thresholds_table"]
+    );
 }
 
 fn scratch_dir(name: &str) -> std::path::PathBuf {

@@ -101,7 +101,9 @@ impl Network {
     pub fn check(&self, lanes: u32, length_m: f64) -> Result<(), SimError> {
         let series = |name: &str, v: &[f64], hi: f64| -> Result<(), SimError> {
             if v.is_empty() {
-                return Err(SimError::Config(format!("{name}: must have at least one interval")));
+                return Err(SimError::Config(format!(
+                    "{name}: must have at least one interval"
+                )));
             }
             match v
                 .iter()
@@ -156,7 +158,9 @@ impl Network {
             }
         }
         if !self.through_lanes.iter().any(|e| e.from_m == 0.0) {
-            return Err(SimError::Config("network.through_lanes: no lane is open at the entrance (x = 0)".into()));
+            return Err(SimError::Config(
+                "network.through_lanes: no lane is open at the entrance (x = 0)".into(),
+            ));
         }
         for (i, r) in self.on_ramps.iter().enumerate() {
             if !(r.x_m > 0.0 && r.x_m < length_m) {
@@ -353,7 +357,9 @@ impl Config {
             if v.is_finite() && v > 0.0 {
                 Ok(())
             } else {
-                Err(SimError::Config(format!("{name} = {v}: must be a finite number > 0")))
+                Err(SimError::Config(format!(
+                    "{name} = {v}: must be a finite number > 0"
+                )))
             }
         };
         // A range check, with the allowed interval and why in the message.
@@ -361,7 +367,9 @@ impl Config {
             if (lo..=hi).contains(&v) {
                 Ok(())
             } else {
-                Err(SimError::Config(format!("{name} = {v}: must be in [{lo}, {hi}]{why}")))
+                Err(SimError::Config(format!(
+                    "{name} = {v}: must be in [{lo}, {hi}]{why}"
+                )))
             }
         };
         within(
@@ -403,7 +411,10 @@ impl Config {
             )));
         }
         if !(1..=8).contains(&self.road.lanes) {
-            return Err(SimError::Config(format!("road.lanes = {}: must be 1 to 8", self.road.lanes)));
+            return Err(SimError::Config(format!(
+                "road.lanes = {}: must be 1 to 8",
+                self.road.lanes
+            )));
         }
         within(
             "demand.vph_per_lane",

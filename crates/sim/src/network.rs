@@ -17,8 +17,8 @@
 //! * acceleration segments of close ramps that overlap are merged into one auxiliary lane that
 //!   ends at the end of the later one.
 
-use crate::error::SimError;
 use crate::config::{Config, Network};
+use crate::error::SimError;
 
 /// One open stretch of a lateral lane.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -318,7 +318,9 @@ fn build(net: &Network, n: usize, length: f64) -> Result<Geometry, SimError> {
         .filter(|&l| through_lanes[l as usize].iter().any(|s| s.contains(0.0)))
         .collect();
     if entry_lanes.is_empty() {
-        return Err(SimError::Geometry("network: no through lane is open at the entrance".into()));
+        return Err(SimError::Geometry(
+            "network: no through lane is open at the entrance".into(),
+        ));
     }
     let metres = length.max(0.0).ceil() as usize + 2;
     let index = lanes
@@ -534,6 +536,9 @@ mod tests {
             to_m: 3000.0,
         });
         let e = build(&n, 5, 3000.0).unwrap_err();
-        assert!(matches!(&e, SimError::Geometry(m) if m.contains("on_ramps[0]")), "{e}");
+        assert!(
+            matches!(&e, SimError::Geometry(m) if m.contains("on_ramps[0]")),
+            "{e}"
+        );
     }
 }

@@ -6,8 +6,8 @@
 //! JSON, so neither `scenario.json` nor the experiment runner's run keys depend on it. When it is
 //! off, the cost is one branch per vehicle that leaves and one per step.
 
-use crate::error::SimError;
 use crate::config::Config;
+use crate::error::SimError;
 use crate::vehicle::{Kind, ModeLabel, Vehicle, NO_EXIT};
 
 /// What to record besides the summary and the detectors.

@@ -1,8 +1,8 @@
 //! The simulation state and the step.
 
-use crate::error::SimError;
 use crate::config::{Config, DetectorKind, Strategy};
 use crate::detector::{Detector, Passage};
+use crate::error::SimError;
 use crate::here::HereTables;
 use crate::insert::Entrance;
 use crate::metrics::Metrics;

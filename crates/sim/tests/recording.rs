@@ -351,7 +351,10 @@ fn recording_requests_are_checked() {
         (traj(1.0, None, Some((10.0, 10.0))), "trajectories.x_m"),
     ] {
         let err = run_recording(&cfg, &bad, None).unwrap_err();
-        assert!(matches!(&err, SimError::Recording(m) if m.contains(field)), "{err}");
+        assert!(
+            matches!(&err, SimError::Recording(m) if m.contains(field)),
+            "{err}"
+        );
     }
     let mut sim = Simulation::new(cfg.clone()).unwrap();
     sim.step().unwrap();
