@@ -15,8 +15,12 @@ fn corridor_at(
     p: f64,
     sets: &[&str],
 ) -> Result<platoonsim_sim::Config, platoonsim_scenario::ScenarioError> {
-    let text = SMALL_CORRIDOR.replace("demand_scale = 1.0", "");
-    assert!(!text.contains("demand_scale"));
+    let text: String = SMALL_CORRIDOR
+        .lines()
+        .filter(|l| !l.starts_with("demand_scale"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert!(!text.contains("demand_scale ="));
     let mut set = vec![format!("run.penetration={p}")];
     set.extend(sets.iter().map(|s| s.to_string()));
     let set: Vec<&str> = set.iter().map(String::as_str).collect();
