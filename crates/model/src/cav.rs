@@ -190,6 +190,18 @@ pub enum CavMode {
     CollisionAvoidance,
 }
 
+impl CavMode {
+    /// `speed`, `gap`, `gap-closing` or `collision-avoidance`, as in the trajectory records.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            CavMode::SpeedRegulation => "speed",
+            CavMode::GapRegulation => "gap",
+            CavMode::GapClosing => "gap-closing",
+            CavMode::CollisionAvoidance => "collision-avoidance",
+        }
+    }
+}
+
 /// A controller's output: the commanded acceleration (before the safety override and limits),
 /// the sub-mode used, and the family to remember for the next step.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -279,6 +279,7 @@ pub fn validate_in(
         frame,
         (road.control_start, road.control_end),
         &run,
+        road.lanes,
         base_dir,
     );
 

@@ -7,8 +7,9 @@ use crate::limits;
 use crate::overrides::StrategyKind;
 use crate::raw::{num, RawStrategy};
 use crate::thresholds;
-use platoonsim_sim::{FlowAwareConfig, PdConfig, Strategy};
+use platoonsim_sim::{FlowAwareConfig, LaneChoice, PdConfig, Strategy};
 use std::path::Path;
+use toml::Value;
 
 /// `[strategy]`. The zone defaults to the control section (`control`, in the file's
 /// coordinate) and the time window to the measurement window of `run`.
@@ -18,19 +19,43 @@ pub(super) fn check_strategy(
     frame: &Frame,
     control: (Option<Num>, Option<Num>),
     run: &Run,
+    lanes: u32,
     base_dir: Option<&Path>,
 ) -> Strategy {
     let (cstart, cend) = control;
     let kind = match s.kind.as_deref() {
-        None => StrategyKind::None,
+        None => StrategyKind::NONE,
         Some(k) => k.parse().unwrap_or_else(|_| {
             c.push(
                 "strategy.kind",
                 quoted(k),
-                "must be one of \"none\", \"pd\", \"flow-aware\"",
+                format!("must be one of {}", StrategyKind::names()),
             );
-            StrategyKind::None
+            StrategyKind::NONE
         }),
+    };
+    let lane = match &s.lane {
+        None => LaneChoice::Leftmost,
+        Some(Value::String(n)) if n == "leftmost" => LaneChoice::Leftmost,
+        Some(Value::String(n)) if n == "rightmost" => LaneChoice::Rightmost,
+        Some(Value::Integer(i)) if (1..=i64::from(lanes.max(1))).contains(i) => {
+            LaneChoice::Index(*i as u32 - 1)
+        }
+        Some(other) => {
+            let shown = match other {
+                Value::String(n) => quoted(n),
+                v => v.to_string(),
+            };
+            c.push(
+                "strategy.lane",
+                shown,
+                format!(
+                    "must be \"leftmost\", \"rightmost\" or a lane number 1 to {lanes} \
+                     (the road's lanes; 1 = the rightmost lane)"
+                ),
+            );
+            LaneChoice::Leftmost
+        }
     };
     let zs = c.opt(s.zone_start_m, cstart.map_or(0.0, |n| n.v));
     let ze = c.opt(s.zone_end_m, cend.map_or(0.0, |n| n.v));
@@ -123,19 +148,18 @@ pub(super) fn check_strategy(
         zone_end_m: ze.v - frame.origin,
         start_s: ts.v,
         end_s: te.v,
+        lane,
     };
-    match kind {
-        StrategyKind::None => Strategy::None,
-        StrategyKind::Pd => Strategy::Pd { pd },
-        StrategyKind::FlowAware => Strategy::FlowAware {
-            pd,
-            thresholds: FlowAwareConfig {
-                // NaN only with a problem reported above (a threshold missing).
-                flow_threshold_vphpl: flow.unwrap_or(f64::NAN),
-                speed_threshold_kmh: speed.unwrap_or(f64::NAN),
-                radius_m: radius.v,
-            },
-        },
+    let entry = kind.entry();
+    Strategy {
+        kind,
+        pd: entry.organizes.then_some(pd),
+        thresholds: entry.needs_thresholds.then_some(FlowAwareConfig {
+            // NaN only with a problem reported above (a threshold missing).
+            flow_threshold_vphpl: flow.unwrap_or(f64::NAN),
+            speed_threshold_kmh: speed.unwrap_or(f64::NAN),
+            radius_m: radius.v,
+        }),
     }
 }
 
@@ -152,7 +176,7 @@ fn threshold(
 ) -> Option<f64> {
     let Some(v) = value else {
         // A table that was named but could not be read is reported at its own key.
-        if kind == StrategyKind::FlowAware && !table_named {
+        if kind.entry().needs_thresholds && !table_named {
             c.push(
                 field,
                 "(missing)",

@@ -114,10 +114,11 @@ fn flow_aware_without_thresholds_says_which_keys_to_set_and_where_the_tables_are
 #[test]
 fn flow_aware_takes_thresholds_from_the_file_or_the_table_it_names() {
     let thresholds = |c: platoonsim_sim::Config| match c.strategy {
-        Strategy::FlowAware { thresholds, .. } => (
-            thresholds.flow_threshold_vphpl,
-            thresholds.speed_threshold_kmh,
-        ),
+        Strategy {
+            kind: StrategyKind::FLOW_AWARE,
+            thresholds: Some(t),
+            ..
+        } => (t.flow_threshold_vphpl, t.speed_threshold_kmh),
         other => panic!("{other:?}"),
     };
     let given = flow_aware(&[
@@ -137,7 +138,7 @@ fn flow_aware_takes_thresholds_from_the_file_or_the_table_it_names() {
     let homogeneous = load_with(
         "homogeneous",
         &Overrides {
-            strategy: Some(StrategyKind::FlowAware),
+            strategy: Some(StrategyKind::FLOW_AWARE),
             ..Overrides::default()
         },
     );
@@ -184,7 +185,8 @@ fn relative_table_paths_are_read_from_the_scenario_files_directory() {
     std::fs::write(&file, text.as_bytes()).unwrap();
     let c = load_with(&file.display().to_string(), &Overrides::default()).unwrap();
     assert!((c.road.network.as_ref().unwrap().demand_scale - 1.2).abs() < 1e-12);
-    let Strategy::FlowAware { thresholds, .. } = c.strategy else {
+    assert_eq!(c.strategy.kind, StrategyKind::FLOW_AWARE);
+    let Some(thresholds) = c.strategy.thresholds else {
         panic!("{:?}", c.strategy)
     };
     assert_eq!(

@@ -3,7 +3,9 @@
 //! yielding (spec 4.5), and its acceleration: the human model (spec 2) for humans and CAVs
 //! driving manually, CAV control (spec 3) for automated CAVs.
 
+use crate::events::LaneChangeReason;
 use crate::network::NO_LANE;
+use crate::organize::Advice;
 use crate::sense::{Neighbours, NONE};
 use crate::sim::{Decision, Simulation};
 use crate::vehicle::{Mode, Relaxation, Vehicle, NEVER, NO_EXIT};
@@ -42,8 +44,10 @@ impl Simulation {
                     accel: 0.0,
                     mode: Mode::Cf,
                     family: Family::Speed,
+                    regime: None,
                     time_gap: 0.0,
                     change: None,
+                    why: LaneChangeReason::Discretionary,
                     takeover: false,
                 },
             );
@@ -183,8 +187,10 @@ impl Simulation {
             accel: human::smooth_accel(v.a, target, v.human.smoothing),
             mode,
             family: v.family,
+            regime: None,
             time_gap: v.time_gap_s,
             change: None,
+            why: LaneChangeReason::Discretionary,
             takeover: false,
         }
     }
@@ -253,8 +259,10 @@ impl Simulation {
             accel: cav::finalize(p, v.v, cmd.accel, v_des, leader, self.dt),
             mode: Mode::Cf,
             family: cmd.family,
+            regime: Some(cmd.mode),
             time_gap,
             change: None,
+            why: LaneChangeReason::Discretionary,
             takeover: false,
         }
     }
@@ -276,10 +284,21 @@ impl Simulation {
         } else {
             None
         };
-        let mandatory = if self.geom.plain {
+        // The strategy's advice (`organize`), asked only of the kinds it advises.
+        let advice = if self.advise[v.kind as usize] {
+            self.organizer
+                .advise(v, self.step as f64 * self.dt, &self.geom)
+        } else {
+            Advice::Free
+        };
+        let avoid = match advice {
+            Advice::Avoid { lane, from_m } => Some((lane, from_m)),
+            _ => None,
+        };
+        let mandatory = if self.geom.plain && avoid.is_none() {
             None
         } else {
-            self.mandatory(s, v)
+            self.mandatory(s, v, avoid)
         };
         let is_cav = v.is_cav();
         // A CAV that follows a CAV within sensor range is (or is about to be, "a CAV directly
@@ -288,16 +307,19 @@ impl Simulation {
         let follower =
             self.sensed[s as usize].linked || (is_cav && self.sensed[s as usize].cav_ahead);
         // Platoon organization yields to a mandatory need and does not start within the
-        // anticipation range of the CAV's own exit [D].
-        let organize = mandatory.is_none() && self.may_organize(v);
-        let (side, gamma) = if organize {
-            let pd_lane = self.geom.leftmost_through(v.x)?;
-            if v.lane >= pd_lane {
-                return None; // γ_d = 0 in the PD lane (spec 4.7)
+        // anticipation range of the vehicle's own exit [D].
+        let join = match advice {
+            Advice::Join { lane, strength } if mandatory.is_none() && !self.exit_near(v) => {
+                Some((lane, strength))
             }
-            (Side::Left, 1.0)
+            _ => None,
+        };
+        let organize = join.is_some();
+        let (side, gamma) = if let Some((lane, strength)) = join {
+            // γ_d = 0 in the organized lane (spec 4.7).
+            (toward(v.lane, lane)?, strength)
         } else {
-            let [left, right] = self.discretionary(s, v, nb, follower);
+            let [left, right] = self.discretionary(s, v, nb, follower, avoid);
             match mandatory {
                 // γ = γ_m + κ γ_d (same side); the other side's discretionary desire is 0.
                 Some((side, gm)) => {
@@ -335,12 +357,26 @@ impl Simulation {
         })
     }
 
-    /// A CAV whose platoon organization is active and whose exit is not near: without a
-    /// mandatory need, its desire is the move toward the PD lane (spec 4.7).
-    pub(crate) fn may_organize(&self, v: &Vehicle) -> bool {
-        v.is_cav()
-            && self.organization_active(v)
-            && !self.exit_within(v, self.cfg.lane_change.anticipation_distance_m)
+    /// The side toward which vehicle `v` organizes now (its strategy's `Join` advice, no
+    /// mandatory need aside: it is not near its exit), if it is not in the organized lane.
+    /// Used for yielding to organizing vehicles.
+    pub(crate) fn organizing_side(&self, v: &Vehicle) -> Option<Side> {
+        if !self.advise[v.kind as usize] || self.exit_near(v) {
+            return None;
+        }
+        match self
+            .organizer
+            .advise(v, self.step as f64 * self.dt, &self.geom)
+        {
+            Advice::Join { lane, .. } => toward(v.lane, lane),
+            _ => None,
+        }
+    }
+
+    /// Is the vehicle's off-ramp within the anticipation range (no organizing there)?
+    #[inline]
+    fn exit_near(&self, v: &Vehicle) -> bool {
+        self.exit_within(v, self.cfg.lane_change.anticipation_distance_m)
     }
 
     /// Is the vehicle's off-ramp within `range` ahead?
@@ -352,8 +388,22 @@ impl Simulation {
     /// acceleration lane or a dropped lane; one change toward the side where a lane goes on),
     /// or reaching the rightmost through lane at the driver's off-ramp (N = lanes to cross).
     /// The larger one wins.
-    fn mandatory(&self, s: u32, v: &Vehicle) -> Option<(Side, f64)> {
+    fn mandatory(&self, s: u32, v: &Vehicle, avoid: Option<(u32, f64)>) -> Option<(Side, f64)> {
         let mut best: Option<(Side, f64)> = None;
+        // A lane the strategy closes to this vehicle (`Advice::Avoid`): leave it as a lane
+        // that ends at `from_m`, toward the right unless it is the rightmost lane.
+        if let Some((lane, from_m)) = avoid {
+            if v.lane == lane {
+                let g = lcm::mandatory_desire(&v.lc, from_m - v.x, v.v, 1);
+                if g > 0.0 {
+                    let side = if lane == 0 { Side::Left } else { Side::Right };
+                    best = Some((side, g));
+                }
+            }
+        }
+        if self.geom.plain {
+            return best;
+        }
         if let Some(w) = self.sensed[s as usize].here.wall {
             let probe = (w - 1.0).max(v.x);
             let side = if self.geom.through(v.lane + 1, probe) || v.lane == 0 {
@@ -362,7 +412,7 @@ impl Simulation {
                 Side::Right
             };
             let g = lcm::mandatory_desire(&v.lc, w - v.x, v.v, 1);
-            if g > 0.0 {
+            if g > 0.0 && best.is_none_or(|(_, b)| g > b) {
                 best = Some((side, g));
             }
         }
@@ -387,6 +437,7 @@ impl Simulation {
         v: &Vehicle,
         nb: &Neighbours,
         follower: bool,
+        avoid: Option<(u32, f64)>,
     ) -> [Option<f64>; 2] {
         let lcd = &self.cfg.lane_change;
         // A platoon follower has no speed-gain motivation (w_CAV follower), but ahead of a busy
@@ -475,6 +526,14 @@ impl Simulation {
             // ahead: its mandatory desire there is positive), issue 18.
             if !open || w <= 0.0 || (!self.geom.plain && self.ends_too_soon(v, target)) {
                 continue;
+            }
+            // Nor into a lane the strategy closes to this vehicle, by the same rule.
+            if let Some((lane, from_m)) = avoid {
+                if target == lane as usize
+                    && lcm::mandatory_desire(&v.lc, from_m - v.x, v.v, 1) > 0.0
+                {
+                    continue;
+                }
             }
             let v_ant = self.anticipated_speed(s, v, target, j as usize, v_cur);
             out[i] = Some(w * eta * lcm::discretionary_desire(&v.lc, v_ant, v_cur, side));
@@ -666,8 +725,16 @@ impl Simulation {
                     auto: false,
                 },
                 family: Family::Speed,
+                regime: None,
                 time_gap: v.time_gap_s,
                 change: change.then_some(d.side),
+                why: if d.mandatory {
+                    LaneChangeReason::Mandatory
+                } else if d.organize {
+                    LaneChangeReason::Organizing
+                } else {
+                    LaneChangeReason::Discretionary
+                },
                 takeover,
             },
             Gaps {
@@ -762,6 +829,16 @@ impl Simulation {
             lane.saturating_sub(right as usize)
         };
         bounded::min(v_f, caps[rank.min(caps.len() - 1)])
+    }
+}
+
+/// The side from `lane` toward `target`, `None` when there.
+#[inline]
+fn toward(lane: u32, target: u32) -> Option<Side> {
+    match lane.cmp(&target) {
+        std::cmp::Ordering::Less => Some(Side::Left),
+        std::cmp::Ordering::Greater => Some(Side::Right),
+        std::cmp::Ordering::Equal => None,
     }
 }
 

@@ -12,10 +12,13 @@ pub enum SimError {
     /// ([`crate::network::Geometry::new`]).
     #[error("{0}")]
     Geometry(String),
-    /// A recording request that the engine cannot honour ([`crate::Recording::check`],
-    /// [`crate::Simulation::record`]).
+    /// A recording request that the engine cannot honour ([`crate::Recording::check`]).
     #[error("{0}")]
     Recording(String),
+    /// A set-up call made after the first step: [`crate::Simulation::record`],
+    /// [`crate::Simulation::set_organizer`], [`crate::Simulation::observe`].
+    #[error("{0} before the first step")]
+    AfterFirstStep(&'static str),
     /// A vehicle's state stopped being finite during a step: an engine fault, never a result.
     #[error(
         "vehicle {vehicle} in lane {lane} has a non-finite state at t = {t_s:.1} s \

@@ -360,7 +360,7 @@ fn recording_requests_are_checked() {
     sim.step().unwrap();
     assert!(matches!(
         sim.record(&trips_only()),
-        Err(SimError::Recording(_))
+        Err(SimError::AfterFirstStep(_))
     ));
     // A period of 0.3 s is three steps.
     let out = run_recording(&cfg, &traj(0.3, Some((30.0, 31.0)), None), None).unwrap();
