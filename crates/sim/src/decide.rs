@@ -61,7 +61,24 @@ impl Simulation {
                 decisions[s as usize] = self.decide_one(s);
             }
         }
+        if !self.commands.is_empty() {
+            self.apply_commands(&mut decisions);
+        }
         self.decisions = decisions;
+    }
+
+    /// The decision of a vehicle that must change toward `side` (a commanded change): a
+    /// mandatory desire of 1 with the model's gap acceptance and BLC behaviour (spec 4.3).
+    pub(crate) fn forced_change(&self, s: u32, v: &Vehicle, side: Side) -> Decision {
+        let nb = &self.sensed[s as usize].nb;
+        let (leader, _) = self.leader_or_wall(s, v, nb.leader);
+        let d = Desire {
+            side,
+            gamma: 1.0,
+            mandatory: true,
+            organize: false,
+        };
+        self.before_lane_change(s, v, nb, leader, d).0
     }
 
     /// The leader view (net gap, speed) of slot `ld` for vehicle `v`.

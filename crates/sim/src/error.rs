@@ -15,6 +15,10 @@ pub enum SimError {
     /// A recording request that the engine cannot honour ([`crate::Recording::check`]).
     #[error("{0}")]
     Recording(String),
+    /// A command that cannot be applied ([`crate::Simulation::command`]): no such vehicle on
+    /// the road, or a value out of range.
+    #[error("{0}")]
+    Command(String),
     /// A set-up call made after the first step: [`crate::Simulation::record`],
     /// [`crate::Simulation::set_organizer`], [`crate::Simulation::observe`].
     #[error("{0} before the first step")]

@@ -10,6 +10,7 @@
 //! accelerations), `execute` (lane changes), `insert` (arrivals, insertion), `detector`,
 //! `metrics`, `organize` (platoon organization: the `Organizer` trait and the strategies), `rng` (named random streams).
 
+pub mod command;
 pub mod config;
 mod decide;
 pub mod detector;
@@ -30,6 +31,7 @@ pub mod summary;
 pub mod vehicle;
 mod yielding;
 
+pub use command::Command;
 pub use config::{
     Config, Demand, DetectorKind, DetectorSpec, FlowAwareConfig, LaneExtent, Network, OffRamp,
     OnRamp, PdConfig, Road, Strategy,
@@ -37,6 +39,7 @@ pub use config::{
 pub use error::SimError;
 pub use events::{Departure, Event, LaneChangeReason, Observer};
 pub use organize::{Advice, LaneChoice, Organizer, StrategyKind, STRATEGIES};
+pub use platoonsim_model::lanechange::Side;
 pub use record::{Recording, TrajectoryPoint, TrajectorySpec, Trip, TripStatus};
 pub use sim::Simulation;
 pub use summary::{CollisionEvent, CollisionKind, DetectorRecord, Output, Summary};

@@ -106,6 +106,8 @@ pub struct Simulation {
     pub(crate) observing: bool,
     /// Collision events already passed to the observers.
     pub(crate) collisions_reported: usize,
+    /// Commands in force (`command.rs`), applied in the decide phase.
+    pub(crate) commands: Vec<crate::command::Active>,
 }
 
 impl Simulation {
@@ -193,6 +195,7 @@ impl Simulation {
             events: Vec::new(),
             observing: false,
             collisions_reported: 0,
+            commands: Vec::new(),
             cfg,
         };
         let organizer = organize::build(&sim.cfg);

@@ -7,7 +7,7 @@
 //!
 //! The first seed of the 40 % cells keeps its detector records (every lane): the speed
 //! contours (paper Fig. 6) and the lane-by-lane CAV flow ratio and speed upstream of Florin
-//! Rd (Fig. 7); see [`super::sr99_figures`].
+//! Rd (Fig. 7); see `sr99_figures.rs`.
 
 use super::{checks_md, find, Check, Done, Extra, Settings};
 use crate::corridor::{self, Criterion};
