@@ -8,7 +8,7 @@ use crate::network::NO_LANE;
 use crate::organize::Advice;
 use crate::sense::{Neighbours, NONE};
 use crate::sim::{Decision, Simulation};
-use crate::vehicle::{Mode, Relaxation, Vehicle, NEVER, NO_EXIT};
+use crate::vehicle::{Kind, Mode, Relaxation, Vehicle, NEVER, NO_EXIT};
 use platoonsim_model::cav::{self, Family};
 use platoonsim_model::human;
 use platoonsim_model::lanechange::{self as lcm, Side};
@@ -301,13 +301,40 @@ impl Simulation {
         } else {
             None
         };
-        // The strategy's advice (`organize`), asked only of the kinds it advises.
-        let advice = if self.advise[v.kind as usize] {
-            self.organizer
-                .advise(v, self.step as f64 * self.dt, &self.geom)
-        } else {
-            Advice::Free
+        // A vehicle its strategy advises (`organize`) takes the longer way; the others (every
+        // vehicle without a strategy) pay nothing for strategies.
+        let advised = match v.kind {
+            Kind::Human => self.advise[0],
+            Kind::Cav => self.advise[1],
         };
+        if advised {
+            return self.advised_desire(s, v, nb, since);
+        }
+        let mandatory = if self.geom.plain {
+            None
+        } else {
+            self.mandatory(s, v, None)
+        };
+        let [left, right] = self.discretionary(s, v, nb, self.is_follower(s, v));
+        let (side, gamma) = combine(mandatory, left, right, v.lc.mandatory_weight)?;
+        settle(v, since, side, gamma, mandatory.is_some(), false)
+    }
+
+    /// [`Self::desire`] of a vehicle its strategy advises: `Join` replaces the discretionary
+    /// desire when there is no mandatory need and the exit is not near [D] (spec 4.7);
+    /// `Avoid` adds a mandatory desire to leave the lane and closes it to discretionary
+    /// changes while that desire would be positive (the lane-drop rule).
+    #[inline(never)]
+    fn advised_desire(
+        &self,
+        s: u32,
+        v: &Vehicle,
+        nb: &Neighbours,
+        since: Option<f64>,
+    ) -> Option<Desire> {
+        let advice = self
+            .organizer
+            .advise(v, self.step as f64 * self.dt, &self.geom);
         let avoid = match advice {
             Advice::Avoid { lane, from_m } => Some((lane, from_m)),
             _ => None,
@@ -317,61 +344,39 @@ impl Simulation {
         } else {
             self.mandatory(s, v, avoid)
         };
-        let is_cav = v.is_cav();
-        // A CAV that follows a CAV within sensor range is (or is about to be, "a CAV directly
-        // behind another CAV automatically starts to form a platoon" [S]) a platoon follower:
-        // no discretionary desire (w_CAV follower, spec 4.7).
-        let follower =
-            self.sensed[s as usize].linked || (is_cav && self.sensed[s as usize].cav_ahead);
-        // Platoon organization yields to a mandatory need and does not start within the
-        // anticipation range of the vehicle's own exit [D].
         let join = match advice {
             Advice::Join { lane, strength } if mandatory.is_none() && !self.exit_near(v) => {
                 Some((lane, strength))
             }
             _ => None,
         };
-        let organize = join.is_some();
         let (side, gamma) = if let Some((lane, strength)) = join {
             // γ_d = 0 in the organized lane (spec 4.7).
             (toward(v.lane, lane)?, strength)
         } else {
-            let [left, right] = self.discretionary(s, v, nb, follower, avoid);
-            match mandatory {
-                // γ = γ_m + κ γ_d (same side); the other side's discretionary desire is 0.
-                Some((side, gm)) => {
-                    let gd = if side == Side::Left { left } else { right }.unwrap_or(0.0);
-                    (side, gm + v.lc.mandatory_weight * gd)
+            let [mut left, mut right] = self.discretionary(s, v, nb, self.is_follower(s, v));
+            if let Some((lane, from_m)) = avoid {
+                let closed = |target: u32| {
+                    target == lane && lcm::mandatory_desire(&v.lc, from_m - v.x, v.v, 1) > 0.0
+                };
+                if closed(v.lane + 1) {
+                    left = None;
                 }
-                None => match (left, right) {
-                    (None, None) => return None,
-                    (Some(l), None) => (Side::Left, l),
-                    (None, Some(r)) => (Side::Right, r),
-                    (Some(l), Some(r)) => {
-                        if r > l {
-                            (Side::Right, r)
-                        } else {
-                            (Side::Left, l)
-                        }
-                    }
-                },
+                if v.lane > 0 && closed(v.lane - 1) {
+                    right = None;
+                }
             }
+            combine(mandatory, left, right, v.lc.mandatory_weight)?
         };
-        // Anti-oscillation (spec 4.2), second part: no quick return to the lane just left.
-        if let Some(since) = since {
-            if gamma < 1.0
-                && v.last_lc_side == Some(opposite(side))
-                && since < v.lc.return_factor * v.lc.min_interval_s
-            {
-                return None;
-            }
-        }
-        (gamma > v.lc.threshold).then_some(Desire {
-            side,
-            gamma,
-            mandatory: mandatory.is_some(),
-            organize,
-        })
+        settle(v, since, side, gamma, mandatory.is_some(), join.is_some())
+    }
+
+    /// A CAV that follows a CAV within sensor range is (or is about to be, "a CAV directly
+    /// behind another CAV automatically starts to form a platoon" [S]) a platoon follower: no
+    /// discretionary desire (w_CAV follower, spec 4.7).
+    #[inline]
+    fn is_follower(&self, s: u32, v: &Vehicle) -> bool {
+        self.sensed[s as usize].linked || (v.is_cav() && self.sensed[s as usize].cav_ahead)
     }
 
     /// The side toward which vehicle `v` organizes now (its strategy's `Join` advice, no
@@ -405,6 +410,7 @@ impl Simulation {
     /// acceleration lane or a dropped lane; one change toward the side where a lane goes on),
     /// or reaching the rightmost through lane at the driver's off-ramp (N = lanes to cross).
     /// The larger one wins.
+    #[inline(always)]
     fn mandatory(&self, s: u32, v: &Vehicle, avoid: Option<(u32, f64)>) -> Option<(Side, f64)> {
         let mut best: Option<(Side, f64)> = None;
         // A lane the strategy closes to this vehicle (`Advice::Avoid`): leave it as a lane
@@ -448,13 +454,13 @@ impl Simulation {
     /// Discretionary desires [left, right] (spec 4.2), `None` for a side that cannot be taken
     /// (no lane, an acceleration lane) or when there is nothing to gain. Includes w_CAV (spec
     /// 4.7), the exit constraint η_e and the on-ramp anticipation.
+    #[inline(always)]
     fn discretionary(
         &self,
         s: u32,
         v: &Vehicle,
         nb: &Neighbours,
         follower: bool,
-        avoid: Option<(u32, f64)>,
     ) -> [Option<f64>; 2] {
         let lcd = &self.cfg.lane_change;
         // A platoon follower has no speed-gain motivation (w_CAV follower), but ahead of a busy
@@ -544,14 +550,7 @@ impl Simulation {
             if !open || w <= 0.0 || (!self.geom.plain && self.ends_too_soon(v, target)) {
                 continue;
             }
-            // Nor into a lane the strategy closes to this vehicle, by the same rule.
-            if let Some((lane, from_m)) = avoid {
-                if target == lane as usize
-                    && lcm::mandatory_desire(&v.lc, from_m - v.x, v.v, 1) > 0.0
-                {
-                    continue;
-                }
-            }
+
             let v_ant = self.anticipated_speed(s, v, target, j as usize, v_cur);
             out[i] = Some(w * eta * lcm::discretionary_desire(&v.lc, v_ant, v_cur, side));
         }
@@ -847,6 +846,62 @@ impl Simulation {
         };
         bounded::min(v_f, caps[rank.min(caps.len() - 1)])
     }
+}
+
+/// γ from the mandatory desire (if any) and the discretionary desires [left, right] (spec 4.2):
+/// γ = γ_m + κ γ_d on the mandatory side (the other side's discretionary desire is 0), else
+/// the larger discretionary desire (left on a tie); `None` without any.
+#[inline]
+fn combine(
+    mandatory: Option<(Side, f64)>,
+    left: Option<f64>,
+    right: Option<f64>,
+    kappa: f64,
+) -> Option<(Side, f64)> {
+    match mandatory {
+        Some((side, gm)) => {
+            let gd = if side == Side::Left { left } else { right }.unwrap_or(0.0);
+            Some((side, gm + kappa * gd))
+        }
+        None => match (left, right) {
+            (None, None) => None,
+            (Some(l), None) => Some((Side::Left, l)),
+            (None, Some(r)) => Some((Side::Right, r)),
+            (Some(l), Some(r)) => Some(if r > l {
+                (Side::Right, r)
+            } else {
+                (Side::Left, l)
+            }),
+        },
+    }
+}
+
+/// The desire if it passes the driver's threshold, after the second part of the
+/// anti-oscillation rule (spec 4.2): no quick return to the lane just left (`since`: seconds
+/// since the last change).
+#[inline]
+fn settle(
+    v: &Vehicle,
+    since: Option<f64>,
+    side: Side,
+    gamma: f64,
+    mandatory: bool,
+    organize: bool,
+) -> Option<Desire> {
+    if let Some(since) = since {
+        if gamma < 1.0
+            && v.last_lc_side == Some(opposite(side))
+            && since < v.lc.return_factor * v.lc.min_interval_s
+        {
+            return None;
+        }
+    }
+    (gamma > v.lc.threshold).then_some(Desire {
+        side,
+        gamma,
+        mandatory,
+        organize,
+    })
 }
 
 /// The side from `lane` toward `target`, `None` when there.
