@@ -96,8 +96,9 @@ pub struct ScenarioArgs {
     pub strategy: Option<StrategyArg>,
 
     /// Network scenarios (e.g. sr99): multiplier on every entrance demand, on top of the
-    /// corridor's base multiplier (sets network.demand_scale; default: the calibrated scale
-    /// for the run's penetration).
+    /// corridor's base multiplier (sets network.demand_scale; default: the scale at the run's
+    /// penetration in the table the scenario names in network.demand_scale_table, as sr99
+    /// does, else 1).
     #[arg(long, value_name = "F")]
     pub demand_scale: Option<f64>,
 

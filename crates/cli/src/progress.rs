@@ -28,7 +28,7 @@ pub fn sim_bar(total_s: f64, show: bool, label: &str) -> ProgressBar {
 pub fn run_with_bar(
     config: &platoonsim_sim::Config,
     bar: &ProgressBar,
-) -> Result<platoonsim_sim::Output, String> {
+) -> Result<platoonsim_sim::Output, platoonsim_sim::SimError> {
     run_recording_with_bar(config, &platoonsim_sim::Recording::default(), bar)
 }
 
@@ -37,7 +37,7 @@ pub fn run_recording_with_bar(
     config: &platoonsim_sim::Config,
     recording: &platoonsim_sim::Recording,
     bar: &ProgressBar,
-) -> Result<platoonsim_sim::Output, String> {
+) -> Result<platoonsim_sim::Output, platoonsim_sim::SimError> {
     if bar.is_hidden() {
         return platoonsim_sim::run_recording(config, recording, None);
     }

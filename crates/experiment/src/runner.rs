@@ -20,7 +20,7 @@ use crate::detectors::{self, DetectorsRef, Scope};
 use crate::record::{self, Fields};
 use crate::Error;
 use indicatif::{ProgressBar, ProgressStyle};
-use platoonsim_sim::{Config, DetectorRecord, Output};
+use platoonsim_sim::{Config, DetectorRecord, Output, SimError};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::fs;
@@ -28,10 +28,10 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// What executes one run: the engine ([`simulate`]) or, in tests, a counting wrapper.
-pub type Executor<'a> = &'a (dyn Fn(&Config) -> Result<Output, String> + Sync);
+pub type Executor<'a> = &'a (dyn Fn(&Config) -> Result<Output, SimError> + Sync);
 
 /// The engine, without a progress callback.
-pub fn simulate(config: &Config) -> Result<Output, String> {
+pub fn simulate(config: &Config) -> Result<Output, SimError> {
     platoonsim_sim::run(config, None)
 }
 
@@ -280,7 +280,7 @@ impl<'a> Runner<'a> {
             seed: spec.seed,
             message,
         };
-        let output = (self.exec)(&spec.config).map_err(run_error)?;
+        let output = (self.exec)(&spec.config).map_err(|e| run_error(e.to_string()))?;
         let det = if scope == Scope::None {
             None
         } else {

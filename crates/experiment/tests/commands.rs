@@ -93,6 +93,7 @@ fn a_commanded_lane_change_happens_when_and_where_commanded() {
             }
         )
         .unwrap_err()
+        .to_string()
         .contains("accel_mps2 = NaN"));
     assert!(sim.command(u64::MAX, Command::Release).is_err());
 }

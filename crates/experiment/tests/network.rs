@@ -8,7 +8,7 @@ use platoonsim_experiment::experiments::run_experiment_with;
 use platoonsim_experiment::runner::{bar, simulate};
 use platoonsim_experiment::{Cell, ExperimentName, Labels, Runner, Settings};
 use platoonsim_scenario::{demand_scale_set, load_with, Overrides, StrategyKind};
-use platoonsim_sim::{Config, Output};
+use platoonsim_sim::{Config, Output, SimError};
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -52,7 +52,7 @@ fn names(dir: &Path, suffix: &str) -> usize {
 fn detector_files_are_kept_for_the_selected_runs_and_reused() {
     let dir = scratch("detectors").join("runs");
     let count = AtomicUsize::new(0);
-    let exec = |c: &Config| -> Result<Output, String> {
+    let exec = |c: &Config| -> Result<Output, SimError> {
         count.fetch_add(1, Ordering::SeqCst);
         simulate(c)
     };

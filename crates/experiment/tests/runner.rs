@@ -6,7 +6,7 @@ use platoonsim_experiment::design::{runs, seeds};
 use platoonsim_experiment::experiments::run_experiment_with;
 use platoonsim_experiment::runner::{bar, simulate};
 use platoonsim_experiment::{Cell, ExperimentName, Labels, Runner, Settings};
-use platoonsim_sim::{Config, Output};
+use platoonsim_sim::{Config, Output, SimError};
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -42,7 +42,7 @@ fn run_files(dir: &Path) -> Vec<String> {
 fn rerun_recomputes_only_missing_or_unusable_runs() {
     let dir = scratch("resume").join("runs");
     let count = AtomicUsize::new(0);
-    let exec = |c: &Config| -> Result<Output, String> {
+    let exec = |c: &Config| -> Result<Output, SimError> {
         count.fetch_add(1, Ordering::SeqCst);
         simulate(c)
     };
@@ -125,7 +125,7 @@ fn duplicate_runs_execute_once_and_failures_keep_the_others() {
     let count = AtomicUsize::new(0);
     let cells = tiny_cells();
     let twice = vec![cells[0].clone(), cells[0].clone()];
-    let exec = |c: &Config| -> Result<Output, String> {
+    let exec = |c: &Config| -> Result<Output, SimError> {
         count.fetch_add(1, Ordering::SeqCst);
         simulate(c)
     };
@@ -139,9 +139,9 @@ fn duplicate_runs_execute_once_and_failures_keep_the_others() {
     assert_eq!(out[2].cell, 1);
 
     // A failing run: an error, but the successful ones are saved.
-    let failing = |c: &Config| -> Result<Output, String> {
+    let failing = |c: &Config| -> Result<Output, SimError> {
         if c.seed == 2 {
-            Err("boom".into())
+            Err(SimError::Config("boom".into()))
         } else {
             simulate(c)
         }

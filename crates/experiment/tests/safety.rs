@@ -8,7 +8,7 @@ use platoonsim_experiment::record::{self, Fields};
 use platoonsim_experiment::report::{self, ReportInput};
 use platoonsim_experiment::runner::simulate;
 use platoonsim_experiment::{safety, table, Cell, ExperimentName, Labels, Outcome, Settings};
-use platoonsim_sim::{Config, Output};
+use platoonsim_sim::{Config, Output, SimError};
 use std::fs;
 use std::path::PathBuf;
 
@@ -178,7 +178,7 @@ fn an_old_run_file_without_the_safety_fields_still_reads() {
 
 /// The engine, with a collision added to the PD run of seed 2 (what a run that collides
 /// reports), so that the marking is tested without depending on which scenario collides.
-fn with_a_collision(c: &Config) -> Result<Output, String> {
+fn with_a_collision(c: &Config) -> Result<Output, SimError> {
     let mut out = simulate(c)?;
     if c.strategy.kind == platoonsim_sim::StrategyKind::PD && c.seed == 2 {
         out.summary.collisions = 1;

@@ -1,6 +1,7 @@
-//! Default demand scale of the network scenarios by CAV penetration (issue 4), read from the
-//! embedded `scenarios/sr99_demand_scales.toml` (the paper's values for SR-99 until a
-//! calibration replaces them). Mirrors [`crate::thresholds`]: [`parse`] reads a table,
+//! Demand scale of a network scenario by CAV penetration (issue 4): the format of the tables
+//! that `network.demand_scale_table` names ([`crate::tables`]), and the built-in one of SR-99,
+//! `scenarios/sr99_demand_scales.toml` (the paper's values until a calibration replaces them),
+//! which `sr99.toml` names. Mirrors [`crate::thresholds`]: [`parse`] reads a table,
 //! [`to_toml`] writes one in the same format (for a calibration experiment), [`at`]
 //! interpolates.
 
@@ -12,7 +13,7 @@ pub const TABLE: &str = include_str!("../scenarios/sr99_demand_scales.toml");
 /// The embedded table's path in the repository (where a calibrated table is copied).
 pub const TABLE_PATH: &str = "crates/scenario/scenarios/sr99_demand_scales.toml";
 
-/// Used when no row is available.
+/// No scaling: the demand scale of a network that names no table.
 pub const FALLBACK: f64 = 1.0;
 
 /// One calibrated row.
@@ -25,7 +26,7 @@ pub struct Row {
 
 /// The feasible rows of a demand-scale file, sorted by penetration. Rows missing a number,
 /// with a non-finite one, or with `feasible = false`, are skipped.
-pub fn parse(text: &str) -> Result<Vec<Row>, String> {
+pub fn parse(text: &str) -> Result<Vec<Row>, crate::error::TableError> {
     Ok(crate::pen_table::parse(text, ["demand_scale"])?
         .into_iter()
         .map(|(p, [s])| Row {
@@ -72,11 +73,6 @@ pub fn embedded() -> Vec<Row> {
     parse(TABLE).unwrap_or_default()
 }
 
-/// The built-in default at a penetration.
-pub fn default_at(penetration: f64) -> f64 {
-    at(&embedded(), penetration, FALLBACK)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -99,10 +95,10 @@ mod tests {
                 (1.0, 1.27)
             ]
         );
-        assert_eq!(default_at(0.0), 1.0);
-        assert_eq!(default_at(1.0), 1.27);
-        assert!((default_at(0.5) - 1.135).abs() < 1e-12);
-        assert!((default_at(0.3) - 1.05).abs() < 1e-12);
+        assert_eq!(at(&rows, 0.0, FALLBACK), 1.0);
+        assert_eq!(at(&rows, 1.0, FALLBACK), 1.27);
+        assert!((at(&rows, 0.5, FALLBACK) - 1.135).abs() < 1e-12);
+        assert!((at(&rows, 0.3, FALLBACK) - 1.05).abs() < 1e-12);
     }
 
     #[test]

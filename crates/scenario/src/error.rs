@@ -72,6 +72,24 @@ pub enum ScenarioError {
     },
 }
 
+/// A table by CAV penetration that cannot be read or has no usable row ([`crate::tables`],
+/// [`crate::thresholds::parse`], [`crate::demand_scales::parse`]).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum TableError {
+    /// The text is not valid TOML.
+    #[error("not valid TOML: {0}")]
+    Syntax(String),
+    /// Neither a built-in table nor a path.
+    #[error("no built-in table '{name}' (built-in tables: {builtins}) and not a path (a path contains '/' or ends in .toml)")]
+    Unknown { name: String, builtins: String },
+    /// The file cannot be read.
+    #[error("cannot read {path}: {message}")]
+    Read { path: String, message: String },
+    /// No row has every column the table must have (rows with `feasible = false` are skipped).
+    #[error("the table has no feasible row with {columns}")]
+    NoRow { columns: &'static str },
+}
+
 fn list(problems: &[Problem]) -> String {
     let mut s = String::new();
     for p in problems {

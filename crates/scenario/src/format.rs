@@ -146,6 +146,8 @@ fn raw_network(n: &Network, config: &Config) -> (RawNetwork, Vec<String>) {
         mainline_vph: Some(n.mainline_vph.clone()),
         base_demand_multiplier: Some(1.0),
         demand_scale: Some(n.demand_scale),
+        // The scale is resolved: the file names no table.
+        demand_scale_table: None,
         ramp_speed_kmh: Some(n.ramp_speed_kmh),
         // Off (empty) stays unwritten, as in the files before the key existed.
         lane_speed_limits_kmh: (!n.lane_speed_limits_kmh.is_empty())

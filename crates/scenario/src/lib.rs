@@ -45,15 +45,16 @@ pub mod network;
 pub mod overrides;
 mod pen_table;
 pub mod raw;
+pub mod tables;
 pub mod thresholds;
 pub mod validate;
 
-pub use error::{Problem, ScenarioError};
+pub use error::{Problem, ScenarioError, TableError};
 pub use overrides::{demand_scale_set, Overrides, StrategyKind};
 pub use raw::RawScenario;
 
 use platoonsim_sim::Config;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// A scenario shipped inside the binary.
 #[derive(Clone, Copy, Debug)]
@@ -97,6 +98,9 @@ pub struct Source {
     pub default_name: String,
     /// The scenario file's text.
     pub text: String,
+    /// The scenario file's directory, from which the relative table paths it names are read
+    /// (`None` for a built-in: from the current directory).
+    pub dir: Option<PathBuf>,
 }
 
 /// Find a scenario: an argument with a path separator or ending in `.toml` is a file; any
@@ -109,6 +113,7 @@ pub fn resolve(name_or_path: &str) -> Result<Source, ScenarioError> {
                 origin: format!("built-in scenario '{}'", b.name),
                 default_name: b.name.to_string(),
                 text: b.toml.to_string(),
+                dir: None,
             });
         }
     }
@@ -132,12 +137,13 @@ pub fn resolve(name_or_path: &str) -> Result<Source, ScenarioError> {
         origin: path.display().to_string(),
         default_name,
         text,
+        dir: path.parent().map(Path::to_path_buf),
     })
 }
 
 /// A scenario file's text, refused without reading further once it passes
 /// [`limits::MAX_FILE_BYTES`] (a file that grows while read is caught too).
-fn read_limited(path: &Path) -> Result<String, ScenarioError> {
+pub(crate) fn read_limited(path: &Path) -> Result<String, ScenarioError> {
     use std::io::Read;
     let io = |source| ScenarioError::Io {
         path: path.to_path_buf(),
@@ -176,23 +182,37 @@ pub fn load(name_or_path: &str) -> Result<Config, ScenarioError> {
 /// Load a built-in scenario or a scenario file with command-line overrides.
 pub fn load_with(name_or_path: &str, overrides: &Overrides) -> Result<Config, ScenarioError> {
     let source = resolve(name_or_path)?;
-    from_toml(
+    from_toml_in(
         &source.text,
         &source.origin,
         &source.default_name,
         overrides,
+        source.dir.as_deref(),
     )
 }
 
-/// Read scenario text: parse, apply overrides, read the raw level, validate.
+/// Read scenario text: parse, apply overrides, read the raw level, validate. Relative table
+/// paths are read from the current directory.
 pub fn from_toml(
     text: &str,
     origin: &str,
     default_name: &str,
     overrides: &Overrides,
 ) -> Result<Config, ScenarioError> {
+    from_toml_in(text, origin, default_name, overrides, None)
+}
+
+/// [`from_toml`] for the text of a file in `base_dir`, from which the relative table paths it
+/// names are read.
+pub fn from_toml_in(
+    text: &str,
+    origin: &str,
+    default_name: &str,
+    overrides: &Overrides,
+    base_dir: Option<&Path>,
+) -> Result<Config, ScenarioError> {
     let raw = raw_from_toml(text, origin, overrides)?;
-    validate::validate(&raw, default_name, origin)
+    validate::validate_in(&raw, default_name, origin, base_dir)
 }
 
 /// The first level only: parse and apply overrides, read into a [`RawScenario`].

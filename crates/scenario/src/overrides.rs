@@ -152,7 +152,7 @@ pub fn parse_value(text: &str) -> Value {
 }
 
 /// Parse a dotted key path: `a.b`, `detectors[2].name`.
-pub fn parse_key(key: &str) -> Result<Vec<Segment>, String> {
+pub(crate) fn parse_key(key: &str) -> Result<Vec<Segment>, String> {
     if key.is_empty() {
         return Err("the key is empty; expected a dotted key such as run.seed".into());
     }
@@ -199,7 +199,7 @@ fn describe(path: &[Segment]) -> String {
 
 /// Set `path` to `value` in `doc`, creating missing tables on the way. Arrays are indexed, never
 /// grown. Errors say which part of the path is in the way.
-pub fn set_path(doc: &mut Table, path: &[Segment], value: Value) -> Result<(), String> {
+pub(crate) fn set_path(doc: &mut Table, path: &[Segment], value: Value) -> Result<(), String> {
     let (last, parents) = path.split_last().ok_or("empty key")?;
     let mut table = doc;
     for (depth, seg) in parents.iter().enumerate() {

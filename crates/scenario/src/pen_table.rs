@@ -3,6 +3,7 @@
 //! file of `[[penetration]]` blocks, each with `penetration` and the table's value columns,
 //! read into rows sorted by penetration and interpolated linearly between them.
 
+use crate::error::TableError;
 use toml::Value;
 
 /// The feasible rows of a table with value columns `columns`, sorted by penetration: each row
@@ -11,8 +12,10 @@ use toml::Value;
 pub(crate) fn parse<const N: usize>(
     text: &str,
     columns: [&str; N],
-) -> Result<Vec<(f64, [f64; N])>, String> {
-    let doc: toml::Table = text.parse().map_err(|e| format!("{e}"))?;
+) -> Result<Vec<(f64, [f64; N])>, TableError> {
+    let doc: toml::Table = text
+        .parse()
+        .map_err(|e: toml::de::Error| TableError::Syntax(e.to_string().trim_end().to_string()))?;
     let mut rows = Vec::new();
     let Some(list) = doc.get("penetration").and_then(Value::as_array) else {
         return Ok(rows);

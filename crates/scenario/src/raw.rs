@@ -110,6 +110,10 @@ pub struct RawNetwork {
     pub base_demand_multiplier: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub demand_scale: Option<f64>,
+    /// The table by penetration that `demand_scale` defaults to: a built-in table's name or a
+    /// file path ([`crate::tables`]). Without it (and without `demand_scale`) the scale is 1.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub demand_scale_table: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ramp_speed_kmh: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -227,6 +231,11 @@ pub struct RawStrategy {
     pub flow_threshold_vphpl: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub speed_threshold_kmh: Option<f64>,
+    /// The table by penetration that the two thresholds default to: a built-in table's name or
+    /// a file path ([`crate::tables`]). Without it (and without the thresholds) Flow-Aware
+    /// cannot be chosen.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub thresholds_table: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub radius_m: Option<f64>,
     /// `"leftmost"`, `"rightmost"` or a lane number (1 = rightmost).

@@ -1,8 +1,10 @@
-//! Default Flow-Aware thresholds by penetration (issue 3 item 4), read from the embedded
-//! `scenarios/flow_aware_thresholds.toml` that `platoonsim experiment calibrate-flow-aware`
-//! produces.
+//! Flow-Aware thresholds by penetration (issue 3 item 4): the format of the tables that
+//! `platoonsim experiment calibrate-flow-aware` writes, and the built-in one calibrated on the
+//! homogeneous road (`scenarios/flow_aware_thresholds.toml`). A scenario uses a table only if
+//! it names one in `strategy.thresholds_table` ([`crate::tables`]).
 
-const TABLE: &str = include_str!("../scenarios/flow_aware_thresholds.toml");
+/// The embedded table's text.
+pub const TABLE: &str = include_str!("../scenarios/flow_aware_thresholds.toml");
 /// The embedded table's source in the repository (what `--write-table` replaces).
 pub const TABLE_PATH: &str = "crates/scenario/scenarios/flow_aware_thresholds.toml";
 
@@ -19,7 +21,7 @@ const COLUMNS: [&str; 2] = ["flow_threshold_vphpl", "speed_threshold_kmh"];
 
 /// The feasible rows of a thresholds file, sorted by penetration. Rows missing a number, or
 /// with `feasible = false`, are skipped.
-pub fn parse(text: &str) -> Result<Vec<Row>, String> {
+pub fn parse(text: &str) -> Result<Vec<Row>, crate::error::TableError> {
     Ok(crate::pen_table::parse(text, COLUMNS)?
         .into_iter()
         .map(|(p, [q, v])| Row {
@@ -45,19 +47,14 @@ pub fn at(rows: &[Row], penetration: f64, fallback: (f64, f64)) -> (f64, f64) {
     crate::pen_table::at(&table, penetration).map_or(fallback, |[q, v]| (q, v))
 }
 
-/// The built-in defaults at a penetration.
-pub fn default_at(penetration: f64, fallback: (f64, f64)) -> (f64, f64) {
-    // The embedded table is checked by a test, so a parse error cannot reach users.
-    at(&parse(TABLE).unwrap_or_default(), penetration, fallback)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn embedded_table_parses_and_has_rows() {
-        assert!(!parse(TABLE).unwrap().is_empty());
+        assert_eq!(parse(TABLE).unwrap().len(), 3);
+        assert_eq!(at(&parse(TABLE).unwrap(), 0.5, (0.0, 0.0)), (2750.0, 97.0));
     }
 
     #[test]

@@ -6,6 +6,7 @@ use crate::error::{Problem, ScenarioError};
 use crate::raw::{num, render, RawScenario};
 use platoonsim_model::dist::Dist;
 use platoonsim_sim::{Config, Demand, Road};
+use std::path::Path;
 use toml::Value;
 
 // One file per part of the scenario (split by responsibility); `validate` below calls them in
@@ -38,10 +39,6 @@ pub mod defaults {
     pub const WARMUP_S: f64 = 1200.0;
     pub const PENETRATION: f64 = 0.5;
     pub const AGGREGATION_S: f64 = 300.0;
-    /// ρ_q (veh/h/lane).
-    pub const FLOW_THRESHOLD_VPHPL: f64 = 1800.0;
-    /// ρ_v (km/h).
-    pub const SPEED_THRESHOLD_KMH: f64 = 90.0;
     pub const RADIUS_M: f64 = 1500.0;
     /// Highest demand accepted (veh/h/lane); above it the entry queue would only grow.
     pub const MAX_DEMAND_VPHPL: f64 = crate::limits::MAX_DEMAND_VPHPL;
@@ -218,6 +215,17 @@ pub fn validate(
     default_name: &str,
     origin: &str,
 ) -> Result<Config, ScenarioError> {
+    validate_in(raw, default_name, origin, None)
+}
+
+/// [`validate`] for a scenario whose relative table paths (`network.demand_scale_table`,
+/// `strategy.thresholds_table`) are read from `base_dir` (the scenario file's directory).
+pub fn validate_in(
+    raw: &RawScenario,
+    default_name: &str,
+    origin: &str,
+    base_dir: Option<&Path>,
+) -> Result<Config, ScenarioError> {
     let mut c = Checker {
         problems: Vec::new(),
     };
@@ -235,7 +243,7 @@ pub fn validate(
     let net = raw
         .network
         .as_ref()
-        .map(|n| network::check_network(&mut c, n, run.penetration.v));
+        .map(|n| network::check_network(&mut c, n, run.penetration.v, base_dir));
     let road = road::check_road(&mut c, &raw.road, net.as_ref());
     let frame = &road.frame;
 
@@ -272,6 +280,7 @@ pub fn validate(
         (road.control_start, road.control_end),
         &run,
         road.lanes,
+        base_dir,
     );
 
     // --- model sections
@@ -320,7 +329,7 @@ pub fn validate(
     if c.problems.is_empty() {
         // The engine's own invariants; the checks above are stricter, so this is a safety net.
         if let Err(message) = config.check() {
-            c.push("(engine check)", "-", message);
+            c.push("(engine check)", "-", message.to_string());
         }
     }
     if c.problems.is_empty() {

@@ -4,6 +4,7 @@
 //! (x_engine = x_file − network.start_m).
 
 use super::{quoted, Checker, Num};
+use crate::demand_scales;
 use crate::limits;
 use crate::network::{
     default_off_id, default_on_id, engine_name, offset_series, offset_step, through_lanes,
@@ -11,6 +12,7 @@ use crate::network::{
 };
 use crate::raw::{num, RawNetwork};
 use platoonsim_sim::config::{Network, OffRamp, OnRamp};
+use std::path::Path;
 
 /// Defaults of the optional `[network]` keys.
 pub mod defaults {
@@ -152,7 +154,12 @@ fn demand_offset(
     (offset.v > 0.0 && span.is_some()).then_some(step)
 }
 
-pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -> Checked {
+pub(super) fn check_network(
+    c: &mut Checker,
+    n: &RawNetwork,
+    penetration: f64,
+    base_dir: Option<&Path>,
+) -> Checked {
     // --- bounds
     let start = position(
         c,
@@ -224,9 +231,28 @@ pub(super) fn check_network(c: &mut Checker, n: &RawNetwork, penetration: f64) -
     );
     let base = c.opt(n.base_demand_multiplier, defaults::BASE_DEMAND_MULTIPLIER);
     c.non_negative("network.base_demand_multiplier", base);
+    // The scale defaults to the table the file names, at this penetration, and to 1 without
+    // one: no corridor gets another corridor's calibration silently.
+    let table_scale = n.demand_scale_table.as_deref().and_then(|r| {
+        match crate::tables::demand_scales(r, base_dir) {
+            Ok(rows) => Some(demand_scales::at(
+                &rows,
+                penetration,
+                demand_scales::FALLBACK,
+            )),
+            Err(e) => {
+                c.push(
+                    "network.demand_scale_table",
+                    quoted(r),
+                    format!("must name a table of demand scales by penetration: {e}"),
+                );
+                None
+            }
+        }
+    });
     let scale = c.opt(
         n.demand_scale,
-        crate::demand_scales::default_at(penetration),
+        table_scale.unwrap_or(demand_scales::FALLBACK),
     );
     c.non_negative("network.demand_scale", scale);
     // Entrance demands are capped after scaling, at 10,000 veh/h per entrance lane: the lanes

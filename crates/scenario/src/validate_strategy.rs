@@ -6,7 +6,9 @@ use super::{defaults, quoted, Checker, Frame, Num};
 use crate::limits;
 use crate::overrides::StrategyKind;
 use crate::raw::{num, RawStrategy};
+use crate::thresholds;
 use platoonsim_sim::{FlowAwareConfig, LaneChoice, PdConfig, Strategy};
+use std::path::Path;
 use toml::Value;
 
 /// `[strategy]`. The zone defaults to the control section (`control`, in the file's
@@ -18,6 +20,7 @@ pub(super) fn check_strategy(
     control: (Option<Num>, Option<Num>),
     run: &Run,
     lanes: u32,
+    base_dir: Option<&Path>,
 ) -> Strategy {
     let (cstart, cend) = control;
     let kind = match s.kind.as_deref() {
@@ -97,33 +100,41 @@ pub(super) fn check_strategy(
             format!("must be > strategy.start_s = {}", ts.shown()),
         );
     }
-    // Unset thresholds come from the calibrated table at this penetration (issue 3 item 4).
-    let (flow_default, speed_default) = crate::thresholds::default_at(
-        run.penetration.v,
-        (
-            defaults::FLOW_THRESHOLD_VPHPL,
-            defaults::SPEED_THRESHOLD_KMH,
-        ),
-    );
-    let flow = c.opt(s.flow_threshold_vphpl, flow_default);
-    c.check(
+    // Unset thresholds come from the table the file names, at this penetration (issue 3 item
+    // 4); without a table they have no default, and Flow-Aware needs both.
+    let table =
+        s.thresholds_table
+            .as_deref()
+            .and_then(|r| match crate::tables::thresholds(r, base_dir) {
+                Ok(rows) => Some(thresholds::at(
+                    &rows,
+                    run.penetration.v,
+                    (f64::NAN, f64::NAN),
+                )),
+                Err(e) => {
+                    c.push(
+                        "strategy.thresholds_table",
+                        quoted(r),
+                        format!("must name a table of Flow-Aware thresholds by penetration: {e}"),
+                    );
+                    None
+                }
+            });
+    let flow = threshold(
+        c,
+        (kind, s.thresholds_table.is_some()),
         "strategy.flow_threshold_vphpl",
-        flow,
-        flow.v > 0.0 && flow.v <= limits::MAX_FLOW_THRESHOLD_VPHPL,
-        format!(
-            "must be in (0, {}] veh/h/lane",
-            num(limits::MAX_FLOW_THRESHOLD_VPHPL)
-        ),
+        s.flow_threshold_vphpl.or(table.map(|t| t.0)),
+        table.is_some(),
+        (0.0, limits::MAX_FLOW_THRESHOLD_VPHPL, "veh/h/lane", false),
     );
-    let speed = c.opt(s.speed_threshold_kmh, speed_default);
-    c.check(
+    let speed = threshold(
+        c,
+        (kind, s.thresholds_table.is_some()),
         "strategy.speed_threshold_kmh",
-        speed,
-        (0.0..=limits::MAX_SPEED_THRESHOLD_KMH).contains(&speed.v),
-        format!(
-            "must be in [0, {}] km/h",
-            num(limits::MAX_SPEED_THRESHOLD_KMH)
-        ),
+        s.speed_threshold_kmh.or(table.map(|t| t.1)),
+        table.is_some(),
+        (0.0, limits::MAX_SPEED_THRESHOLD_KMH, "km/h", true),
     );
     let radius = c.opt(s.radius_m, defaults::RADIUS_M);
     c.check(
@@ -144,9 +155,55 @@ pub(super) fn check_strategy(
         kind,
         pd: entry.organizes.then_some(pd),
         thresholds: entry.needs_thresholds.then_some(FlowAwareConfig {
-            flow_threshold_vphpl: flow.v,
-            speed_threshold_kmh: speed.v,
+            // NaN only with a problem reported above (a threshold missing).
+            flow_threshold_vphpl: flow.unwrap_or(f64::NAN),
+            speed_threshold_kmh: speed.unwrap_or(f64::NAN),
             radius_m: radius.v,
         }),
     }
+}
+
+/// One Flow-Aware threshold: given (in the file or by its table: `from_table`) it is checked
+/// against (`lo`, `hi`] (or [`lo`, `hi`] if `lo_closed`); missing, it is a problem only if
+/// `kind` is Flow-Aware, with a message that says how to name it.
+fn threshold(
+    c: &mut Checker,
+    (kind, table_named): (StrategyKind, bool),
+    field: &str,
+    value: Option<f64>,
+    from_table: bool,
+    (lo, hi, unit, lo_closed): (f64, f64, &str, bool),
+) -> Option<f64> {
+    let Some(v) = value else {
+        // A table that was named but could not be read is reported at its own key.
+        if kind.entry().needs_thresholds && !table_named {
+            c.push(
+                field,
+                "(missing)",
+                format!(
+                    "strategy.kind = \"flow-aware\" needs both thresholds: set \
+                     strategy.flow_threshold_vphpl (veh/h/lane) and strategy.speed_threshold_kmh \
+                     (km/h), or strategy.thresholds_table = \"{}\" (the built-in table \
+                     calibrated on the homogeneous road, {}) or the path of a table file in \
+                     its format",
+                    crate::tables::FLOW_AWARE_THRESHOLDS,
+                    thresholds::TABLE_PATH
+                ),
+            );
+        }
+        return None;
+    };
+    let n = Num {
+        v,
+        defaulted: from_table,
+    };
+    let (open, close) = (if lo_closed { "[" } else { "(" }, "]");
+    let ok = (if lo_closed { v >= lo } else { v > lo }) && v <= hi;
+    c.check(
+        field,
+        n,
+        ok,
+        format!("must be in {open}{}, {}{close} {unit}", num(lo), num(hi)),
+    );
+    Some(v)
 }

@@ -69,14 +69,14 @@ fn engine_check_repeats_the_essential_limits() {
     for (start, f) in cases {
         let mut c = good.clone();
         f(&mut c);
-        let e = c.check().unwrap_err();
+        let e = c.check().unwrap_err().to_string();
         assert!(e.starts_with(start), "{e}");
         assert!(platoonsim_sim::run(&c, None).is_err());
     }
     // A network's ramp demand, after the demand scale.
     let mut c = load("sr99").unwrap();
     c.road.network.as_mut().unwrap().on_ramps[3].demand_vph[2] = 4294967296.0;
-    let e = c.check().unwrap_err();
+    let e = c.check().unwrap_err().to_string();
     assert!(
         e.starts_with("network.on_ramps[3].demand_vph[2] = 4294967296"),
         "{e}"
@@ -204,7 +204,7 @@ fn trajectory_memory_is_estimated_and_refused_above_4_gib() {
         }),
     };
     // The whole 4-hour corridor every 0.1 s: far too much.
-    let e = rec(0.1, None, None).check(&c).unwrap_err();
+    let e = rec(0.1, None, None).check(&c).unwrap_err().to_string();
     assert!(
         e.starts_with("--trajectories 0.1 s: the recording could hold up to"),
         "{e}"

@@ -87,10 +87,9 @@ fn homogeneous_strategy_defaults_follow_the_road_and_the_run() {
     assert_eq!(fa.strategy.kind, StrategyKind::FLOW_AWARE);
     let (pd, thresholds) = (fa.strategy.pd.unwrap(), fa.strategy.thresholds.unwrap());
     assert_eq!((pd.start_s, pd.end_s), (600.0, 1800.0));
-    // Thresholds: the calibrated table at the run's penetration (50 %).
-    let (q, v) = platoonsim_scenario::thresholds::default_at(0.5, (0.0, 0.0));
-    assert_eq!(thresholds.flow_threshold_vphpl, q);
-    assert_eq!(thresholds.speed_threshold_kmh, v);
+    // Thresholds: the table homogeneous.toml names, at the run's penetration (50 %).
+    assert_eq!(thresholds.flow_threshold_vphpl, 2750.0);
+    assert_eq!(thresholds.speed_threshold_kmh, 97.0);
     assert_eq!(thresholds.radius_m, 1500.0);
     // Between calibrated rows the thresholds are interpolated; an explicit value wins.
     let at = |pen: f64, set: &[&str]| {
@@ -259,4 +258,32 @@ fn unknown_scenario_names_the_builtins() {
     );
     let e = load("missing/dir/file.toml").unwrap_err();
     assert!(matches!(e, ScenarioError::UnknownScenario { .. }), "{e}");
+}
+
+/// The homogeneous road has one definition, `scenarios/homogeneous.toml`; the engine keeps a
+/// mirror of it for its own tests and benchmarks (`Config::homogeneous`), which must equal the
+/// file loaded with the same values, field by field (the models' parameters included).
+#[test]
+fn homogeneous_config_mirrors_the_scenario_file() {
+    for (pen, demand, duration, warmup, seed) in [
+        (0.5, 2500.0, 3600.0, 1200.0, 1),
+        (0.0, 1000.0, 600.0, 0.0, 7),
+        (0.25, 1800.0, 1800.0, 600.0, 3),
+        (1.0, 2200.0, 900.0, 300.0, 42),
+    ] {
+        let mirror = platoonsim_sim::Config::homogeneous(pen, demand, duration, warmup, seed);
+        let overrides = |strategy| Overrides {
+            penetration: Some(pen),
+            demand_vphpl: Some(demand),
+            duration_s: Some(duration),
+            warmup_s: Some(warmup),
+            seed: Some(seed),
+            strategy,
+            ..Overrides::default()
+        };
+        let file = load_with("homogeneous", &overrides(None)).unwrap();
+        assert_eq!(file, mirror);
+        let pd = load_with("homogeneous", &overrides(Some(StrategyKind::PD))).unwrap();
+        assert_eq!(pd, mirror.with_pd());
+    }
 }

@@ -142,7 +142,12 @@ fn sr99_demand_scale_follows_the_penetration_unless_given() {
     let base = 1.1;
     assert_eq!(at(0.4, None), base * 1.1);
     assert_eq!(at(1.0, None), base * 1.27);
-    assert_eq!(at(0.5, None), base * demand_scales::default_at(0.5));
+    let table = demand_scales::embedded();
+    assert_eq!(
+        at(0.5, None),
+        base * demand_scales::at(&table, 0.5, demand_scales::FALLBACK)
+    );
+    assert!((at(0.5, None) - base * 1.135).abs() < 1e-12);
     assert_eq!(at(0.5, Some(1.3)), base * 1.3);
     // The base multiplier multiplies the scale.
     let c = from_toml(

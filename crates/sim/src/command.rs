@@ -14,6 +14,7 @@
 //! | `ChangeLane { side }` | a mandatory lane-change desire toward `side` (gap acceptance and before-lane-change behaviour of spec 4.3) | once in the target lane |
 //! | `Release` | every command of the vehicle ends; the model drives | at once |
 
+use crate::error::SimError;
 use crate::events::LaneChangeReason;
 use crate::sim::{Decision, Simulation};
 use crate::vehicle::Vehicle;
@@ -49,9 +50,11 @@ pub const MAX_COMMAND_ACCEL_MPS2: f64 = 20.0;
 
 impl Simulation {
     /// Command vehicle `id` (on the road now) from the next step on (module `command`).
-    pub fn command(&mut self, id: u64, command: Command) -> Result<(), String> {
+    pub fn command(&mut self, id: u64, command: Command) -> Result<(), SimError> {
         let Some(s) = self.slot_of(id) else {
-            return Err(format!("vehicle {id} is not on the road"));
+            return Err(SimError::Command(format!(
+                "vehicle {id} is not on the road"
+            )));
         };
         let v = &self.vehicles[s as usize];
         let mut active = Active {
@@ -63,21 +66,23 @@ impl Simulation {
         match command {
             Command::Accelerate { accel_mps2, steps } => {
                 if !(accel_mps2.is_finite() && accel_mps2.abs() <= MAX_COMMAND_ACCEL_MPS2) {
-                    return Err(format!(
+                    return Err(SimError::Command(format!(
                         "Accelerate.accel_mps2 = {accel_mps2}: must be finite, within \
                          ±{MAX_COMMAND_ACCEL_MPS2} m/s²"
-                    ));
+                    )));
                 }
                 if steps == 0 {
-                    return Err("Accelerate.steps = 0: must be at least 1".into());
+                    return Err(SimError::Command(
+                        "Accelerate.steps = 0: must be at least 1".into(),
+                    ));
                 }
                 active.left = steps;
             }
             Command::DesiredSpeed { speed_mps } => {
                 if !(speed_mps.is_finite() && (0.0..=100.0).contains(&speed_mps)) {
-                    return Err(format!(
+                    return Err(SimError::Command(format!(
                         "DesiredSpeed.speed_mps = {speed_mps}: must be in [0, 100] m/s"
-                    ));
+                    )));
                 }
                 // A second DesiredSpeed keeps the driver's own speed of the first.
                 if let Some(a) = self
@@ -96,11 +101,11 @@ impl Simulation {
                     Side::Right => v.lane.wrapping_sub(1),
                 };
                 if !self.geom.can_enter(to, v.x) {
-                    return Err(format!(
+                    return Err(SimError::Command(format!(
                         "vehicle {id} cannot change {side:?} at x = {:.1} m: no lane it may \
                          enter there",
                         v.x + self.cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m)
-                    ));
+                    )));
                 }
                 active.left = u64::from(to);
             }

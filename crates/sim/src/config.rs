@@ -2,6 +2,7 @@
 //! `platoonsim-scenario` has validated (ranges, detector positions, …); [`Config::check`]
 //! repeats the invariants the engine relies on so that a library user cannot bypass them.
 
+use crate::error::SimError;
 use crate::organize::{LaneChoice, StrategyKind};
 use platoonsim_model::cav::CavParams;
 use platoonsim_model::human::HumanDists;
@@ -98,79 +99,83 @@ pub struct OffRamp {
 impl Network {
     /// The invariants the engine relies on (the scenario crate checks the same with file
     /// context).
-    pub fn check(&self, lanes: u32, length_m: f64) -> Result<(), String> {
-        let series = |name: &str, v: &[f64], hi: f64| -> Result<(), String> {
+    pub fn check(&self, lanes: u32, length_m: f64) -> Result<(), SimError> {
+        let series = |name: &str, v: &[f64], hi: f64| -> Result<(), SimError> {
             if v.is_empty() {
-                return Err(format!("{name}: must have at least one interval"));
+                return Err(SimError::Config(format!(
+                    "{name}: must have at least one interval"
+                )));
             }
             match v
                 .iter()
                 .position(|x| !(x.is_finite() && *x >= 0.0 && *x <= hi))
             {
-                Some(k) => Err(format!(
+                Some(k) => Err(SimError::Config(format!(
                     "{name}[{k}] = {}: must be a finite number in [0, {hi}]",
                     v[k]
-                )),
+                ))),
                 None => Ok(()),
             }
         };
         if !(self.interval_s.is_finite() && self.interval_s > 0.0) {
-            return Err(format!(
+            return Err(SimError::Config(format!(
                 "network.interval_s = {}: must be a finite number > 0",
                 self.interval_s
-            ));
+            )));
         }
         if !(self.demand_scale.is_finite() && self.demand_scale >= 0.0) {
-            return Err(format!(
+            return Err(SimError::Config(format!(
                 "network.demand_scale = {}: must be a finite number >= 0",
                 self.demand_scale
-            ));
+            )));
         }
         if !(self.ramp_speed_kmh.is_finite() && self.ramp_speed_kmh > 0.0) {
-            return Err(format!(
+            return Err(SimError::Config(format!(
                 "network.ramp_speed_kmh = {}: must be a finite number > 0",
                 self.ramp_speed_kmh
-            ));
+            )));
         }
         for (i, c) in self.lane_speed_limits_kmh.iter().enumerate() {
             if !(c.is_finite() && *c > 0.0) {
-                return Err(format!(
+                return Err(SimError::Config(format!(
                     "network.lane_speed_limits_kmh[{i}] = {c}: must be a finite number > 0"
-                ));
+                )));
             }
         }
         if let Some(c) = self.cross_lane_friction {
             if !(c > 0.0 && c <= 1.0) {
-                return Err(format!(
+                return Err(SimError::Config(format!(
                     "network.cross_lane_friction = {c}: must be in (0, 1] (1 = off)"
-                ));
+                )));
             }
         }
         series("network.mainline_vph", &self.mainline_vph, f64::MAX)?;
         for (i, e) in self.through_lanes.iter().enumerate() {
             if e.lane >= lanes || !(e.from_m >= 0.0 && e.to_m > e.from_m && e.to_m <= length_m) {
-                return Err(format!(
+                return Err(SimError::Config(format!(
                     "network.through_lanes[{i}] = lane {} on [{}, {}): the lane must be < {lanes} and the extent inside [0, {length_m}]",
                     e.lane, e.from_m, e.to_m
-                ));
+                )));
             }
         }
         if !self.through_lanes.iter().any(|e| e.from_m == 0.0) {
-            return Err("network.through_lanes: no lane is open at the entrance (x = 0)".into());
+            return Err(SimError::Config(
+                "network.through_lanes: no lane is open at the entrance (x = 0)".into(),
+            ));
         }
         for (i, r) in self.on_ramps.iter().enumerate() {
             if !(r.x_m > 0.0 && r.x_m < length_m) {
-                return Err(format!(
+                return Err(SimError::Config(format!(
                     "network.on_ramps[{i}].x_m = {}: must lie inside the road (0, {length_m})",
                     r.x_m
-                ));
+                )));
             }
             let ok = |v: f64| v.is_finite() && v >= 0.0;
             if !(ok(r.accel_lane_m) && ok(r.ramp_length_m)) {
-                return Err(format!(
+                return Err(SimError::Config(format!(
                     "network.on_ramps[{i}]: accel_lane_m = {} and ramp_length_m = {} must be finite and >= 0",
                     r.accel_lane_m, r.ramp_length_m
-                ));
+                )));
             }
             series(
                 &format!("network.on_ramps[{i}].demand_vph"),
@@ -180,18 +185,18 @@ impl Network {
         }
         for (i, r) in self.off_ramps.iter().enumerate() {
             if i > 0 && r.x_m < self.off_ramps[i - 1].x_m {
-                return Err(format!(
+                return Err(SimError::Config(format!(
                     "network.off_ramps[{i}].x_m = {}: off-ramps must be listed in downstream order (off_ramps[{}].x_m = {})",
                     r.x_m,
                     i - 1,
                     self.off_ramps[i - 1].x_m
-                ));
+                )));
             }
             if !(r.x_m > 0.0 && r.x_m < length_m) {
-                return Err(format!(
+                return Err(SimError::Config(format!(
                     "network.off_ramps[{i}].x_m = {}: must lie inside the road (0, {length_m})",
                     r.x_m
-                ));
+                )));
             }
             series(
                 &format!("network.off_ramps[{i}].exit_fraction"),
@@ -376,21 +381,25 @@ pub mod limits {
 impl Config {
     /// The invariants the engine relies on; `Err` names the field, the value and what is
     /// allowed. (The scenario crate checks the same and more, with file context.)
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), SimError> {
         use limits::*;
-        let pos = |name: &str, v: f64| -> Result<(), String> {
+        let pos = |name: &str, v: f64| -> Result<(), SimError> {
             if v.is_finite() && v > 0.0 {
                 Ok(())
             } else {
-                Err(format!("{name} = {v}: must be a finite number > 0"))
+                Err(SimError::Config(format!(
+                    "{name} = {v}: must be a finite number > 0"
+                )))
             }
         };
         // A range check, with the allowed interval and why in the message.
-        let within = |name: &str, v: f64, lo: f64, hi: f64, why: &str| -> Result<(), String> {
+        let within = |name: &str, v: f64, lo: f64, hi: f64, why: &str| -> Result<(), SimError> {
             if (lo..=hi).contains(&v) {
                 Ok(())
             } else {
-                Err(format!("{name} = {v}: must be in [{lo}, {hi}]{why}"))
+                Err(SimError::Config(format!(
+                    "{name} = {v}: must be in [{lo}, {hi}]{why}"
+                )))
             }
         };
         within(
@@ -414,25 +423,28 @@ impl Config {
         // Detector intervals are counted in whole steps.
         let steps = self.aggregation_s / self.dt_s;
         if !(steps >= 1.0 && (steps - steps.round()).abs() <= 1e-6 * steps) {
-            return Err(format!(
+            return Err(SimError::Config(format!(
                 "measurement.aggregation_s = {}: must be a whole number of steps of run.dt_s = {}",
                 self.aggregation_s, self.dt_s
-            ));
+            )));
         }
         if !(self.warmup_s.is_finite() && self.warmup_s >= 0.0 && self.warmup_s < self.duration_s) {
-            return Err(format!(
+            return Err(SimError::Config(format!(
                 "run.warmup_s = {}: must be >= 0 and < run.duration_s = {}",
                 self.warmup_s, self.duration_s
-            ));
+            )));
         }
         if !(0.0..=1.0).contains(&self.penetration) {
-            return Err(format!(
+            return Err(SimError::Config(format!(
                 "run.penetration = {}: must be in [0, 1]",
                 self.penetration
-            ));
+            )));
         }
         if !(1..=8).contains(&self.road.lanes) {
-            return Err(format!("road.lanes = {}: must be 1 to 8", self.road.lanes));
+            return Err(SimError::Config(format!(
+                "road.lanes = {}: must be 1 to 8",
+                self.road.lanes
+            )));
         }
         within(
             "demand.vph_per_lane",
@@ -443,27 +455,27 @@ impl Config {
         )?;
         let entry = self.strategy.kind.entry();
         if entry.organizes && self.strategy.pd.is_none() {
-            return Err(format!(
+            return Err(SimError::Config(format!(
                 "strategy.kind = \"{}\": needs its zone and time window (strategy.zone_start_m, \
                  strategy.zone_end_m, strategy.start_s, strategy.end_s)",
                 entry.name
-            ));
+            )));
         }
         if entry.needs_thresholds && self.strategy.thresholds.is_none() {
-            return Err(format!(
+            return Err(SimError::Config(format!(
                 "strategy.kind = \"{}\": needs strategy.flow_threshold_vphpl, \
                  strategy.speed_threshold_kmh and strategy.radius_m",
                 entry.name
-            ));
+            )));
         }
         if let Some(LaneChoice::Index(i)) = self.strategy.pd.as_ref().map(|p| p.lane) {
             if i >= self.road.lanes {
-                return Err(format!(
+                return Err(SimError::Config(format!(
                     "strategy.lane = {}: must be 1 to road.lanes = {} (or \"leftmost\", \
                      \"rightmost\")",
                     i + 1,
                     self.road.lanes
-                ));
+                )));
             }
         }
         for (i, d) in self.detectors.iter().enumerate() {
@@ -471,10 +483,10 @@ impl Config {
                 && d.position_m > 0.0
                 && d.position_m < self.road.length_m)
             {
-                return Err(format!(
+                return Err(SimError::Config(format!(
                     "detectors[{i}].position_m = {}: must lie inside the road (0, {})",
                     d.position_m, self.road.length_m
-                ));
+                )));
             }
         }
         if let Some(net) = &self.road.network {
@@ -500,11 +512,11 @@ impl Config {
                     .iter()
                     .position(|q| !(0.0..=hi).contains(&(q * net.demand_scale)))
                 {
-                    return Err(format!(
+                    return Err(SimError::Config(format!(
                         "{name}[{k}] = {} (x demand scale {}): must be at most {hi} veh/h \
                          ({MAX_DEMAND_VPHPL} veh/h per entrance lane)",
                         series[k], net.demand_scale
-                    ));
+                    )));
                 }
             }
         }
@@ -512,26 +524,30 @@ impl Config {
             if let DetectorKind::OffRamp { ramp } = d.kind {
                 let n = self.road.network.as_ref().map_or(0, |n| n.off_ramps.len());
                 if ramp >= n {
-                    return Err(format!(
+                    return Err(SimError::Config(format!(
                         "detectors[{i}] counts off-ramp {ramp}, but only {n} off-ramps exist"
-                    ));
+                    )));
                 }
             }
         }
         if self.measurement_detector >= self.detectors.len() {
-            return Err(format!(
+            return Err(SimError::Config(format!(
                 "measurement.detector index {} names no detector ({} defined)",
                 self.measurement_detector,
                 self.detectors.len()
-            ));
+            )));
         }
         Ok(())
     }
 }
 
 impl Config {
-    /// The paper's homogeneous road with the spec defaults (the same values as the built-in
-    /// `homogeneous` scenario file; handy for tests and benchmarks of the engine alone).
+    /// The paper's homogeneous road with the spec defaults, for the engine's own tests and
+    /// benchmarks, which cannot read scenario files. A mirror, not a definition: the road is
+    /// defined by the built-in scenario file `crates/scenario/scenarios/homogeneous.toml`, and
+    /// the scenario crate's test `homogeneous_config_mirrors_the_scenario_file` requires this
+    /// config to equal the file loaded with the same five values (and [`Config::with_pd`] to
+    /// equal it with `strategy.kind = "pd"`). Code outside tests loads the file.
     pub fn homogeneous(
         penetration: f64,
         demand_vphpl: f64,

@@ -14,6 +14,7 @@ pub mod command;
 pub mod config;
 mod decide;
 pub mod detector;
+mod error;
 pub mod events;
 mod execute;
 mod here;
@@ -35,6 +36,7 @@ pub use config::{
     Config, Demand, DetectorKind, DetectorSpec, FlowAwareConfig, LaneExtent, Network, OffRamp,
     OnRamp, PdConfig, Road, Strategy,
 };
+pub use error::SimError;
 pub use events::{Departure, Event, LaneChangeReason, Observer};
 pub use organize::{Advice, LaneChoice, Organizer, StrategyKind, STRATEGIES};
 pub use platoonsim_model::lanechange::Side;
@@ -49,7 +51,7 @@ pub type Progress<'a> = &'a mut dyn FnMut(f64, f64);
 /// Run a whole simulation: validate, step to the end, and collect the outputs.
 /// Single-threaded and deterministic: the same config gives bit-identical outputs (except
 /// `wall_seconds`).
-pub fn run(config: &Config, progress: Option<Progress<'_>>) -> Result<Output, String> {
+pub fn run(config: &Config, progress: Option<Progress<'_>>) -> Result<Output, SimError> {
     run_recording(config, &Recording::default(), progress)
 }
 
@@ -60,7 +62,7 @@ pub fn run_recording(
     config: &Config,
     recording: &Recording,
     mut progress: Option<Progress<'_>>,
-) -> Result<Output, String> {
+) -> Result<Output, SimError> {
     let start = std::time::Instant::now();
     let mut sim = Simulation::new(config.clone())?;
     sim.record(recording)?;

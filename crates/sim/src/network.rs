@@ -18,6 +18,7 @@
 //!   ends at the end of the later one.
 
 use crate::config::{Config, Network};
+use crate::error::SimError;
 
 /// One open stretch of a lateral lane.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -88,7 +89,7 @@ pub const NO_LANE: u8 = 255;
 
 impl Geometry {
     /// Build the geometry of `cfg` (a plain road if it has no network).
-    pub fn new(cfg: &Config) -> Result<Geometry, String> {
+    pub fn new(cfg: &Config) -> Result<Geometry, SimError> {
         let n = cfg.road.lanes as usize;
         let Some(net) = &cfg.road.network else {
             let whole = Seg {
@@ -207,7 +208,7 @@ fn tabled(tab: &[u8], x: f64) -> Option<u32> {
     None
 }
 
-fn build(net: &Network, n: usize, length: f64) -> Result<Geometry, String> {
+fn build(net: &Network, n: usize, length: f64) -> Result<Geometry, SimError> {
     let mut lanes: Vec<Vec<Seg>> = vec![Vec::new(); n];
     for e in &net.through_lanes {
         lanes[e.lane as usize].push(Seg {
@@ -240,10 +241,10 @@ fn build(net: &Network, n: usize, length: f64) -> Result<Geometry, String> {
         let r = &net.on_ramps[i];
         let x = r.x_m;
         let Some(right) = rightmost(x) else {
-            return Err(format!(
+            return Err(SimError::Geometry(format!(
                 "network.on_ramps[{i}] ({}) at x = {x}: no through lane is open there",
                 r.name
-            ));
+            )));
         };
         let starts_here = through_lanes[right as usize]
             .iter()
@@ -259,10 +260,10 @@ fn build(net: &Network, n: usize, length: f64) -> Result<Geometry, String> {
             continue;
         }
         if right == 0 {
-            return Err(format!(
+            return Err(SimError::Geometry(format!(
                 "network.on_ramps[{i}] ({}) at x = {x}: the rightmost through lane there has index 0, so there is no lane index for its acceleration lane (number through lanes from 1)",
                 r.name
-            ));
+            )));
         }
         let a = right - 1;
         let mut end = x + r.accel_lane_m.max(1.0);
@@ -303,10 +304,10 @@ fn build(net: &Network, n: usize, length: f64) -> Result<Geometry, String> {
     let mut off_ramps = Vec::with_capacity(net.off_ramps.len());
     for (i, r) in net.off_ramps.iter().enumerate() {
         let Some(lane) = rightmost(r.x_m) else {
-            return Err(format!(
+            return Err(SimError::Geometry(format!(
                 "network.off_ramps[{i}] ({}) at x = {}: no through lane is open there",
                 r.name, r.x_m
-            ));
+            )));
         };
         off_ramps.push(ExitGeom { x: r.x_m, lane });
     }
@@ -317,7 +318,9 @@ fn build(net: &Network, n: usize, length: f64) -> Result<Geometry, String> {
         .filter(|&l| through_lanes[l as usize].iter().any(|s| s.contains(0.0)))
         .collect();
     if entry_lanes.is_empty() {
-        return Err("network: no through lane is open at the entrance".into());
+        return Err(SimError::Geometry(
+            "network: no through lane is open at the entrance".into(),
+        ));
     }
     let metres = length.max(0.0).ceil() as usize + 2;
     let index = lanes
@@ -533,6 +536,9 @@ mod tests {
             to_m: 3000.0,
         });
         let e = build(&n, 5, 3000.0).unwrap_err();
-        assert!(e.contains("on_ramps[0]"), "{e}");
+        assert!(
+            matches!(&e, SimError::Geometry(m) if m.contains("on_ramps[0]")),
+            "{e}"
+        );
     }
 }

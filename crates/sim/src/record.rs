@@ -7,6 +7,7 @@
 //! off, the cost is one branch per vehicle that leaves and one per step.
 
 use crate::config::Config;
+use crate::error::SimError;
 use crate::events::{Departure, Event, Observer};
 use crate::sim::Simulation;
 use crate::vehicle::{Kind, ModeLabel, Vehicle, NEVER, NO_EXIT};
@@ -42,35 +43,35 @@ impl Recording {
 
     /// The invariants the recorder relies on; `Err` names the field, the value and what is
     /// allowed.
-    pub fn check(&self, cfg: &Config) -> Result<(), String> {
+    pub fn check(&self, cfg: &Config) -> Result<(), SimError> {
         let Some(t) = &self.trajectories else {
             return Ok(());
         };
         if period_steps(t.period_s, cfg.dt_s).is_none() {
-            return Err(format!(
+            return Err(SimError::Recording(format!(
                 "trajectories.period_s = {}: must be a positive multiple of the time step dt_s = {}",
                 t.period_s, cfg.dt_s
-            ));
+            )));
         }
         if let Some((t0, t1)) = t.window_s {
             if !(t0.is_finite() && t1.is_finite() && t0 >= 0.0 && t0 < t1) {
-                return Err(format!(
+                return Err(SimError::Recording(format!(
                     "trajectories.window_s = ({t0}, {t1}): must be finite with 0 <= t0 < t1"
-                ));
+                )));
             }
         }
         if let Some((x0, x1)) = t.x_m {
             if !(x0.is_finite() && x1.is_finite() && x0 < x1) {
-                return Err(format!(
+                return Err(SimError::Recording(format!(
                     "trajectories.x_m = ({x0}, {x1}): must be finite with x0 < x1"
-                ));
+                )));
             }
         }
         let (rows, vehicles, samples) = trajectory_rows_bound(t, cfg);
         let bytes = rows * std::mem::size_of::<TrajectoryPoint>() as f64;
         if bytes > MAX_TRAJECTORY_BYTES {
             const GIB: f64 = (1u64 << 30) as f64;
-            return Err(format!(
+            return Err(SimError::Recording(format!(
                 "--trajectories {} s: the recording could hold up to {rows:.3e} rows ({vehicles:.0} \
                  vehicles on the road × {samples:.0} samples), {:.1} GiB of memory at {} bytes \
                  each; at most {:.0} GiB: narrow it with --trajectory-window T0,T1, \
@@ -79,7 +80,7 @@ impl Recording {
                 bytes / GIB,
                 std::mem::size_of::<TrajectoryPoint>(),
                 MAX_TRAJECTORY_BYTES / GIB
-            ));
+            )));
         }
         Ok(())
     }

@@ -2,6 +2,7 @@
 
 use crate::config::{Config, DetectorKind};
 use crate::detector::{Detector, Passage};
+use crate::error::SimError;
 use crate::events::{Departure, Event, Observer};
 use crate::here::HereTables;
 use crate::insert::Entrance;
@@ -111,7 +112,7 @@ pub struct Simulation {
 
 impl Simulation {
     /// Build a simulation from a validated config.
-    pub fn new(cfg: Config) -> Result<Simulation, String> {
+    pub fn new(cfg: Config) -> Result<Simulation, SimError> {
         cfg.check()?;
         let dt = cfg.dt_s;
         let n_lanes = cfg.road.lanes as usize;
@@ -205,9 +206,9 @@ impl Simulation {
     /// Organize platoons with `organizer` instead of the strategy the config names (a
     /// strategy of the library user's own; docs/organizers.md). The summary's `strategy` is
     /// then the organizer's name. Must be called before the first step.
-    pub fn set_organizer(&mut self, organizer: Box<dyn Organizer>) -> Result<(), String> {
+    pub fn set_organizer(&mut self, organizer: Box<dyn Organizer>) -> Result<(), SimError> {
         if self.step > 0 {
-            return Err("the organizer must be set before the first step".into());
+            return Err(SimError::AfterFirstStep("the organizer must be set"));
         }
         self.install(organizer);
         Ok(())
@@ -221,10 +222,10 @@ impl Simulation {
     /// Also record what `recording` asks for (trips, trajectories); they come back in
     /// [`Output::trips`] and [`Output::trajectories`]. Recording reads the state and never
     /// changes the simulation. Must be called before the first step.
-    pub fn record(&mut self, recording: &Recording) -> Result<(), String> {
+    pub fn record(&mut self, recording: &Recording) -> Result<(), SimError> {
         recording.check(&self.cfg)?;
         if self.step > 0 {
-            return Err("recording must be enabled before the first step".into());
+            return Err(SimError::AfterFirstStep("recording must be enabled"));
         }
         let origin = self.origin_m();
         self.rec = Recorder {
@@ -245,9 +246,9 @@ impl Simulation {
     /// Attach an observer of the library user's own (events.rs; docs/library.md): it gets
     /// every step's events and the state after the step, and every vehicle as it leaves.
     /// Observers never change the simulation. Must be called before the first step.
-    pub fn observe(&mut self, observer: Box<dyn Observer>) -> Result<(), String> {
+    pub fn observe(&mut self, observer: Box<dyn Observer>) -> Result<(), SimError> {
         if self.step > 0 {
-            return Err("observers must be attached before the first step".into());
+            return Err(SimError::AfterFirstStep("observers must be attached"));
         }
         self.observers.push(observer);
         self.observing = true;
@@ -353,7 +354,7 @@ impl Simulation {
     ///    virtual entry queue.
     /// 6. **detectors**: crossings and occupancy; interval close and broadcast.
     /// 7. **invariants**: no overlap (counted; a panic in debug builds), all states finite.
-    pub fn step(&mut self) -> Result<(), String> {
+    pub fn step(&mut self) -> Result<(), SimError> {
         self.sense();
         self.decide();
         self.integrate();
@@ -622,7 +623,7 @@ impl Simulation {
     /// each lane's (leader, follower) pairs at the end of the step. A pair whose follower's
     /// front is past its leader's rear is a collision when it starts (it was not overlapping at
     /// the end of the previous step). Keeps each lane sorted even after a collision.
-    fn check_invariants(&mut self) -> Result<(), String> {
+    fn check_invariants(&mut self) -> Result<(), SimError> {
         let step = self.step;
         let t = crate::record::step_time(step, self.dt);
         let dt = self.dt;
@@ -935,7 +936,7 @@ fn overlap(
 
 /// A non-finite state is an engine error (phase 7).
 #[inline(always)]
-fn check_finite(v: &Vehicle, lane: usize, t: f64) -> Result<(), String> {
+fn check_finite(v: &Vehicle, lane: usize, t: f64) -> Result<(), SimError> {
     // The sum is finite exactly when the three are: they are bounded far below overflow (a
     // road of at most 200 km, speeds and accelerations of vehicles), and ∞ − ∞ is NaN.
     if (v.x + v.v + v.a).is_finite() {
@@ -946,13 +947,13 @@ fn check_finite(v: &Vehicle, lane: usize, t: f64) -> Result<(), String> {
 
 #[cold]
 #[inline(never)]
-fn non_finite(v: &Vehicle, lane: usize, t: f64) -> String {
-    format!(
-        "vehicle {} in lane {} has a non-finite state at t = {t:.1} s (x = {}, v = {}, a = {})",
-        v.id,
-        lane + 1,
-        v.x,
-        v.v,
-        v.a
-    )
+fn non_finite(v: &Vehicle, lane: usize, t: f64) -> SimError {
+    SimError::NonFinite {
+        vehicle: v.id,
+        lane: lane + 1,
+        t_s: t,
+        x_m: v.x,
+        v_mps: v.v,
+        a_mps2: v.a,
+    }
 }

@@ -1,7 +1,7 @@
 //! Engine contracts: determinism, conservation, no overlap, no NaN, queueing at the entrance,
 //! and two step sizes (issue 2, "What it must show").
 
-use platoonsim_sim::{run, Config, Output, Simulation};
+use platoonsim_sim::{run, Config, Output, SimError, Simulation};
 
 fn short(pen: f64, demand: f64, seed: u64) -> Config {
     Config::homogeneous(pen, demand, 900.0, 300.0, seed)
@@ -133,16 +133,16 @@ fn half_the_step_gives_the_same_traffic() {
 fn invalid_config_is_an_error_not_a_panic() {
     let mut cfg = short(0.5, 1000.0, 1);
     cfg.penetration = 1.5;
-    assert!(Simulation::new(cfg)
-        .err()
-        .unwrap()
-        .contains("run.penetration = 1.5"));
+    assert!(matches!(
+        Simulation::new(cfg),
+        Err(SimError::Config(m)) if m.contains("run.penetration = 1.5")
+    ));
     let mut cfg = short(0.5, 1000.0, 1);
     cfg.detectors[0].position_m = 9000.0;
-    assert!(Simulation::new(cfg)
-        .err()
-        .unwrap()
-        .contains("detectors[0].position_m"));
+    assert!(matches!(
+        Simulation::new(cfg),
+        Err(SimError::Config(m)) if m.contains("detectors[0].position_m")
+    ));
 }
 
 #[test]

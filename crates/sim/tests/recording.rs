@@ -4,7 +4,7 @@
 use platoonsim_sim::vehicle::{Kind, ModeLabel};
 use platoonsim_sim::{
     run, run_recording, Config, DetectorKind, DetectorSpec, LaneExtent, Network, OffRamp, OnRamp,
-    Output, Recording, Simulation, TrajectorySpec, Trip, TripStatus,
+    Output, Recording, SimError, Simulation, TrajectorySpec, Trip, TripStatus,
 };
 use std::collections::HashMap;
 
@@ -351,11 +351,17 @@ fn recording_requests_are_checked() {
         (traj(1.0, None, Some((10.0, 10.0))), "trajectories.x_m"),
     ] {
         let err = run_recording(&cfg, &bad, None).unwrap_err();
-        assert!(err.contains(field), "{err}");
+        assert!(
+            matches!(&err, SimError::Recording(m) if m.contains(field)),
+            "{err}"
+        );
     }
     let mut sim = Simulation::new(cfg.clone()).unwrap();
     sim.step().unwrap();
-    assert!(sim.record(&trips_only()).is_err());
+    assert!(matches!(
+        sim.record(&trips_only()),
+        Err(SimError::AfterFirstStep(_))
+    ));
     // A period of 0.3 s is three steps.
     let out = run_recording(&cfg, &traj(0.3, Some((30.0, 31.0)), None), None).unwrap();
     let mut times: Vec<f64> = out.trajectories.unwrap().iter().map(|r| r.t_s).collect();

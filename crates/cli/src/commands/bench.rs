@@ -71,9 +71,7 @@ pub fn bench(args: &BenchArgs, quiet: bool) -> Result<()> {
             &format!("run {}/{}", i + 1, args.repeat),
         );
         let start = Instant::now();
-        let out = progress::run_with_bar(&config, &bar)
-            .map_err(anyhow::Error::msg)
-            .context("benchmark simulation failed")?;
+        let out = progress::run_with_bar(&config, &bar).context("benchmark simulation failed")?;
         let wall = start.elapsed().as_secs_f64();
         let s = &out.summary;
         let rep = Repetition {

@@ -16,7 +16,6 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
 
     let bar = progress::sim_bar(config.duration_s, progress::wanted(quiet), &config.name);
     let out = progress::run_recording_with_bar(&config, &recording, &bar)
-        .map_err(anyhow::Error::msg)
         .with_context(|| format!("simulation of scenario '{}' failed", config.name))?;
 
     output::write_run(&args.out, &config, &out)?;

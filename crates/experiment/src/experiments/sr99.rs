@@ -107,7 +107,7 @@ impl Scales {
                 let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
                 let rows = demand_scales::parse(&text).map_err(|message| Error::Io {
                     path: path.display().to_string(),
-                    message,
+                    message: message.to_string(),
                 })?;
                 if rows.is_empty() {
                     return Err(Error::Other(format!(
