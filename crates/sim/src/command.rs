@@ -56,7 +56,7 @@ impl Simulation {
                 "vehicle {id} is not on the road"
             )));
         };
-        let v = &self.vehicles[s as usize];
+        let v = &self.traffic.vehicles[s as usize];
         let mut active = Active {
             id,
             command,
@@ -86,6 +86,7 @@ impl Simulation {
                 }
                 // A second DesiredSpeed keeps the driver's own speed of the first.
                 if let Some(a) = self
+                    .control
                     .commands
                     .iter()
                     .find(|a| a.id == id && matches!(a.command, Command::DesiredSpeed { .. }))
@@ -93,14 +94,14 @@ impl Simulation {
                     active.own_speed = a.own_speed;
                 }
                 self.release_kind(id, |c| matches!(c, Command::DesiredSpeed { .. }));
-                self.vehicles[s as usize].human.desired_speed = speed_mps;
+                self.traffic.vehicles[s as usize].human.desired_speed = speed_mps;
             }
             Command::ChangeLane { side } => {
                 let to = match side {
                     Side::Left => v.lane + 1,
                     Side::Right => v.lane.wrapping_sub(1),
                 };
-                if !self.geom.can_enter(to, v.x) {
+                if !self.road.geom.can_enter(to, v.x) {
                     return Err(SimError::Command(format!(
                         "vehicle {id} cannot change {side:?} at x = {:.1} m: no lane it may \
                          enter there",
@@ -114,26 +115,26 @@ impl Simulation {
                 return Ok(());
             }
         }
-        self.commands.push(active);
+        self.control.commands.push(active);
         Ok(())
     }
 
     /// The vehicles under command now (ids, in the order the commands were given).
     pub fn commanded(&self) -> impl Iterator<Item = u64> + '_ {
-        self.commands.iter().map(|a| a.id)
+        self.control.commands.iter().map(|a| a.id)
     }
 
     /// End the commands of `id` that `which` selects (restoring a desired speed).
     fn release_kind(&mut self, id: u64, which: impl Fn(&Command) -> bool) {
         let slot = self.slot_of(id);
         let mut k = 0;
-        while k < self.commands.len() {
-            let a = &self.commands[k];
+        while k < self.control.commands.len() {
+            let a = &self.control.commands[k];
             if a.id == id && which(&a.command) {
                 if let (Command::DesiredSpeed { .. }, Some(s)) = (a.command, slot) {
-                    self.vehicles[s as usize].human.desired_speed = a.own_speed;
+                    self.traffic.vehicles[s as usize].human.desired_speed = a.own_speed;
                 }
-                self.commands.remove(k);
+                self.control.commands.remove(k);
             } else {
                 k += 1;
             }
@@ -142,11 +143,12 @@ impl Simulation {
 
     /// Slot of the vehicle with this id, if it is on the road.
     pub(crate) fn slot_of(&self, id: u64) -> Option<u32> {
-        self.lanes
+        self.traffic
+            .lanes
             .iter()
             .flatten()
             .copied()
-            .find(|&s| self.vehicles[s as usize].id == id)
+            .find(|&s| self.traffic.vehicles[s as usize].id == id)
     }
 
     /// Phase 2, after the models: the commands in force override the decisions of their
@@ -155,20 +157,20 @@ impl Simulation {
     #[inline(never)]
     pub(crate) fn apply_commands(&mut self, decisions: &mut [Decision]) {
         let mut k = 0;
-        while k < self.commands.len() {
-            let a = self.commands[k].clone();
+        while k < self.control.commands.len() {
+            let a = self.control.commands[k].clone();
             let Some(s) = self.slot_of(a.id) else {
-                self.commands.remove(k);
+                self.control.commands.remove(k);
                 continue;
             };
-            let v = &self.vehicles[s as usize];
+            let v = &self.traffic.vehicles[s as usize];
             let done = match a.command {
                 Command::Accelerate { accel_mps2, .. } => {
                     // Under external control: the commanded acceleration, and no lane change.
                     decisions[s as usize].accel = accel_mps2;
                     decisions[s as usize].change = None;
-                    self.commands[k].left -= 1;
-                    self.commands[k].left == 0
+                    self.control.commands[k].left -= 1;
+                    self.control.commands[k].left == 0
                 }
                 Command::DesiredSpeed { .. } => false,
                 Command::ChangeLane { side } => {
@@ -184,7 +186,7 @@ impl Simulation {
                 Command::Release => true,
             };
             if done {
-                self.commands.remove(k);
+                self.control.commands.remove(k);
             } else {
                 k += 1;
             }

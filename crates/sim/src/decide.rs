@@ -37,9 +37,9 @@ struct Desire {
 impl Simulation {
     /// Phase 2.
     pub(crate) fn decide(&mut self) {
-        let n = self.vehicles.len();
-        if self.decisions.len() < n {
-            self.decisions.resize(
+        let n = self.traffic.vehicles.len();
+        if self.scratch.decisions.len() < n {
+            self.scratch.decisions.resize(
                 n,
                 Decision {
                     accel: 0.0,
@@ -56,22 +56,22 @@ impl Simulation {
         self.update_ramp_density();
         // Taken out for the loop, so that the lanes are walked by iterator (no bounds checks
         // on the lane lists) while the decisions are written.
-        let mut decisions = std::mem::take(&mut self.decisions);
-        for lane in &self.lanes {
+        let mut decisions = std::mem::take(&mut self.scratch.decisions);
+        for lane in &self.traffic.lanes {
             for &s in lane {
                 decisions[s as usize] = self.decide_one(s);
             }
         }
-        if !self.commands.is_empty() {
+        if !self.control.commands.is_empty() {
             self.apply_commands(&mut decisions);
         }
-        self.decisions = decisions;
+        self.scratch.decisions = decisions;
     }
 
     /// The decision of a vehicle that must change toward `side` (a commanded change): a
     /// mandatory desire of 1 with the model's gap acceptance and BLC behaviour (spec 4.3).
     pub(crate) fn forced_change(&self, s: u32, v: &Vehicle, side: Side) -> Decision {
-        let nb = &self.sensed[s as usize].nb;
+        let nb = &self.scratch.sensed[s as usize].nb;
         let (leader, _) = self.leader_or_wall(s, v, nb.leader);
         let d = Desire {
             side,
@@ -86,7 +86,7 @@ impl Simulation {
     #[inline]
     fn view(&self, v: &Vehicle, ld: u32) -> Option<Leader> {
         (ld != NONE).then(|| {
-            let l = &self.vehicles[ld as usize];
+            let l = &self.traffic.vehicles[ld as usize];
             Leader {
                 gap_m: l.rear() - v.x,
                 v_mps: l.v,
@@ -100,10 +100,10 @@ impl Simulation {
     #[inline]
     fn leader_or_wall(&self, s: u32, v: &Vehicle, ld: u32) -> (Option<Leader>, bool) {
         let leader = self.view(v, ld);
-        if self.geom.plain {
+        if self.road.geom.plain {
             return (leader, false);
         }
-        match self.sensed[s as usize].here.wall {
+        match self.scratch.sensed[s as usize].here.wall {
             Some(w) if leader.is_none_or(|l| w - v.x < l.gap_m) => (
                 Some(Leader {
                     gap_m: w - v.x,
@@ -118,20 +118,21 @@ impl Simulation {
     /// Density on each on-ramp (its queue plus its acceleration lane) (veh/km), for the
     /// anticipation rule (spec 4.2), and from it the rule's factor for j = 1, 2.
     fn update_ramp_density(&mut self) {
-        for (i, r) in self.geom.on_ramps.iter().enumerate() {
+        for (i, r) in self.road.geom.on_ramps.iter().enumerate() {
             let queued = self.entrances[i + 1].waiting();
-            let lane = &self.lanes[r.lane as usize];
+            let lane = &self.traffic.lanes[r.lane as usize];
             let on_accel = if r.adds_lane {
                 0
             } else {
-                let hi = lane.partition_point(|&o| self.vehicles[o as usize].x >= r.accel_end);
-                let lo = lane.partition_point(|&o| self.vehicles[o as usize].x >= r.x);
+                let hi =
+                    lane.partition_point(|&o| self.traffic.vehicles[o as usize].x >= r.accel_end);
+                let lo = lane.partition_point(|&o| self.traffic.vehicles[o as usize].x >= r.x);
                 lo.saturating_sub(hi)
             };
             let density = (queued + on_accel) as f64 / (r.density_length_m / 1000.0);
             let c = self.cfg.lane_change.anticipation_strength;
             // The same expression as per vehicle before, so the same bits.
-            self.ramp_factor[i] =
+            self.scratch.ramp_factor[i] =
                 [1, 2].map(|j: u32| 1.0 + c * (density / RHO_JAM_PER_KM) / f64::from(j));
         }
     }
@@ -141,13 +142,15 @@ impl Simulation {
     fn relax_now(&self, v: &Vehicle) -> Relax {
         match v.relax {
             Relaxation::None => Relax::NONE,
-            Relaxation::Since(since) => lcm::relax_at(&v.lc, (self.step - since) as f64 * self.dt),
+            Relaxation::Since(since) => {
+                lcm::relax_at(&v.lc, (self.clock.step - since) as f64 * self.clock.dt)
+            }
         }
     }
 
     fn decide_one(&self, s: u32) -> Decision {
-        let v = &self.vehicles[s as usize];
-        let nb = &self.sensed[s as usize].nb;
+        let v = &self.traffic.vehicles[s as usize];
+        let nb = &self.scratch.sensed[s as usize].nb;
         let v_des = self.v_des_in(s, v, v.lane as usize);
         let (leader, wall) = self.leader_or_wall(s, v, nb.leader);
 
@@ -192,7 +195,7 @@ impl Simulation {
         let mut target = human::target_accel(&v.human, v.v, v_des, leader, relax);
         let mut mode = Mode::Cf;
         if let Some(req) = yield_to {
-            let r = &self.vehicles[req as usize];
+            let r = &self.traffic.vehicles[req as usize];
             target = lcm::yield_accel(&v.human, &v.lc, v.v, v_des, target, self.yield_gap(v, r));
             mode = Mode::Ycf {
                 to: r.id,
@@ -226,7 +229,7 @@ impl Simulation {
         let mut d = self.cav_control(s, v, leader, wall);
         if self.cfg.cav.yield_while_automated {
             if let Some(req) = self.agreed_request(v, nb, true) {
-                let r = &self.vehicles[req as usize];
+                let r = &self.traffic.vehicles[req as usize];
                 d.accel = lcm::yield_accel(
                     &v.human,
                     &v.lc,
@@ -248,7 +251,7 @@ impl Simulation {
     fn cav_control(&self, s: u32, v: &Vehicle, leader: Option<Leader>, wall: bool) -> Decision {
         let p = &self.cfg.cav;
         let v_des = self.v_des_in(s, v, v.lane as usize);
-        let ld = self.sensed[s as usize].nb.leader;
+        let ld = self.scratch.sensed[s as usize].nb.leader;
         let leader = leader.filter(|l| l.gap_m <= p.sensor_range_m);
         let mut time_gap = v.time_gap_s;
         let cmd = match leader {
@@ -258,21 +261,21 @@ impl Simulation {
                 family: Family::Speed,
             },
             Some(l) if !wall && self.is_cav(ld) => {
-                let target = if !self.sensed[s as usize].linked {
+                let target = if !self.scratch.sensed[s as usize].linked {
                     p.inter_platoon_gap_s
                 } else {
                     v.cacc_gap_s
                 };
-                time_gap = cav::ramp_time_gap(p, time_gap, target, self.dt);
+                time_gap = cav::ramp_time_gap(p, time_gap, target, self.clock.dt);
                 cav::cacc(p, v.v, v.a, v_des, l, time_gap, v.family)
             }
             Some(l) => {
-                time_gap = cav::ramp_time_gap(p, time_gap, p.acc_time_gap_s, self.dt);
+                time_gap = cav::ramp_time_gap(p, time_gap, p.acc_time_gap_s, self.clock.dt);
                 cav::acc(p, v.v, v_des, Some(l), time_gap, v.family)
             }
         };
         Decision {
-            accel: cav::finalize(p, v.v, cmd.accel, v_des, leader, self.dt),
+            accel: cav::finalize(p, v.v, cmd.accel, v_des, leader, self.clock.dt),
             mode: Mode::Cf,
             family: cmd.family,
             regime: Some(cmd.mode),
@@ -292,7 +295,7 @@ impl Simulation {
         // Anti-oscillation (spec 4.2), first part: no desire at all so soon after a change
         // (checked before the scans below; `desire` has no side effects).
         let since = if v.last_lc_step != NEVER {
-            let since = (self.step - v.last_lc_step) as f64 * self.dt;
+            let since = (self.clock.step - v.last_lc_step) as f64 * self.clock.dt;
             if driver::too_soon_after_change(&v.lc, since) {
                 return None;
             }
@@ -303,13 +306,13 @@ impl Simulation {
         // A vehicle its strategy advises (`organize`) takes the longer way; the others (every
         // vehicle without a strategy) pay nothing for strategies.
         let advised = match v.kind {
-            Kind::Human => self.advise[0],
-            Kind::Cav => self.advise[1],
+            Kind::Human => self.control.advise[0],
+            Kind::Cav => self.control.advise[1],
         };
         if advised {
             return self.advised_desire(s, v, nb, since);
         }
-        let mandatory = if self.geom.plain {
+        let mandatory = if self.road.geom.plain {
             None
         } else {
             self.mandatory(s, v, None)
@@ -331,14 +334,16 @@ impl Simulation {
         nb: &Neighbours,
         since: Option<f64>,
     ) -> Option<Desire> {
-        let advice = self
-            .organizer
-            .advise(v, self.step as f64 * self.dt, &self.geom);
+        let advice = self.control.organizer.advise(
+            v,
+            self.clock.step as f64 * self.clock.dt,
+            &self.road.geom,
+        );
         let avoid = match advice {
             Advice::Avoid { lane, from_m } => Some((lane, from_m)),
             _ => None,
         };
-        let mandatory = if self.geom.plain && avoid.is_none() {
+        let mandatory = if self.road.geom.plain && avoid.is_none() {
             None
         } else {
             self.mandatory(s, v, avoid)
@@ -375,20 +380,22 @@ impl Simulation {
     /// discretionary desire (w_CAV follower, spec 4.7).
     #[inline]
     fn is_follower(&self, s: u32, v: &Vehicle) -> bool {
-        self.sensed[s as usize].linked || (v.is_cav() && self.sensed[s as usize].cav_ahead)
+        self.scratch.sensed[s as usize].linked
+            || (v.is_cav() && self.scratch.sensed[s as usize].cav_ahead)
     }
 
     /// The side toward which vehicle `v` organizes now (its strategy's `Join` advice, no
     /// mandatory need aside: it is not near its exit), if it is not in the organized lane.
     /// Used for yielding to organizing vehicles.
     pub(crate) fn organizing_side(&self, v: &Vehicle) -> Option<Side> {
-        if !self.advise[v.kind as usize] || self.exit_near(v) {
+        if !self.control.advise[v.kind as usize] || self.exit_near(v) {
             return None;
         }
-        match self
-            .organizer
-            .advise(v, self.step as f64 * self.dt, &self.geom)
-        {
+        match self.control.organizer.advise(
+            v,
+            self.clock.step as f64 * self.clock.dt,
+            &self.road.geom,
+        ) {
             Advice::Join { lane, .. } => driver::toward(v.lane, lane),
             _ => None,
         }
@@ -402,7 +409,7 @@ impl Simulation {
 
     /// Is the vehicle's off-ramp within `range` ahead?
     fn exit_within(&self, v: &Vehicle, range: f64) -> bool {
-        v.exit != NO_EXIT && self.geom.off_ramps[v.exit as usize].x - v.x < range
+        v.exit != NO_EXIT && self.road.geom.off_ramps[v.exit as usize].x - v.x < range
     }
 
     /// Mandatory desire (spec 4.2), if any is positive: leaving a lane that ends (an
@@ -423,12 +430,12 @@ impl Simulation {
                 }
             }
         }
-        if self.geom.plain {
+        if self.road.geom.plain {
             return best;
         }
-        if let Some(w) = self.sensed[s as usize].here.wall {
+        if let Some(w) = self.scratch.sensed[s as usize].here.wall {
             let probe = (w - 1.0).max(v.x);
-            let side = if self.geom.through(v.lane + 1, probe) || v.lane == 0 {
+            let side = if self.road.geom.through(v.lane + 1, probe) || v.lane == 0 {
                 Side::Left
             } else {
                 Side::Right
@@ -439,7 +446,7 @@ impl Simulation {
             }
         }
         if v.exit != NO_EXIT {
-            let r = &self.geom.off_ramps[v.exit as usize];
+            let r = &self.road.geom.off_ramps[v.exit as usize];
             if v.x < r.x && v.lane > r.lane {
                 let g = lcm::mandatory_desire(&v.lc, r.x - v.x, v.v, v.lane - r.lane);
                 if g > 0.0 && best.is_none_or(|(_, b)| g > b) {
@@ -472,7 +479,7 @@ impl Simulation {
             (1.0, 1.0)
         } else if follower {
             let w = lcd.cav_weight_follower;
-            if lcd.follower_anticipates && !self.geom.plain {
+            if lcd.follower_anticipates && !self.road.geom.plain {
                 let f = self.anticipation_factor(s, v);
                 anticipation = Some(f);
                 if f > 1.0 {
@@ -493,7 +500,7 @@ impl Simulation {
         // the exit lane within the anticipation range (spec 4.2, 4.9).
         let mut eta_left = 1.0;
         if v.exit != NO_EXIT {
-            let d = self.geom.off_ramps[v.exit as usize].x - v.x;
+            let d = self.road.geom.off_ramps[v.exit as usize].x - v.x;
             if d < lcd.exit_no_change_m {
                 return [None, None];
             }
@@ -508,7 +515,7 @@ impl Simulation {
             self.avg_speed_ahead(v.lane as usize, nb.idx as usize, v.x, v_des),
             v_des,
         );
-        if !self.geom.plain {
+        if !self.road.geom.plain {
             // Mostly 1 (no on-ramp ahead): dividing by 1 changes nothing.
             let f = anticipation.unwrap_or_else(|| self.anticipation_factor(s, v));
             if f != 1.0 {
@@ -520,7 +527,7 @@ impl Simulation {
         if v_des_of(v) - v_cur < v.lc.min_speed_gain_mps {
             return [None, None];
         }
-        let here = &self.sensed[s as usize].here;
+        let here = &self.scratch.sensed[s as usize].here;
         let mut out = [None, None];
         let lane = v.lane as usize;
         for (i, side, target, j, w, eta, open) in [
@@ -546,7 +553,7 @@ impl Simulation {
             // `Geometry::can_enter` of the lane on that side (none right of lane 0); not into a
             // lane that ends where the driver would already have to leave it (a lane drop
             // ahead: its mandatory desire there is positive), issue 18.
-            if !open || w <= 0.0 || (!self.geom.plain && self.ends_too_soon(v, target)) {
+            if !open || w <= 0.0 || (!self.road.geom.plain && self.ends_too_soon(v, target)) {
                 continue;
             }
 
@@ -561,7 +568,8 @@ impl Simulation {
     /// discretionary change into such a lane ends at the wall (issue 18: 3 → 2 lane drops).
     #[inline(never)]
     fn ends_too_soon(&self, v: &Vehicle, target: usize) -> bool {
-        self.geom
+        self.road
+            .geom
             .wall_ahead(target as u32, v.x)
             .is_some_and(|w| lcm::mandatory_desire(&v.lc, w - v.x, v.v, 1) > 0.0)
     }
@@ -571,11 +579,12 @@ impl Simulation {
     #[inline]
     fn anticipation_factor(&self, s: u32, v: &Vehicle) -> f64 {
         let lcd = &self.cfg.lane_change;
-        let here = &self.sensed[s as usize].here;
+        let here = &self.scratch.sensed[s as usize].here;
         let k = here.ramps_upto as usize;
-        let Some((ramp, _)) = self
-            .geom
-            .next_on_ramp_after(k, v.x, lcd.anticipation_distance_m)
+        let Some((ramp, _)) =
+            self.road
+                .geom
+                .next_on_ramp_after(k, v.x, lcd.anticipation_distance_m)
         else {
             return 1.0;
         };
@@ -592,7 +601,7 @@ impl Simulation {
             return 1.0;
         }
         // 1 + c_inc (ρ_ramp/ρ_jam)/j, computed once per step (`update_ramp_density`).
-        self.ramp_factor[ramp][(j - 1) as usize]
+        self.scratch.ramp_factor[ramp][(j - 1) as usize]
     }
 
     /// Average speed of the next `n_scan` vehicles within `d_scan` ahead of `x` in `lane`,
@@ -601,7 +610,7 @@ impl Simulation {
     fn avg_speed_ahead(&self, lane: usize, from: usize, x: f64, v_empty: f64) -> f64 {
         let lcd = &self.cfg.lane_change;
         // The vehicles ahead, nearest first (one bounds check for the scan).
-        let ahead = &self.lane_xv[lane][..from];
+        let ahead = &self.scratch.lane_xv[lane][..from];
         let mut sum = 0.0;
         let mut n = 0u32;
         for &(ox, ov) in ahead.iter().rev().take(lcd.scan_vehicles as usize) {
@@ -633,7 +642,7 @@ impl Simulation {
         if j == 0 {
             return v_des; // no target leader
         }
-        let (tl_x, tl_v) = self.lane_xv[target][j - 1];
+        let (tl_x, tl_v) = self.scratch.lane_xv[target][j - 1];
         if tl_x - v.x > self.cfg.lane_change.scan_distance_m {
             return v_des;
         }
@@ -652,7 +661,8 @@ impl Simulation {
             Side::Left => (v.lane as usize + 1, nb.left_j),
             Side::Right => ((v.lane as usize).wrapping_sub(1), nb.right_j),
         };
-        self.lanes
+        self.traffic
+            .lanes
             .get(lane)
             .and_then(|l| l.get(j as usize))
             .copied()
@@ -711,11 +721,11 @@ impl Simulation {
         let lag_ok = if tf == NONE {
             true
         } else {
-            let f = &self.vehicles[tf as usize];
+            let f = &self.traffic.vehicles[tf as usize];
             lcm::accept_lag_gap(h, &v.lc, v.rear() - f.x, v.v, f.v, a_ant)
         };
         // Only a platoon leader changes lanes: a follower splits first (spec 3.6.4).
-        let must_split = self.sensed[s as usize].linked;
+        let must_split = self.scratch.sensed[s as usize].linked;
         let change = driver::change_now(lead_ok, lag_ok, must_split);
         // BLC-Slow only for a mandatory change with the lag gap closed (evaluated lazily:
         // `keeps_pace` reads the follower).
@@ -771,12 +781,12 @@ impl Simulation {
         if tf == NONE {
             return false;
         }
-        let f = &self.vehicles[tf as usize];
+        let f = &self.traffic.vehicles[tf as usize];
         driver::keeps_pace(
             matches!(f.mode, Mode::Ycf { to, .. } if to == v.id),
             f.v,
             v.v,
-            !self.geom.plain && self.sensed[s as usize].here.accel,
+            !self.road.geom.plain && self.scratch.sensed[s as usize].here.accel,
         )
     }
 }
@@ -797,7 +807,7 @@ impl Simulation {
     /// driver's behaviour [D].
     #[inline]
     fn manual_v_des(&self, s: u32, v: &Vehicle, v_des: f64) -> f64 {
-        match self.friction {
+        match self.road.friction {
             None => v_des,
             Some(c) => self.with_friction(s, v, v_des, c),
         }
@@ -807,10 +817,10 @@ impl Simulation {
     /// adjacent lanes (the same scan, n_scan vehicles within d_scan, as the lane-change
     /// motivation; a lane with no vehicle in range counts as `v_des`, so it adds nothing).
     fn with_friction(&self, s: u32, v: &Vehicle, v_des: f64, c_fr: f64) -> f64 {
-        let nb = &self.sensed[s as usize].nb;
+        let nb = &self.scratch.sensed[s as usize].nb;
         let lane = v.lane as usize;
         let mut v_adj = v_des;
-        if lane + 1 < self.lane_xv.len() {
+        if lane + 1 < self.scratch.lane_xv.len() {
             v_adj = v_adj.min(self.avg_speed_ahead(lane + 1, nb.left_j as usize, v.x, v_des));
         }
         if lane > 0 {
@@ -825,17 +835,21 @@ impl Simulation {
     /// caps exactly v_F.
     #[inline]
     pub(crate) fn v_des_in(&self, s: u32, v: &Vehicle, lane: usize) -> f64 {
-        if self.lane_caps_mps.is_empty() {
+        if self.road.lane_caps_mps.is_empty() {
             return v_des_of(v); // no lookup of the vehicle's geometry on the hot path
         }
-        self.lane_capped(v_des_of(v), lane, self.sensed[s as usize].here.right)
+        self.lane_capped(
+            v_des_of(v),
+            lane,
+            self.scratch.sensed[s as usize].here.right,
+        )
     }
 
     /// `v_f` capped by the desired-speed cap of `lane` (spec 2.7), the caps counted from the
     /// rightmost through lane `right` (`NO_LANE`: none there; the first cap). Requires caps.
     #[inline]
     pub(crate) fn lane_capped(&self, v_f: f64, lane: usize, right: u8) -> f64 {
-        let caps = &self.lane_caps_mps;
+        let caps = &self.road.lane_caps_mps;
         let rank = if right == NO_LANE {
             0
         } else {

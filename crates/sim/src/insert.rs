@@ -201,16 +201,16 @@ fn create(cfg: &Config, id: u64, x: f64, t: f64, origin: u32) -> Vehicle {
 impl Simulation {
     /// Phase 5b: arrivals at every entrance, then insertion from each virtual queue.
     pub(crate) fn insert(&mut self) {
-        let t_end = (self.step + 1) as f64 * self.dt;
+        let t_end = (self.clock.step + 1) as f64 * self.clock.dt;
         for e in 0..self.entrances.len() {
             while self.entrances[e].next_arrival_s <= t_end {
                 let t = self.entrances[e].next_arrival_s;
                 let x = match self.entrances[e].ramp {
                     None => 0.0,
-                    Some(r) => self.geom.on_ramps[r].x,
+                    Some(r) => self.road.geom.on_ramps[r].x,
                 };
-                let v = create(&self.cfg, self.next_id, x, t, e as u32);
-                self.next_id += 1;
+                let v = create(&self.cfg, self.traffic.next_id, x, t, e as u32);
+                self.traffic.next_id += 1;
                 let ent = &mut self.entrances[e];
                 ent.queue.push_back(v);
                 ent.next_arrival_s = ent.draw_after(t);
@@ -225,23 +225,27 @@ impl Simulation {
     /// The mainline entrance: any lane open at x = 0, several vehicles per step (one per lane).
     fn insert_mainline(&mut self, e: usize) {
         let mut used = 0u32; // bit per lane
-        let n_entry = self.geom.entry_lanes.len();
+        let n_entry = self.road.geom.entry_lanes.len();
         while let Some(head) = self.entrances[e].queue.front() {
             let mut full: u32 = 0;
             let mut lane_v_des = [0.0f64; 32];
             let mut n_full = 0usize;
             let mut best: Option<(usize, f64)> = None;
             for i in 0..n_entry {
-                let l = self.geom.entry_lanes[i] as usize;
+                let l = self.road.geom.entry_lanes[i] as usize;
                 if used & (1 << l) != 0 {
                     continue;
                 }
                 // The desired speed in that lane (spec 2.7 caps; v_F without them).
                 let v_des = self.entry_desired_speed(head, l);
                 lane_v_des[l] = v_des;
-                if let Some(v) =
-                    self.insertion_speed_at(head, 0.0, self.lanes[l].last().copied(), None, v_des)
-                {
+                if let Some(v) = self.insertion_speed_at(
+                    head,
+                    0.0,
+                    self.traffic.lanes[l].last().copied(),
+                    None,
+                    v_des,
+                ) {
                     if v >= v_des {
                         full |= 1 << l;
                         n_full += 1;
@@ -270,7 +274,7 @@ impl Simulation {
                 .queue
                 .pop_front()
                 .expect("queue has a head");
-            let at = self.lanes[lane].len();
+            let at = self.traffic.lanes[lane].len();
             self.place(veh, lane, 0.0, speed, at);
             used |= 1 << lane;
         }
@@ -283,24 +287,27 @@ impl Simulation {
         let Some(head) = self.entrances[e].queue.front() else {
             return;
         };
-        let ramp = &self.geom.on_ramps[r];
+        let ramp = &self.road.geom.on_ramps[r];
         let (x, lane) = (ramp.x, ramp.lane as usize);
-        let v_max = head.human.desired_speed.min(self.ramp_speed_mps);
-        let list = &self.lanes[lane];
-        let j = list.partition_point(|&o| self.vehicles[o as usize].x > x);
+        let v_max = head.human.desired_speed.min(self.road.ramp_speed_mps);
+        let list = &self.traffic.lanes[lane];
+        let j = list.partition_point(|&o| self.traffic.vehicles[o as usize].x > x);
         let ld = (j > 0).then(|| list[j - 1]);
         // The follower, unless a wall stops it before the merge point (the end of an
         // upstream acceleration lane of the same index).
         let fo = list.get(j).copied().filter(|&f| {
-            let fx = self.vehicles[f as usize].x;
-            self.geom.wall_ahead(lane as u32, fx).is_none_or(|w| w >= x)
+            let fx = self.traffic.vehicles[f as usize].x;
+            self.road
+                .geom
+                .wall_ahead(lane as u32, fx)
+                .is_none_or(|w| w >= x)
         });
-        let wall = self.geom.wall_ahead(lane as u32, x);
+        let wall = self.road.geom.wall_ahead(lane as u32, x);
         let Some(speed) = self.insertion_speed_at(head, x, ld, wall, v_max) else {
             return;
         };
         if let Some(f) = fo {
-            let f = &self.vehicles[f as usize];
+            let f = &self.traffic.vehicles[f as usize];
             let gap = x - head.human.length_m - f.x;
             if gap <= 0.0 {
                 return;
@@ -334,23 +341,23 @@ impl Simulation {
         veh.x_prev = x;
         veh.v = speed;
         veh.a = 0.0;
-        veh.entered_step = self.step + 1;
-        veh.measured = veh.entered_step >= self.warmup_step;
+        veh.entered_step = self.clock.step + 1;
+        veh.measured = veh.entered_step >= self.clock.warmup_step;
         if veh.is_cav() {
             veh.time_gap_s = veh.cacc_gap_s;
             if at > 0 {
-                let ld = self.lanes[lane][at - 1];
+                let ld = self.traffic.lanes[lane][at - 1];
                 veh.time_gap_s = self.entry_time_gap(&veh, ld);
-                if self.vehicles[ld as usize].rear() - x < 2.0 * speed.max(1.0) {
+                if self.traffic.vehicles[ld as usize].rear() - x < 2.0 * speed.max(1.0) {
                     veh.family = Family::Gap;
                 }
             }
         }
-        self.metrics.entered += 1;
+        self.measures.metrics.entered += 1;
         veh.reported = (veh.mode_label(), veh.regime);
-        if self.observing {
-            self.events.push(Event::Entered {
-                t_s: crate::record::step_time(self.step + 1, self.dt),
+        if self.watch.observing {
+            self.watch.events.push(Event::Entered {
+                t_s: crate::record::step_time(self.clock.step + 1, self.clock.dt),
                 id: veh.id,
                 kind: veh.kind,
                 entrance: veh.origin,
@@ -360,16 +367,22 @@ impl Simulation {
             });
         }
         let s = self.alloc(veh);
-        self.lanes[lane].insert(at, s);
+        self.traffic.lanes[lane].insert(at, s);
     }
 
     /// The time gap a CAV entering behind slot `ld` keeps (spec 3.6): its own t_C behind a CAV
     /// whose platoon has room, the inter-platoon gap behind a full one, t_A behind a human.
     fn entry_time_gap(&self, veh: &Vehicle, ld: u32) -> f64 {
         let p = &self.cfg.cav;
-        if !self.vehicles[ld as usize].is_cav() {
+        if !self.traffic.vehicles[ld as usize].is_cav() {
             p.acc_time_gap_s
-        } else if self.sensed.get(ld as usize).map_or(1, |t| t.platoon_pos) >= p.max_platoon {
+        } else if self
+            .scratch
+            .sensed
+            .get(ld as usize)
+            .map_or(1, |t| t.platoon_pos)
+            >= p.max_platoon
+        {
             p.inter_platoon_gap_s
         } else {
             veh.cacc_gap_s
@@ -381,10 +394,11 @@ impl Simulation {
     /// lane there), so that it enters in steady state.
     fn entry_desired_speed(&self, veh: &Vehicle, lane: usize) -> f64 {
         let v_f = veh.human.desired_speed;
-        if self.lane_caps_mps.is_empty() {
+        if self.road.lane_caps_mps.is_empty() {
             return v_f;
         }
         let right = self
+            .road
             .geom
             .rightmost_through(0.0)
             .map_or(NO_LANE, |r| r as u8);
@@ -404,7 +418,7 @@ impl Simulation {
     ) -> Option<f64> {
         let v_des = veh.human.desired_speed;
         let mut leader = ld.map(|ld| {
-            let l = &self.vehicles[ld as usize];
+            let l = &self.traffic.vehicles[ld as usize];
             (
                 Leader {
                     gap_m: l.rear() - x,

@@ -27,6 +27,7 @@ pub mod rng;
 mod safety;
 mod sense;
 mod sim;
+mod state;
 pub mod summary;
 pub mod vehicle;
 mod yielding;
@@ -71,7 +72,7 @@ pub fn run_recording(
     while !sim.finished() {
         sim.step()?;
         if let Some(p) = progress.as_mut() {
-            if sim.step % every == 0 {
+            if sim.clock.step % every == 0 {
                 p(sim.time_s(), total);
             }
         }

@@ -205,8 +205,8 @@ pub(crate) struct Recorder {
 impl Observer for Recorder {
     fn on_step(&mut self, sim: &Simulation, _events: &[Event]) {
         if let Some(t) = self.trajectories.as_mut() {
-            if t.due(sim.step) {
-                t.sample(sim.step, &sim.vehicles, &sim.lanes);
+            if t.due(sim.clock.step) {
+                t.sample(sim.clock.step, &sim.traffic.vehicles, &sim.traffic.lanes);
             }
         }
     }

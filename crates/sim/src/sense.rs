@@ -2,6 +2,7 @@
 
 use crate::here::Here;
 use crate::sim::Simulation;
+use crate::state::{Scratch, Traffic};
 use crate::vehicle::Vehicle;
 
 /// "No vehicle" slot marker.
@@ -74,13 +75,13 @@ impl Default for Sensed {
 impl Simulation {
     /// Phase 1.
     pub(crate) fn sense(&mut self) {
-        let n = self.vehicles.len();
-        if self.sensed.len() < n {
-            self.sensed.resize(n, Sensed::default());
-            self.changed_this_step.resize(n, u64::MAX);
+        let n = self.traffic.vehicles.len();
+        if self.scratch.sensed.len() < n {
+            self.scratch.sensed.resize(n, Sensed::default());
+            self.scratch.changed_this_step.resize(n, u64::MAX);
         }
-        let n_lanes = self.lanes.len();
-        self.lane_xv.resize(n_lanes, Vec::new());
+        let n_lanes = self.traffic.lanes.len();
+        self.scratch.lane_xv.resize(n_lanes, Vec::new());
         let p = &self.cfg.cav;
         let range = p.sensor_range_m;
         let t_far = p.cacc_tg_band_s[1];
@@ -89,13 +90,12 @@ impl Simulation {
         // candidate CACC link to the leader (`linked` holds it until pass B) and the size of
         // the sub-string each vehicle leads under the previous memberships.
         // Local slices: the loop reads and writes these arrays once per vehicle.
-        let Simulation {
-            lanes,
-            lane_xv,
-            vehicles,
-            sensed,
-            ..
-        } = self;
+        let Traffic {
+            lanes, vehicles, ..
+        } = &self.traffic;
+        let Scratch {
+            lane_xv, sensed, ..
+        } = &mut self.scratch;
         let vehicles = &vehicles[..];
         // As long as `vehicles` (resized above): a slot that indexes `vehicles` indexes this
         // too, so the compiler drops the second bounds check.
@@ -167,14 +167,13 @@ impl Simulation {
     /// platoons of at most `max`.
     fn platoons(&mut self) {
         let max = self.cfg.cav.max_platoon.max(1);
-        let Simulation {
-            lanes,
-            lane_xv,
-            vehicles,
-            sensed,
-            here_tables,
-            ..
-        } = self;
+        let Traffic {
+            lanes, vehicles, ..
+        } = &mut self.traffic;
+        let Scratch {
+            lane_xv, sensed, ..
+        } = &mut self.scratch;
+        let here_tables = &self.road.here_tables;
         let n_lanes = lanes.len();
         let vehicles = &mut vehicles[..];
         // As long as `vehicles` (see pass A).

@@ -11,7 +11,8 @@ use crate::network::Geometry;
 use crate::organize::{self, Organizer};
 use crate::record::{Recorder, Recording, TrajectoryRecorder};
 use crate::safety::Safety;
-use crate::sense::{Sensed, NONE};
+use crate::sense::NONE;
+use crate::state::{Clock, Control, Detectors, Measures, RoadState, Scratch, Traffic, Watch};
 use crate::summary::CollisionKind;
 use crate::summary::{Output, Summary};
 use crate::vehicle::{Kind, Relaxation, Vehicle, NO_EXIT};
@@ -41,73 +42,18 @@ pub(crate) struct Decision {
 /// The whole simulation state.
 pub struct Simulation {
     pub(crate) cfg: Config,
-    pub(crate) dt: f64,
-    /// Steps done so far; simulated time = step · dt.
-    pub(crate) step: u64,
-    pub(crate) total_steps: u64,
-    pub(crate) warmup_step: u64,
-    pub(crate) agg_steps: u64,
-    /// Dense vehicle storage; slots listed in `free` are dead.
-    pub(crate) vehicles: Vec<Vehicle>,
-    pub(crate) free: Vec<u32>,
-    /// Per lane (0 = rightmost), vehicle slots sorted front first (descending x).
-    pub(crate) lanes: Vec<Vec<u32>>,
-    /// Scratch, indexed by slot, rebuilt every step (no allocation once warmed up): what the
-    /// sense phase found for each vehicle (one cache line per vehicle).
-    pub(crate) sensed: Vec<Sensed>,
-    /// Per lane, parallel to `lanes`: (x, v) of each vehicle at the step start (sense phase),
-    /// then sentinels (−∞, 0) (`sense::SENTINELS`).
-    pub(crate) lane_xv: Vec<Vec<(f64, f64)>>,
-    pub(crate) decisions: Vec<Decision>,
-    pub(crate) changed_this_step: Vec<u64>,
-    pub(crate) change_list: Vec<(u32, Side)>,
-    /// A vehicle reached its off-ramp's position in this step's integrate phase.
-    pub(crate) exit_due: bool,
-    /// No lane was unsorted by this step's integrate phase.
-    pub(crate) lanes_sorted: bool,
-    /// Per detector and lane: where the detector's last lane search ended.
-    pub(crate) det_hint: Vec<u32>,
+    pub(crate) clock: Clock,
+    pub(crate) traffic: Traffic,
+    pub(crate) road: RoadState,
     /// Mainline entrance first, then one per on-ramp.
     pub(crate) entrances: Vec<Entrance>,
-    pub(crate) geom: Geometry,
-    /// `Here` along each lane as a step function (here.rs).
-    pub(crate) here_tables: HereTables,
-    /// Ramp speed limit (m/s); ∞ on a plain road.
-    pub(crate) ramp_speed_mps: f64,
-    /// Lane-based desired-speed caps (spec 2.7, m/s) by lane counted from the rightmost through
-    /// lane, the last for every lane further left; empty: none.
-    pub(crate) lane_caps_mps: Vec<f64>,
-    /// Cross-lane friction c_fr (spec 2.7), `None` when off (not given, or 1).
-    pub(crate) friction: Option<f64>,
-    /// Per on-ramp, the anticipation factor 1 + c_inc (ρ_ramp/ρ_jam)/j for j = 1, 2 (spec 4.2)
-    /// from its density at the step start: computed once per step instead of per vehicle.
-    pub(crate) ramp_factor: Vec<[f64; 2]>,
-    pub(crate) missed_exits: u64,
-    /// Per off-ramp, the detector that counts it.
-    pub(crate) exit_detector: Vec<Option<usize>>,
-    pub(crate) detectors: Vec<Detector>,
-    pub(crate) metrics: Metrics,
-    pub(crate) next_id: u64,
-    /// Braking limit, collisions and surrogate safety measures (`safety.rs`).
-    pub(crate) safety: Safety,
-    /// Vehicles past the end of their lane in this step's integrate phase: (slot, lane, wall).
-    pub(crate) crashed: Vec<(u32, u32, f64)>,
-    pub(crate) vehicle_updates: u64,
-    /// The platoon-organization strategy (`organize`), and whether it advises CAVs and
-    /// human drivers (asked once: a strategy that advises nobody costs nothing per vehicle).
-    pub(crate) organizer: Box<dyn Organizer>,
-    pub(crate) advise: [bool; 2],
+    pub(crate) scratch: Scratch,
+    pub(crate) detectors: Detectors,
+    pub(crate) measures: Measures,
+    pub(crate) control: Control,
     /// Optional trip and trajectory records (`record.rs`); off unless [`Simulation::record`].
     pub(crate) rec: Recorder,
-    /// Observers of the library user (`events.rs`), and the current step's events, buffered
-    /// only while there is one (`observing`).
-    pub(crate) observers: Vec<Box<dyn Observer>>,
-    pub(crate) events: Vec<Event>,
-    pub(crate) observing: bool,
-    /// Collision events already passed to the observers.
-    pub(crate) collisions_reported: usize,
-    /// Commands in force (`command.rs`), applied in the decide phase.
-    pub(crate) commands: Vec<crate::command::Active>,
+    pub(crate) watch: Watch,
 }
 
 impl Simulation {
@@ -152,50 +98,52 @@ impl Simulation {
             n.lane_speed_limits_kmh.iter().map(|c| c / 3.6).collect()
         });
         let mut sim = Simulation {
-            dt,
-            step: 0,
-            total_steps: steps(cfg.duration_s),
-            warmup_step: steps(cfg.warmup_s),
-            agg_steps: steps(cfg.aggregation_s).max(1),
-            vehicles: Vec::new(),
-            free: Vec::new(),
-            lanes: vec![Vec::new(); n_lanes],
-            sensed: Vec::new(),
-            lane_xv: Vec::new(),
-            decisions: Vec::new(),
-            changed_this_step: Vec::new(),
-            change_list: Vec::new(),
-            exit_due: false,
-            lanes_sorted: false,
-            det_hint: Vec::new(),
+            clock: Clock {
+                dt,
+                step: 0,
+                total_steps: steps(cfg.duration_s),
+                warmup_step: steps(cfg.warmup_s),
+                agg_steps: steps(cfg.aggregation_s).max(1),
+            },
+            traffic: Traffic {
+                lanes: vec![Vec::new(); n_lanes],
+                ..Traffic::default()
+            },
             entrances: Entrance::all(&cfg),
-            ramp_factor: vec![[1.0; 2]; geom.on_ramps.len()],
-            here_tables: HereTables::new(&geom),
-            geom,
-            ramp_speed_mps,
-            lane_caps_mps,
-            friction: cfg
-                .road
-                .network
-                .as_ref()
-                .and_then(|n| n.cross_lane_friction)
-                .filter(|&c| c < 1.0),
-            missed_exits: 0,
-            exit_detector,
-            detectors,
-            metrics: Metrics::default(),
-            next_id: 0,
-            safety: Safety::new(&cfg),
-            crashed: Vec::new(),
-            vehicle_updates: 0,
-            organizer: Box::new(crate::organize::NoOrganizer),
-            advise: [false; 2],
+            scratch: Scratch {
+                ramp_factor: vec![[1.0; 2]; geom.on_ramps.len()],
+                ..Scratch::default()
+            },
+            road: RoadState {
+                here_tables: HereTables::new(&geom),
+                geom,
+                ramp_speed_mps,
+                lane_caps_mps,
+                friction: cfg
+                    .road
+                    .network
+                    .as_ref()
+                    .and_then(|n| n.cross_lane_friction)
+                    .filter(|&c| c < 1.0),
+            },
+            detectors: Detectors {
+                list: detectors,
+                hint: Vec::new(),
+                exit_of_ramp: exit_detector,
+            },
+            measures: Measures {
+                metrics: Metrics::default(),
+                safety: Safety::new(&cfg),
+                vehicle_updates: 0,
+                missed_exits: 0,
+            },
+            control: Control {
+                organizer: Box::new(crate::organize::NoOrganizer),
+                advise: [false; 2],
+                commands: Vec::new(),
+            },
             rec: Recorder::default(),
-            observers: Vec::new(),
-            events: Vec::new(),
-            observing: false,
-            collisions_reported: 0,
-            commands: Vec::new(),
+            watch: Watch::default(),
             cfg,
         };
         let organizer = organize::build(&sim.cfg);
@@ -207,7 +155,7 @@ impl Simulation {
     /// strategy of the library user's own; docs/organizers.md). The summary's `strategy` is
     /// then the organizer's name. Must be called before the first step.
     pub fn set_organizer(&mut self, organizer: Box<dyn Organizer>) -> Result<(), SimError> {
-        if self.step > 0 {
+        if self.clock.step > 0 {
             return Err(SimError::AfterFirstStep("the organizer must be set"));
         }
         self.install(organizer);
@@ -215,8 +163,8 @@ impl Simulation {
     }
 
     fn install(&mut self, organizer: Box<dyn Organizer>) {
-        self.advise = [organizer.advises_humans(), organizer.advises_cavs()];
-        self.organizer = organizer;
+        self.control.advise = [organizer.advises_humans(), organizer.advises_cavs()];
+        self.control.organizer = organizer;
     }
 
     /// Also record what `recording` asks for (trips, trajectories); they come back in
@@ -224,7 +172,7 @@ impl Simulation {
     /// changes the simulation. Must be called before the first step.
     pub fn record(&mut self, recording: &Recording) -> Result<(), SimError> {
         recording.check(&self.cfg)?;
-        if self.step > 0 {
+        if self.clock.step > 0 {
             return Err(SimError::AfterFirstStep("recording must be enabled"));
         }
         let origin = self.origin_m();
@@ -235,10 +183,10 @@ impl Simulation {
                 .as_ref()
                 .map(|t| TrajectoryRecorder::new(t, &self.cfg, origin)),
             entry_x: std::iter::once(0.0)
-                .chain(self.geom.on_ramps.iter().map(|r| r.x))
+                .chain(self.road.geom.on_ramps.iter().map(|r| r.x))
                 .collect(),
             origin_m: origin,
-            dt: self.dt,
+            dt: self.clock.dt,
         };
         Ok(())
     }
@@ -247,18 +195,19 @@ impl Simulation {
     /// every step's events and the state after the step, and every vehicle as it leaves.
     /// Observers never change the simulation. Must be called before the first step.
     pub fn observe(&mut self, observer: Box<dyn Observer>) -> Result<(), SimError> {
-        if self.step > 0 {
+        if self.clock.step > 0 {
             return Err(SimError::AfterFirstStep("observers must be attached"));
         }
-        self.observers.push(observer);
-        self.observing = true;
-        self.safety.logging = true;
+        self.watch.observers.push(observer);
+        self.watch.observing = true;
+        self.measures.safety.logging = true;
         Ok(())
     }
 
     /// The first attached observer of type `T` (to read what it gathered).
     pub fn observer<T: Observer + 'static>(&self) -> Option<&T> {
-        self.observers
+        self.watch
+            .observers
             .iter()
             .find_map(|o| o.as_any().downcast_ref::<T>())
     }
@@ -272,19 +221,19 @@ impl Simulation {
     /// statistics, the trip record and the user's observers see it, in that order.
     #[inline(never)]
     fn leave(&mut self, s: u32, how: Departure) {
-        let t = crate::record::step_time(self.step + 1, self.dt);
-        let v = &self.vehicles[s as usize];
-        self.metrics.on_exit(v, how, t);
+        let t = crate::record::step_time(self.clock.step + 1, self.clock.dt);
+        let v = &self.traffic.vehicles[s as usize];
+        self.measures.metrics.on_exit(v, how, t);
         if self.rec.trips.is_some() {
             self.rec.on_exit(v, how, t);
         }
-        if self.observing {
-            for o in &mut self.observers {
+        if self.watch.observing {
+            for o in &mut self.watch.observers {
                 o.on_exit(v, how, t);
             }
             if how != Departure::OnRoad {
                 let origin = self.origin_m();
-                self.events.push(Event::Exited {
+                self.watch.events.push(Event::Exited {
                     t_s: t,
                     id: v.id,
                     kind: v.kind,
@@ -299,12 +248,12 @@ impl Simulation {
     /// Simulated time (s), as the records print it (`record::step_time`: 12.3 rather than
     /// 12.300000000000001).
     pub fn time_s(&self) -> f64 {
-        crate::record::step_time(self.step, self.dt)
+        crate::record::step_time(self.clock.step, self.clock.dt)
     }
 
     /// True once the configured duration has been simulated.
     pub fn finished(&self) -> bool {
-        self.step >= self.total_steps
+        self.clock.step >= self.clock.total_steps
     }
 
     /// The config this simulation runs.
@@ -314,14 +263,14 @@ impl Simulation {
 
     /// Vehicles on the road, lane by lane (0 = rightmost), front first.
     pub fn lane_vehicles(&self, lane: usize) -> impl Iterator<Item = &Vehicle> + '_ {
-        self.lanes[lane]
+        self.traffic.lanes[lane]
             .iter()
-            .map(move |&s| &self.vehicles[s as usize])
+            .map(move |&s| &self.traffic.vehicles[s as usize])
     }
 
     /// Number of vehicles on the road.
     pub fn vehicles_in_network(&self) -> usize {
-        self.lanes.iter().map(Vec::len).sum()
+        self.traffic.lanes.iter().map(Vec::len).sum()
     }
 
     /// Vehicles waiting in the virtual entry queue.
@@ -332,12 +281,12 @@ impl Simulation {
     /// Collisions so far: vehicle pairs that started to overlap, vehicles that reached the end
     /// of their lane.
     pub fn collisions(&self) -> u64 {
-        self.safety.events.len() as u64
+        self.measures.safety.events.len() as u64
     }
 
     /// The collisions so far, in time order.
     pub fn collision_events(&self) -> &[crate::summary::CollisionEvent] {
-        &self.safety.events
+        &self.measures.safety.events
     }
 
     /// Advance one step. Phases, in this order, each reading the state the previous one left:
@@ -362,12 +311,12 @@ impl Simulation {
         self.exits();
         self.insert();
         self.observe_detectors();
-        self.step += 1;
-        if self.step.is_multiple_of(COMPACT_EVERY_STEPS) {
+        self.clock.step += 1;
+        if self.clock.step.is_multiple_of(COMPACT_EVERY_STEPS) {
             self.compact();
         }
-        if self.step.is_multiple_of(self.agg_steps) {
-            for d in &mut self.detectors {
+        if self.clock.step.is_multiple_of(self.clock.agg_steps) {
+            for d in &mut self.detectors.list {
                 d.close_interval();
             }
             self.broadcast();
@@ -376,14 +325,14 @@ impl Simulation {
             .rec
             .trajectories
             .as_ref()
-            .is_some_and(|t| t.due(self.step))
+            .is_some_and(|t| t.due(self.clock.step))
         {
             let mut rec = std::mem::take(&mut self.rec);
             rec.on_step(self, &[]);
             self.rec = rec;
         }
         let checked = self.check_invariants();
-        if self.observing {
+        if self.watch.observing {
             self.notify();
         }
         checked
@@ -394,26 +343,30 @@ impl Simulation {
     /// when the speed would turn negative. A vehicle whose front passes the end of its lane
     /// has collided with it: the event is recorded and the vehicle leaves the road.
     fn integrate(&mut self) {
-        let dt = self.dt;
+        let dt = self.clock.dt;
         let mut sorted = true;
         // Locals (the stores into the records cannot change them, so nothing is reloaded per
         // vehicle), and the slot-indexed arrays as long as `vehicles`: one bounds check per
         // vehicle for the three.
-        let Simulation {
-            lanes,
-            vehicles,
+        let Traffic {
+            lanes, vehicles, ..
+        } = &mut self.traffic;
+        let Scratch {
             decisions,
             sensed,
-            geom,
-            step,
             exit_due,
-            vehicle_updates,
-            safety,
             crashed,
             ..
-        } = self;
+        } = &mut self.scratch;
+        let Measures {
+            vehicle_updates,
+            safety,
+            ..
+        } = &mut self.measures;
+        let geom = &self.road.geom;
+        let step = &self.clock.step;
         let step = *step;
-        let in_window = step >= self.warmup_step;
+        let in_window = step >= self.clock.warmup_step;
         let plain = geom.plain;
         let off_ramps = &geom.off_ramps[..];
         let vehicles = &mut vehicles[..];
@@ -474,11 +427,11 @@ impl Simulation {
             }
             *vehicle_updates += lane.len() as u64;
         }
-        self.lanes_sorted = sorted;
-        if self.observing {
+        self.scratch.lanes_sorted = sorted;
+        if self.watch.observing {
             self.log_brakings();
         }
-        if !self.crashed.is_empty() {
+        if !self.scratch.crashed.is_empty() {
             self.remove_crashed();
         }
     }
@@ -489,11 +442,11 @@ impl Simulation {
     #[cold]
     #[inline(never)]
     fn remove_crashed(&mut self) {
-        let t = crate::record::step_time(self.step + 1, self.dt);
+        let t = crate::record::step_time(self.clock.step + 1, self.clock.dt);
         let origin = self.origin_m();
-        for (s, l, w) in std::mem::take(&mut self.crashed) {
-            let v = &self.vehicles[s as usize];
-            self.safety.collide(
+        for (s, l, w) in std::mem::take(&mut self.scratch.crashed) {
+            let v = &self.traffic.vehicles[s as usize];
+            self.measures.safety.collide(
                 t,
                 CollisionKind::LaneEnd,
                 l as usize,
@@ -502,12 +455,12 @@ impl Simulation {
                 None,
                 v.x - w,
             );
-            if self.observing {
+            if self.watch.observing {
                 self.log_collisions();
             }
-            self.lanes[l as usize].retain(|&o| o != s);
+            self.traffic.lanes[l as usize].retain(|&o| o != s);
             self.leave(s, Departure::Collided);
-            self.free.push(s);
+            self.traffic.free.push(s);
         }
     }
 
@@ -516,48 +469,48 @@ impl Simulation {
     /// miss it and drive on to the end [D].
     fn exits(&mut self) {
         let end = self.cfg.road.length_m;
-        for l in 0..self.lanes.len() {
-            while let Some(&s) = self.lanes[l].first() {
-                if self.vehicles[s as usize].x < end {
+        for l in 0..self.traffic.lanes.len() {
+            while let Some(&s) = self.traffic.lanes[l].first() {
+                if self.traffic.vehicles[s as usize].x < end {
                     break;
                 }
-                self.lanes[l].remove(0);
+                self.traffic.lanes[l].remove(0);
                 self.leave(s, Departure::RoadEnd);
-                self.free.push(s);
+                self.traffic.free.push(s);
             }
         }
         // Only when integrate saw a vehicle at or past its off-ramp (x and exits do not change
         // between the two phases; vehicles inserted after this phase are integrated first).
-        if !std::mem::take(&mut self.exit_due) {
+        if !std::mem::take(&mut self.scratch.exit_due) {
             return;
         }
-        for l in 0..self.lanes.len() {
+        for l in 0..self.traffic.lanes.len() {
             let mut k = 0;
-            while k < self.lanes[l].len() {
-                let s = self.lanes[l][k];
-                let v = &mut self.vehicles[s as usize];
+            while k < self.traffic.lanes[l].len() {
+                let s = self.traffic.lanes[l][k];
+                let v = &mut self.traffic.vehicles[s as usize];
                 if v.exit == NO_EXIT {
                     k += 1;
                     continue;
                 }
-                let ramp = &self.geom.off_ramps[v.exit as usize];
+                let ramp = &self.road.geom.off_ramps[v.exit as usize];
                 if v.x < ramp.x {
                     k += 1;
                     continue;
                 }
                 if v.lane != ramp.lane {
                     v.exit = NO_EXIT;
-                    self.missed_exits += 1;
+                    self.measures.missed_exits += 1;
                     k += 1;
                     continue;
                 }
                 let (exit, speed, cav) = (v.exit as usize, v.v, v.is_cav());
-                self.lanes[l].remove(k);
-                if let Some(d) = self.exit_detector[exit] {
-                    self.detectors[d].count_exit(speed, cav);
+                self.traffic.lanes[l].remove(k);
+                if let Some(d) = self.detectors.exit_of_ramp[exit] {
+                    self.detectors.list[d].count_exit(speed, cav);
                 }
                 self.leave(s, Departure::OffRamp(exit));
-                self.free.push(s);
+                self.traffic.free.push(s);
             }
         }
     }
@@ -570,23 +523,25 @@ impl Simulation {
     /// changes and insertions insert at their sorted position), and if it did, this step
     /// searches as before.
     fn observe_detectors(&mut self) {
-        let dt = self.dt;
-        let n_lanes = self.lanes.len();
-        self.det_hint.resize(self.detectors.len() * n_lanes, 0);
-        for (i, det) in self.detectors.iter_mut().enumerate() {
+        let dt = self.clock.dt;
+        let n_lanes = self.traffic.lanes.len();
+        self.detectors
+            .hint
+            .resize(self.detectors.list.len() * n_lanes, 0);
+        for (i, det) in self.detectors.list.iter_mut().enumerate() {
             let p = det.position_m;
             if det.kind == "off-ramp" {
                 continue;
             }
-            for (l, lane) in self.lanes.iter().enumerate() {
+            for (l, lane) in self.traffic.lanes.iter().enumerate() {
                 if det.mask & (1 << l) == 0 {
                     continue;
                 }
                 // Candidates: front now in [p, p + L + travel]; lane is sorted descending.
                 let hi = p + 60.0;
-                let ahead = |s: u32| self.vehicles[s as usize].x > hi;
-                let start = if self.lanes_sorted {
-                    let hint = &mut self.det_hint[i * n_lanes + l];
+                let ahead = |s: u32| self.traffic.vehicles[s as usize].x > hi;
+                let start = if self.scratch.lanes_sorted {
+                    let hint = &mut self.detectors.hint[i * n_lanes + l];
                     let mut k = (*hint as usize).min(lane.len());
                     while k > 0 && !ahead(lane[k - 1]) {
                         k -= 1;
@@ -600,7 +555,7 @@ impl Simulation {
                     lane.partition_point(|&s| ahead(s))
                 };
                 for &s in &lane[start..] {
-                    let v = &self.vehicles[s as usize];
+                    let v = &self.traffic.vehicles[s as usize];
                     if v.x < p {
                         break;
                     }
@@ -624,17 +579,15 @@ impl Simulation {
     /// front is past its leader's rear is a collision when it starts (it was not overlapping at
     /// the end of the previous step). Keeps each lane sorted even after a collision.
     fn check_invariants(&mut self) -> Result<(), SimError> {
-        let step = self.step;
-        let t = crate::record::step_time(step, self.dt);
-        let dt = self.dt;
+        let step = self.clock.step;
+        let t = crate::record::step_time(step, self.clock.dt);
+        let dt = self.clock.dt;
         let origin = self.origin_m();
-        let in_window = step > self.warmup_step;
-        let Simulation {
-            lanes,
-            vehicles,
-            safety,
-            ..
-        } = self;
+        let in_window = step > self.clock.warmup_step;
+        let Traffic {
+            lanes, vehicles, ..
+        } = &mut self.traffic;
+        let safety = &mut self.measures.safety;
         // Outside the measurement window only an overlapping pair passes the test below, and
         // `on_close` ignores it there.
         safety.in_window = in_window;
@@ -684,17 +637,17 @@ impl Simulation {
     pub fn finish(mut self, wall_seconds: f64) -> Output {
         // Vehicles still on the road count with what they did so far (in id order, the
         // order of their trip records).
-        let mut on_road: Vec<u32> = self.lanes.iter().flatten().copied().collect();
-        on_road.sort_unstable_by_key(|&s| self.vehicles[s as usize].id);
-        self.step = self.step.saturating_sub(1); // `leave` stamps the end of the current step
+        let mut on_road: Vec<u32> = self.traffic.lanes.iter().flatten().copied().collect();
+        on_road.sort_unstable_by_key(|&s| self.traffic.vehicles[s as usize].id);
+        self.clock.step = self.clock.step.saturating_sub(1); // `leave` stamps the end of the current step
         for s in on_road {
             self.leave(s, Departure::OnRoad);
         }
-        self.step += 1;
+        self.clock.step += 1;
         let trips = self.rec.trips.take();
         let trajectories = self.rec.trajectories.take().map(|t| t.rows);
         let cfg = &self.cfg;
-        let det = &self.detectors[cfg.measurement_detector];
+        let det = &self.detectors.list[cfg.measurement_detector];
         let lanes = det.covered_lanes() as f64;
         let interval = cfg.aggregation_s;
         let first = (cfg.warmup_s / interval).ceil() as usize;
@@ -711,6 +664,7 @@ impl Simulation {
         let network_discharge = cfg.road.network.as_ref().map(|_| {
             let n: u64 = self
                 .detectors
+                .list
                 .iter()
                 .filter(|d| d.exit)
                 .map(|d| {
@@ -730,13 +684,13 @@ impl Simulation {
         } else {
             0.0
         };
-        let m = &self.metrics;
-        let sf = &self.safety;
+        let m = &self.measures.metrics;
+        let sf = &self.measures.safety;
         let summary = Summary {
             scenario: cfg.name.clone(),
             penetration: cfg.penetration,
             demand_vphpl: cfg.demand.vph_per_lane,
-            strategy: self.organizer.name().to_string(),
+            strategy: self.control.organizer.name().to_string(),
             seed: cfg.seed,
             dt_s: cfg.dt_s,
             duration_s: cfg.duration_s,
@@ -757,8 +711,8 @@ impl Simulation {
             discharge_flow_vphpl: discharge,
             max_sustained_flow_vphpl: max_flow,
             network_discharge_vph: network_discharge,
-            missed_exits: self.missed_exits,
-            collisions: self.safety.events.len() as u64,
+            missed_exits: self.measures.missed_exits,
+            collisions: self.measures.safety.events.len() as u64,
             max_deceleration_mps2: sf.max_decel,
             emergency_brakings: sf.emergency_brakings.total(),
             emergency_brakings_cav: sf.emergency_brakings.cav,
@@ -773,18 +727,18 @@ impl Simulation {
             tit_s2_cav: sf.tit_s2.cav,
             tit_s2_human: sf.tit_s2.human,
             min_ttc_s: sf.min_ttc_s.is_finite().then_some(sf.min_ttc_s),
-            vehicle_updates: self.vehicle_updates,
-            steps: self.step,
+            vehicle_updates: self.measures.vehicle_updates,
+            steps: self.clock.step,
             wall_seconds,
         };
         let mut detectors = Vec::new();
-        for d in &self.detectors {
+        for d in &self.detectors.list {
             d.records(interval, &mut detectors);
         }
         Output {
             summary,
             detectors,
-            collision_events: std::mem::take(&mut self.safety.events),
+            collision_events: std::mem::take(&mut self.measures.safety.events),
             trips,
             trajectories,
         }
@@ -794,9 +748,9 @@ impl Simulation {
     #[cold]
     #[inline(never)]
     fn log_brakings(&mut self) {
-        let t = crate::record::step_time(self.step + 1, self.dt);
-        for (id, kind, decel) in self.safety.brakings.drain(..) {
-            self.events.push(Event::EmergencyBraking {
+        let t = crate::record::step_time(self.clock.step + 1, self.clock.dt);
+        for (id, kind, decel) in self.measures.safety.brakings.drain(..) {
+            self.watch.events.push(Event::EmergencyBraking {
                 t_s: t,
                 id,
                 kind,
@@ -809,10 +763,10 @@ impl Simulation {
     #[cold]
     #[inline(never)]
     fn log_collisions(&mut self) {
-        for c in &self.safety.events[self.collisions_reported..] {
-            self.events.push(Event::Collision(c.clone()));
+        for c in &self.measures.safety.events[self.watch.collisions_reported..] {
+            self.watch.events.push(Event::Collision(c.clone()));
         }
-        self.collisions_reported = self.safety.events.len();
+        self.watch.collisions_reported = self.measures.safety.events.len();
     }
 
     /// End of a step with observers attached: the rear-end collisions and the mode changes
@@ -821,13 +775,11 @@ impl Simulation {
     #[inline(never)]
     fn notify(&mut self) {
         self.log_collisions();
-        let t = crate::record::step_time(self.step, self.dt);
-        let Simulation {
-            lanes,
-            vehicles,
-            events,
-            ..
-        } = self;
+        let t = crate::record::step_time(self.clock.step, self.clock.dt);
+        let Traffic {
+            lanes, vehicles, ..
+        } = &mut self.traffic;
+        let events = &mut self.watch.events;
         for lane in lanes.iter() {
             for &s in lane {
                 let v = &mut vehicles[s as usize];
@@ -846,12 +798,12 @@ impl Simulation {
                 }
             }
         }
-        let mut observers = std::mem::take(&mut self.observers);
+        let mut observers = std::mem::take(&mut self.watch.observers);
         for o in &mut observers {
-            o.on_step(self, &self.events);
+            o.on_step(self, &self.watch.events);
         }
-        self.observers = observers;
-        self.events.clear();
+        self.watch.observers = observers;
+        self.watch.events.clear();
     }
 
     /// At the end of an aggregation interval: the detectors' broadcasts to the organizer
@@ -860,10 +812,13 @@ impl Simulation {
         let interval = self.cfg.aggregation_s;
         let casts: Vec<_> = self
             .detectors
+            .list
             .iter()
             .filter_map(|d| d.broadcast(interval).map(|b| (d.position_m, b)))
             .collect();
-        self.organizer.on_broadcasts(&self.geom, &casts);
+        self.control
+            .organizer
+            .on_broadcasts(&self.road.geom, &casts);
     }
 
     /// Renumber the slots in lane order, front first (memory locality only: neighbours in a
@@ -874,33 +829,33 @@ impl Simulation {
     /// and no result is accumulated in slot order.
     fn compact(&mut self) {
         let on_road = self.vehicles_in_network();
-        let mut packed = Vec::with_capacity(on_road.max(self.vehicles.len()));
-        for lane in &mut self.lanes {
+        let mut packed = Vec::with_capacity(on_road.max(self.traffic.vehicles.len()));
+        for lane in &mut self.traffic.lanes {
             for s in lane.iter_mut() {
-                packed.push(self.vehicles[*s as usize].clone());
+                packed.push(self.traffic.vehicles[*s as usize].clone());
                 *s = (packed.len() - 1) as u32;
             }
         }
-        self.vehicles = packed;
-        self.free.clear();
-        self.changed_this_step.fill(u64::MAX);
+        self.traffic.vehicles = packed;
+        self.traffic.free.clear();
+        self.scratch.changed_this_step.fill(u64::MAX);
     }
 
     /// Allocate a slot for a new vehicle.
     pub(crate) fn alloc(&mut self, v: Vehicle) -> u32 {
-        if let Some(s) = self.free.pop() {
-            self.vehicles[s as usize] = v;
+        if let Some(s) = self.traffic.free.pop() {
+            self.traffic.vehicles[s as usize] = v;
             s
         } else {
-            self.vehicles.push(v);
-            (self.vehicles.len() - 1) as u32
+            self.traffic.vehicles.push(v);
+            (self.traffic.vehicles.len() - 1) as u32
         }
     }
 
     /// Is this slot's vehicle a CAV?
     #[inline]
     pub(crate) fn is_cav(&self, s: u32) -> bool {
-        s != NONE && self.vehicles[s as usize].kind == Kind::Cav
+        s != NONE && self.traffic.vehicles[s as usize].kind == Kind::Cav
     }
 }
 

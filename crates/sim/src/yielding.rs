@@ -37,7 +37,7 @@ impl Simulation {
     ) -> Option<u32> {
         let asks = |ld: u32, toward: Side| {
             ld != NONE
-                && matches!(self.vehicles[ld as usize].mode, Mode::Blc { side, .. } if side == toward)
+                && matches!(self.traffic.vehicles[ld as usize].mode, Mode::Blc { side, .. } if side == toward)
         };
         if !asks(nb.left_leader, Side::Right) && !asks(nb.right_leader, Side::Left) {
             return None;
@@ -49,7 +49,7 @@ impl Simulation {
     #[inline(never)]
     fn agreed_request_from(&self, v: &Vehicle, nb: &Neighbours, automated: bool) -> Option<u32> {
         self.yield_request(v, nb).and_then(|(req, mandatory)| {
-            let r = &self.vehicles[req as usize];
+            let r = &self.traffic.vehicles[req as usize];
             let joining = || {
                 self.cfg.cav.yield_to_organizers
                     && matches!(
@@ -77,7 +77,7 @@ impl Simulation {
             if ld == NONE {
                 continue;
             }
-            let r = &self.vehicles[ld as usize];
+            let r = &self.traffic.vehicles[ld as usize];
             let Mode::Blc {
                 side, mandatory, ..
             } = r.mode

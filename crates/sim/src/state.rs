@@ -1,0 +1,124 @@
+//! The simulation state, split by responsibility. [`crate::Simulation`] holds one of each;
+//! ARCHITECTURE.md lists which phase reads and writes which part.
+
+use crate::command::Active;
+use crate::detector::Detector;
+use crate::events::{Event, Observer};
+use crate::here::HereTables;
+use crate::metrics::Metrics;
+use crate::network::Geometry;
+use crate::organize::Organizer;
+use crate::safety::Safety;
+use crate::sense::Sensed;
+use crate::sim::Decision;
+use crate::vehicle::Vehicle;
+use platoonsim_model::lanechange::Side;
+
+/// Simulated time, counted in steps.
+#[derive(Clone, Debug)]
+pub(crate) struct Clock {
+    /// Step length Δt (s).
+    pub dt: f64,
+    /// Steps done so far; simulated time = step · dt.
+    pub step: u64,
+    pub total_steps: u64,
+    /// First step of the measurement window.
+    pub warmup_step: u64,
+    /// Steps of a detector interval.
+    pub agg_steps: u64,
+}
+
+/// The vehicles and their lanes.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Traffic {
+    /// Dense vehicle storage; slots listed in `free` are dead.
+    pub vehicles: Vec<Vehicle>,
+    pub free: Vec<u32>,
+    /// Per lane (0 = rightmost), vehicle slots sorted front first (descending x).
+    pub lanes: Vec<Vec<u32>>,
+    /// The id of the next vehicle to enter.
+    pub next_id: u64,
+}
+
+/// The road: its geometry and the lookup tables built from it once.
+#[derive(Clone, Debug)]
+pub(crate) struct RoadState {
+    pub geom: Geometry,
+    /// `Here` along each lane as a step function (here.rs).
+    pub here_tables: HereTables,
+    /// Ramp speed limit (m/s); ∞ on a plain road.
+    pub ramp_speed_mps: f64,
+    /// Lane-based desired-speed caps (spec 2.7, m/s) by lane counted from the rightmost through
+    /// lane, the last for every lane further left; empty: none.
+    pub lane_caps_mps: Vec<f64>,
+    /// Cross-lane friction c_fr (spec 2.7), `None` when off (not given, or 1).
+    pub friction: Option<f64>,
+}
+
+/// Per-step scratch, rebuilt every step (no allocation once warmed up).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Scratch {
+    /// Indexed by slot: what the sense phase found for each vehicle (one cache line each).
+    pub sensed: Vec<Sensed>,
+    /// Per lane, parallel to the lane lists: (x, v) of each vehicle at the step start (sense
+    /// phase), then sentinels (−∞, 0) (`sense::SENTINELS`).
+    pub lane_xv: Vec<Vec<(f64, f64)>>,
+    /// Indexed by slot: the decide phase's result.
+    pub decisions: Vec<Decision>,
+    /// Indexed by slot: the step of the vehicle's last lane change.
+    pub changed_this_step: Vec<u64>,
+    pub change_list: Vec<(u32, Side)>,
+    /// A vehicle reached its off-ramp's position in this step's integrate phase.
+    pub exit_due: bool,
+    /// No lane was unsorted by this step's integrate phase.
+    pub lanes_sorted: bool,
+    /// Vehicles past the end of their lane in this step's integrate phase: (slot, lane, wall).
+    pub crashed: Vec<(u32, u32, f64)>,
+    /// Per on-ramp, the anticipation factor 1 + c_inc (ρ_ramp/ρ_jam)/j for j = 1, 2 (spec 4.2)
+    /// from its density at the step start: computed once per step instead of per vehicle.
+    pub ramp_factor: Vec<[f64; 2]>,
+}
+
+/// The loop detectors.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Detectors {
+    pub list: Vec<Detector>,
+    /// Per detector and lane: where the detector's last lane search ended.
+    pub hint: Vec<u32>,
+    /// Per off-ramp, the detector that counts it.
+    pub exit_of_ramp: Vec<Option<usize>>,
+}
+
+/// What the run measures as it goes: the paper's statistics, the safety measures, counters.
+#[derive(Debug)]
+pub(crate) struct Measures {
+    pub metrics: Metrics,
+    /// Braking limit, collisions and surrogate safety measures (`safety.rs`).
+    pub safety: Safety,
+    pub vehicle_updates: u64,
+    pub missed_exits: u64,
+}
+
+/// What steers the vehicles besides their models: the platoon-organization strategy and the
+/// commands from outside.
+#[derive(Debug)]
+pub(crate) struct Control {
+    /// The strategy (`organize`).
+    pub organizer: Box<dyn Organizer>,
+    /// Whether it advises human drivers (index 0) and CAVs (1): asked once, so that a
+    /// strategy that advises nobody costs nothing per vehicle.
+    pub advise: [bool; 2],
+    /// Commands in force (`command.rs`), applied in the decide phase.
+    pub commands: Vec<Active>,
+}
+
+/// The library user's observers and the current step's events (buffered only while there
+/// is one).
+#[derive(Default)]
+pub(crate) struct Watch {
+    pub observers: Vec<Box<dyn Observer>>,
+    pub events: Vec<Event>,
+    pub observing: bool,
+    /// Collision events already passed to the observers.
+    pub collisions_reported: usize,
+}
