@@ -1,9 +1,9 @@
 //! Phase 1 (sense): neighbours, CACC links, platoon positions and platoon statistics.
 
 use crate::here::Here;
-use crate::sim::Simulation;
-use crate::state::{Scratch, Traffic};
+use crate::state::{RoadState, Scratch, Traffic};
 use crate::vehicle::Vehicle;
+use platoonsim_model::cav::CavParams;
 
 /// "No vehicle" slot marker.
 pub const NONE: u32 = u32::MAX;
@@ -72,184 +72,183 @@ impl Default for Sensed {
     }
 }
 
-impl Simulation {
-    /// Phase 1.
-    pub(crate) fn sense(&mut self) {
-        let n = self.traffic.vehicles.len();
-        if self.scratch.sensed.len() < n {
-            self.scratch.sensed.resize(n, Sensed::default());
-            self.scratch.changed_this_step.resize(n, u64::MAX);
-        }
-        let n_lanes = self.traffic.lanes.len();
-        self.scratch.lane_xv.resize(n_lanes, Vec::new());
-        let p = &self.cfg.cav;
-        let range = p.sensor_range_m;
-        let t_far = p.cacc_tg_band_s[1];
-        let slack = p.standstill_gap_m + p.speed_control_min_gap_m;
-        // Pass A, per lane back to front: (x, v) copy, own-lane neighbours, CAV ahead, the
-        // candidate CACC link to the leader (`linked` holds it until pass B) and the size of
-        // the sub-string each vehicle leads under the previous memberships.
-        // Local slices: the loop reads and writes these arrays once per vehicle.
-        let Traffic {
-            lanes, vehicles, ..
-        } = &self.traffic;
-        let Scratch {
-            lane_xv, sensed, ..
-        } = &mut self.scratch;
-        let vehicles = &vehicles[..];
-        // As long as `vehicles` (resized above): a slot that indexes `vehicles` indexes this
-        // too, so the compiler drops the second bounds check.
-        let sensed = &mut sensed[..vehicles.len()];
-        for (lane, xv) in lanes.iter().zip(lane_xv.iter_mut()) {
-            let n = lane.len();
-            xv.clear();
-            // Sentinels behind every position: the merge sweeps below stop on the first one
-            // without a length check, and read up to two entries beyond the cursor.
-            xv.resize(n + SENTINELS, (f64::NEG_INFINITY, 0.0));
-            // The vehicles' part, as long as the lane (no bounds check on `xv[k]`).
-            let xv = &mut xv[..n];
-            let mut follower = NONE;
-            let mut f_pred = crate::vehicle::NEVER;
-            let mut f_cand = false;
-            let mut f_size = 0u32;
-            for k in (0..n).rev() {
-                let s = lane[k];
-                let ld = if k > 0 { lane[k - 1] } else { NONE };
-                let v = &vehicles[s as usize];
-                xv[k] = (v.x, v.v);
-                let lv = (k > 0).then(|| &vehicles[ld as usize]);
-                let ahead = lv.is_some_and(|lv| lv.is_cav() && lv.rear() - v.x <= range);
-                let cand = ahead
-                    && v.automated()
-                    && lv.is_some_and(|lv| lv.rear() - v.x <= t_far * v.v + slack);
-                let size = if f_cand && f_pred == v.id {
-                    1 + f_size
-                } else {
-                    1
-                };
-                let t = &mut sensed[s as usize];
-                t.nb.idx = k as u32;
-                t.nb.leader = ld;
-                t.nb.follower = follower;
-                t.cav_ahead = ahead;
-                t.linked = cand;
-                t.sub_size = size;
-                follower = s;
-                f_pred = v.string_pred;
-                f_cand = cand;
-                f_size = size;
-            }
-        }
-        self.platoons();
+/// Phase 1: reads the vehicles and lanes and the road's tables, writes the scratch (sensed
+/// neighbours, step-start x and v) and the vehicles' string memberships and platoon
+/// statistics.
+pub(crate) fn sense(p: &CavParams, traffic: &mut Traffic, road: &RoadState, scratch: &mut Scratch) {
+    let n = traffic.vehicles.len();
+    if scratch.sensed.len() < n {
+        scratch.sensed.resize(n, Sensed::default());
+        scratch.changed_this_step.resize(n, u64::MAX);
     }
+    let n_lanes = traffic.lanes.len();
+    scratch.lane_xv.resize(n_lanes, Vec::new());
+    let range = p.sensor_range_m;
+    let t_far = p.cacc_tg_band_s[1];
+    let slack = p.standstill_gap_m + p.speed_control_min_gap_m;
+    // Pass A, per lane back to front: (x, v) copy, own-lane neighbours, CAV ahead, the
+    // candidate CACC link to the leader (`linked` holds it until pass B) and the size of
+    // the sub-string each vehicle leads under the previous memberships.
+    // Local slices: the loop reads and writes these arrays once per vehicle.
+    let Traffic {
+        lanes, vehicles, ..
+    } = &*traffic;
+    let Scratch {
+        lane_xv, sensed, ..
+    } = &mut *scratch;
+    let vehicles = &vehicles[..];
+    // As long as `vehicles` (resized above): a slot that indexes `vehicles` indexes this
+    // too, so the compiler drops the second bounds check.
+    let sensed = &mut sensed[..vehicles.len()];
+    for (lane, xv) in lanes.iter().zip(lane_xv.iter_mut()) {
+        let n = lane.len();
+        xv.clear();
+        // Sentinels behind every position: the merge sweeps below stop on the first one
+        // without a length check, and read up to two entries beyond the cursor.
+        xv.resize(n + SENTINELS, (f64::NEG_INFINITY, 0.0));
+        // The vehicles' part, as long as the lane (no bounds check on `xv[k]`).
+        let xv = &mut xv[..n];
+        let mut follower = NONE;
+        let mut f_pred = crate::vehicle::NEVER;
+        let mut f_cand = false;
+        let mut f_size = 0u32;
+        for k in (0..n).rev() {
+            let s = lane[k];
+            let ld = if k > 0 { lane[k - 1] } else { NONE };
+            let v = &vehicles[s as usize];
+            xv[k] = (v.x, v.v);
+            let lv = (k > 0).then(|| &vehicles[ld as usize]);
+            let ahead = lv.is_some_and(|lv| lv.is_cav() && lv.rear() - v.x <= range);
+            let cand = ahead
+                && v.automated()
+                && lv.is_some_and(|lv| lv.rear() - v.x <= t_far * v.v + slack);
+            let size = if f_cand && f_pred == v.id {
+                1 + f_size
+            } else {
+                1
+            };
+            let t = &mut sensed[s as usize];
+            t.nb.idx = k as u32;
+            t.nb.leader = ld;
+            t.nb.follower = follower;
+            t.cav_ahead = ahead;
+            t.linked = cand;
+            t.sub_size = size;
+            follower = s;
+            f_pred = v.string_pred;
+            f_cand = cand;
+            f_size = size;
+        }
+    }
+    platoons(p, traffic, road, scratch);
+}
 
-    /// Pass B, per lane front to back: leaders and followers in the adjacent lanes (merge
-    /// sweeps), `here` (the geometry's step function, here.rs), CACC memberships and platoon
-    /// positions, statistics.
-    ///
-    /// CACC strings (spec 3.6) and platoon statistics (spec 5.1.6, 6.15).
-    ///
-    /// A *candidate link* exists when an automated CAV follows a CAV within sensor range and is
-    /// not in speed regulation (time gap ≤ 2 s, spec 6.15). Membership is sticky [D]: a CAV
-    /// stays in the string of the predecessor it joined while the candidate link to that same
-    /// vehicle lasts; a new link is a *join*, allowed only if the predecessor's position plus
-    /// the size of the joining sub-string is at most `max_platoon`. Otherwise the CAV leads its
-    /// own string and keeps the inter-platoon gap. (Re-splitting merged strings at 10 by
-    /// recounting positions every step, spec 3.6.6, moved every follower behind a merge or a
-    /// broken link to a new gap at once; the resulting braking waves halved 100 % CAV
-    /// capacity.) A member's position is its predecessor's + 1; a string is a platoon.
-    ///
-    /// Statistics (spec 5.1.6). Paper definition [S]: "when a CAV immediately follows
-    /// another CAV, it automatically starts to form a platoon", and P_P ≈ 1 − (1 − p)² "given
-    /// the subject vehicle is a CAV, its leader and/or follower is a CAV": a link is an
-    /// automated CAV directly behind a CAV within sensor range. Strict variant (spec 6.15):
-    /// only string members (not in speed regulation). Runs longer than `max` count as
-    /// platoons of at most `max`.
-    fn platoons(&mut self) {
-        let max = self.cfg.cav.max_platoon.max(1);
-        let Traffic {
-            lanes, vehicles, ..
-        } = &mut self.traffic;
-        let Scratch {
-            lane_xv, sensed, ..
-        } = &mut self.scratch;
-        let here_tables = &self.road.here_tables;
-        let n_lanes = lanes.len();
-        let vehicles = &mut vehicles[..];
-        // As long as `vehicles` (see pass A).
-        let sensed = &mut sensed[..vehicles.len()];
-        for l in 0..n_lanes {
-            let lane = &lanes[l];
-            let xs = &lane_xv[l];
-            let empty: &[u32] = &[];
-            let no_xv: &[(f64, f64)] = &[(f64::NEG_INFINITY, 0.0); SENTINELS];
-            let (llane, lx) = if l + 1 < n_lanes {
-                (&lanes[l + 1][..], &lane_xv[l + 1][..])
-            } else {
-                (empty, no_xv)
-            };
-            let (rlane, rx) = if l > 0 {
-                (&lanes[l - 1][..], &lane_xv[l - 1][..])
-            } else {
-                (empty, no_xv)
-            };
-            // Merge-sweep cursors: the first vehicle of the other lane that is not strictly
-            // ahead.
-            let (mut jl, mut jr) = (0u32, 0u32);
-            // The geometry's step function along the lane (here.rs).
-            let mut here = here_tables.walk(l);
-            let (mut adj_start, mut tg2_start) = (0usize, 0usize);
-            for (k, (&s, &(x, _))) in lane.iter().zip(xs).enumerate() {
-                let si = s as usize;
-                jl = sweep(lx, jl, x);
-                jr = sweep(rx, jr, x);
-                // Membership and position (`linked` holds the candidate link from pass A; the
-                // leader's position is final: it comes first in the lane list).
-                let mut pred_id = crate::vehicle::NEVER;
-                let mut pos = 1;
-                if sensed[si].linked {
-                    let ld = lane[k - 1] as usize;
-                    let lpos = sensed[ld].platoon_pos;
-                    let lid = vehicles[ld].id;
-                    let member = vehicles[si].string_pred == lid;
-                    if (member && lpos < max) || (!member && lpos + sensed[si].sub_size <= max) {
-                        pred_id = lid;
-                        pos = lpos + 1;
-                    }
-                }
-                let t = &mut sensed[si];
-                // The leader there is at the cursor's index − 1 (none when the cursor is 0:
-                // the index wraps past the end). One test instead of two.
-                t.nb.left_leader = llane
-                    .get((jl as usize).wrapping_sub(1))
-                    .copied()
-                    .unwrap_or(NONE);
-                t.nb.right_leader = rlane
-                    .get((jr as usize).wrapping_sub(1))
-                    .copied()
-                    .unwrap_or(NONE);
-                t.nb.left_j = jl;
-                t.nb.right_j = jr;
-                t.here = here.at(x);
-                t.platoon_pos = pos;
-                let is_linked = pred_id != crate::vehicle::NEVER;
-                t.linked = is_linked;
-                let cav_ahead = t.cav_ahead;
-                let v = &mut vehicles[si];
-                let adjacent = cav_ahead && v.automated();
-                v.string_pred = pred_id;
-                if !adjacent || k - adj_start >= max as usize {
-                    close_run(vehicles, lane, adj_start, k, false);
-                    adj_start = k;
-                }
-                if !is_linked {
-                    close_run(vehicles, lane, tg2_start, k, true);
-                    tg2_start = k;
+/// Pass B, per lane front to back: leaders and followers in the adjacent lanes (merge
+/// sweeps), `here` (the geometry's step function, here.rs), CACC memberships and platoon
+/// positions, statistics.
+///
+/// CACC strings (spec 3.6) and platoon statistics (spec 5.1.6, 6.15).
+///
+/// A *candidate link* exists when an automated CAV follows a CAV within sensor range and is
+/// not in speed regulation (time gap ≤ 2 s, spec 6.15). Membership is sticky [D]: a CAV
+/// stays in the string of the predecessor it joined while the candidate link to that same
+/// vehicle lasts; a new link is a *join*, allowed only if the predecessor's position plus
+/// the size of the joining sub-string is at most `max_platoon`. Otherwise the CAV leads its
+/// own string and keeps the inter-platoon gap. (Re-splitting merged strings at 10 by
+/// recounting positions every step, spec 3.6.6, moved every follower behind a merge or a
+/// broken link to a new gap at once; the resulting braking waves halved 100 % CAV
+/// capacity.) A member's position is its predecessor's + 1; a string is a platoon.
+///
+/// Statistics (spec 5.1.6). Paper definition [S]: "when a CAV immediately follows
+/// another CAV, it automatically starts to form a platoon", and P_P ≈ 1 − (1 − p)² "given
+/// the subject vehicle is a CAV, its leader and/or follower is a CAV": a link is an
+/// automated CAV directly behind a CAV within sensor range. Strict variant (spec 6.15):
+/// only string members (not in speed regulation). Runs longer than `max` count as
+/// platoons of at most `max`.
+fn platoons(p: &CavParams, traffic: &mut Traffic, road: &RoadState, scratch: &mut Scratch) {
+    let max = p.max_platoon.max(1);
+    let Traffic {
+        lanes, vehicles, ..
+    } = traffic;
+    let Scratch {
+        lane_xv, sensed, ..
+    } = scratch;
+    let here_tables = &road.here_tables;
+    let n_lanes = lanes.len();
+    let vehicles = &mut vehicles[..];
+    // As long as `vehicles` (see pass A).
+    let sensed = &mut sensed[..vehicles.len()];
+    for l in 0..n_lanes {
+        let lane = &lanes[l];
+        let xs = &lane_xv[l];
+        let empty: &[u32] = &[];
+        let no_xv: &[(f64, f64)] = &[(f64::NEG_INFINITY, 0.0); SENTINELS];
+        let (llane, lx) = if l + 1 < n_lanes {
+            (&lanes[l + 1][..], &lane_xv[l + 1][..])
+        } else {
+            (empty, no_xv)
+        };
+        let (rlane, rx) = if l > 0 {
+            (&lanes[l - 1][..], &lane_xv[l - 1][..])
+        } else {
+            (empty, no_xv)
+        };
+        // Merge-sweep cursors: the first vehicle of the other lane that is not strictly
+        // ahead.
+        let (mut jl, mut jr) = (0u32, 0u32);
+        // The geometry's step function along the lane (here.rs).
+        let mut here = here_tables.walk(l);
+        let (mut adj_start, mut tg2_start) = (0usize, 0usize);
+        for (k, (&s, &(x, _))) in lane.iter().zip(xs).enumerate() {
+            let si = s as usize;
+            jl = sweep(lx, jl, x);
+            jr = sweep(rx, jr, x);
+            // Membership and position (`linked` holds the candidate link from pass A; the
+            // leader's position is final: it comes first in the lane list).
+            let mut pred_id = crate::vehicle::NEVER;
+            let mut pos = 1;
+            if sensed[si].linked {
+                let ld = lane[k - 1] as usize;
+                let lpos = sensed[ld].platoon_pos;
+                let lid = vehicles[ld].id;
+                let member = vehicles[si].string_pred == lid;
+                if (member && lpos < max) || (!member && lpos + sensed[si].sub_size <= max) {
+                    pred_id = lid;
+                    pos = lpos + 1;
                 }
             }
-            close_run(vehicles, lane, adj_start, lane.len(), false);
-            close_run(vehicles, lane, tg2_start, lane.len(), true);
+            let t = &mut sensed[si];
+            // The leader there is at the cursor's index − 1 (none when the cursor is 0:
+            // the index wraps past the end). One test instead of two.
+            t.nb.left_leader = llane
+                .get((jl as usize).wrapping_sub(1))
+                .copied()
+                .unwrap_or(NONE);
+            t.nb.right_leader = rlane
+                .get((jr as usize).wrapping_sub(1))
+                .copied()
+                .unwrap_or(NONE);
+            t.nb.left_j = jl;
+            t.nb.right_j = jr;
+            t.here = here.at(x);
+            t.platoon_pos = pos;
+            let is_linked = pred_id != crate::vehicle::NEVER;
+            t.linked = is_linked;
+            let cav_ahead = t.cav_ahead;
+            let v = &mut vehicles[si];
+            let adjacent = cav_ahead && v.automated();
+            v.string_pred = pred_id;
+            if !adjacent || k - adj_start >= max as usize {
+                close_run(vehicles, lane, adj_start, k, false);
+                adj_start = k;
+            }
+            if !is_linked {
+                close_run(vehicles, lane, tg2_start, k, true);
+                tg2_start = k;
+            }
         }
+        close_run(vehicles, lane, adj_start, lane.len(), false);
+        close_run(vehicles, lane, tg2_start, lane.len(), true);
     }
 }
 

@@ -304,13 +304,23 @@ impl Simulation {
     /// 6. **detectors**: crossings and occupancy; interval close and broadcast.
     /// 7. **invariants**: no overlap (counted; a panic in debug builds), all states finite.
     pub fn step(&mut self) -> Result<(), SimError> {
-        self.sense();
+        crate::sense::sense(
+            &self.cfg.cav,
+            &mut self.traffic,
+            &self.road,
+            &mut self.scratch,
+        );
         self.decide();
         self.integrate();
         self.apply_lane_changes();
         self.exits();
         self.insert();
-        self.observe_detectors();
+        observe_detectors(
+            self.clock.dt,
+            &self.traffic,
+            self.scratch.lanes_sorted,
+            &mut self.detectors,
+        );
         self.clock.step += 1;
         if self.clock.step.is_multiple_of(COMPACT_EVERY_STEPS) {
             self.compact();
@@ -331,7 +341,12 @@ impl Simulation {
             rec.on_step(self, &[]);
             self.rec = rec;
         }
-        let checked = self.check_invariants();
+        let checked = check_invariants(
+            &self.clock,
+            self.origin_m(),
+            &mut self.traffic,
+            &mut self.measures.safety,
+        );
         if self.watch.observing {
             self.notify();
         }
@@ -513,124 +528,6 @@ impl Simulation {
                 self.traffic.free.push(s);
             }
         }
-    }
-
-    /// Phase 6: detectors, per lane by a search on the sorted lane list.
-    ///
-    /// The search starts from where it ended in the previous step (`det_hint`): the lanes
-    /// change little between steps. The walk finds the same index as a binary search when the
-    /// lane is sorted (descending x); integrate is the only phase that can unsort a lane (lane
-    /// changes and insertions insert at their sorted position), and if it did, this step
-    /// searches as before.
-    fn observe_detectors(&mut self) {
-        let dt = self.clock.dt;
-        let n_lanes = self.traffic.lanes.len();
-        self.detectors
-            .hint
-            .resize(self.detectors.list.len() * n_lanes, 0);
-        for (i, det) in self.detectors.list.iter_mut().enumerate() {
-            let p = det.position_m;
-            if det.kind == "off-ramp" {
-                continue;
-            }
-            for (l, lane) in self.traffic.lanes.iter().enumerate() {
-                if det.mask & (1 << l) == 0 {
-                    continue;
-                }
-                // Candidates: front now in [p, p + L + travel]; lane is sorted descending.
-                let hi = p + 60.0;
-                let ahead = |s: u32| self.traffic.vehicles[s as usize].x > hi;
-                let start = if self.scratch.lanes_sorted {
-                    let hint = &mut self.detectors.hint[i * n_lanes + l];
-                    let mut k = (*hint as usize).min(lane.len());
-                    while k > 0 && !ahead(lane[k - 1]) {
-                        k -= 1;
-                    }
-                    while k < lane.len() && ahead(lane[k]) {
-                        k += 1;
-                    }
-                    *hint = k as u32;
-                    k
-                } else {
-                    lane.partition_point(|&s| ahead(s))
-                };
-                for &s in &lane[start..] {
-                    let v = &self.traffic.vehicles[s as usize];
-                    if v.x < p {
-                        break;
-                    }
-                    let v0 = (v.v - v.a * dt).max(0.0);
-                    let m = Passage {
-                        x0: v.x_prev,
-                        x1: v.x,
-                        v0,
-                        v1: v.v,
-                        len: v.human.length_m,
-                        cav: v.is_cav(),
-                    };
-                    det.observe(l, m, dt);
-                }
-            }
-        }
-    }
-
-    /// Phase 7: finiteness, collisions and the surrogate safety measures (`safety.rs`), over
-    /// each lane's (leader, follower) pairs at the end of the step. A pair whose follower's
-    /// front is past its leader's rear is a collision when it starts (it was not overlapping at
-    /// the end of the previous step). Keeps each lane sorted even after a collision.
-    fn check_invariants(&mut self) -> Result<(), SimError> {
-        let step = self.clock.step;
-        let t = crate::record::step_time(step, self.clock.dt);
-        let dt = self.clock.dt;
-        let origin = self.origin_m();
-        let in_window = step > self.clock.warmup_step;
-        let Traffic {
-            lanes, vehicles, ..
-        } = &mut self.traffic;
-        let safety = &mut self.measures.safety;
-        // Outside the measurement window only an overlapping pair passes the test below, and
-        // `on_close` ignores it there.
-        safety.in_window = in_window;
-        let mut horizon = if in_window { safety.ttc_horizon_s } else { 0.0 };
-        std::mem::swap(&mut safety.overlapping, &mut safety.overlapping_now);
-        safety.overlapping_now.clear();
-        for (l, lane) in lanes.iter_mut().enumerate() {
-            let mut sorted = true;
-            let Some((&first, rest)) = lane.split_first() else {
-                continue;
-            };
-            // Each record is looked up once: what the next pair needs of the follower (then its
-            // leader) is kept in locals.
-            let v0 = &vehicles[first as usize];
-            check_finite(v0, l, t)?;
-            let (mut li, mut lead_rear, mut lead_x, mut lead_v) = (first, v0.rear(), v0.x, v0.v);
-            for &s in rest.iter() {
-                let fol = &vehicles[s as usize];
-                check_finite(fol, l, t)?;
-                let (fx, fv, frear) = (fol.x, fol.v, fol.rear());
-                let gap = lead_rear - fx;
-                if gap < 0.0 {
-                    overlap(safety, vehicles, li, s, l, t, origin);
-                    if fx > lead_x {
-                        sorted = false;
-                    }
-                }
-                // TTC = g / closing, divided out only when it is below the threshold or the
-                // smallest so far (`ttc_horizon_s`, the larger of the two).
-                // One comparison per pair: a pair that is not closing in gives a bound ≤ 0,
-                // which only an overlap passes (`on_close` then finds no TTC).
-                if gap < (fv - lead_v) * horizon {
-                    let lead_id = vehicles[li as usize].id;
-                    safety.on_close(&mut vehicles[s as usize], lead_id, gap, lead_v, step, dt);
-                    horizon = safety.ttc_horizon_s;
-                }
-                (li, lead_rear, lead_x, lead_v) = (s, frear, fx, fv);
-            }
-            if !sorted {
-                lane.sort_by(|&a, &b| vehicles[b as usize].x.total_cmp(&vehicles[a as usize].x));
-            }
-        }
-        Ok(())
     }
 
     /// Run to the end and produce the outputs.
@@ -911,4 +808,123 @@ fn non_finite(v: &Vehicle, lane: usize, t: f64) -> SimError {
         v_mps: v.v,
         a_mps2: v.a,
     }
+}
+
+/// Phase 6: detectors, per lane by a search on the sorted lane list; reads the vehicles and
+/// lanes, writes the detectors (and their search hints).
+///
+/// The search starts from where it ended in the previous step (`hint`): the lanes change
+/// little between steps. The walk finds the same index as a binary search when the lane is
+/// sorted (descending x); integrate is the only phase that can unsort a lane (lane changes and
+/// insertions insert at their sorted position), and if it did (`lanes_sorted` false), this
+/// step searches as before.
+fn observe_detectors(dt: f64, traffic: &Traffic, lanes_sorted: bool, detectors: &mut Detectors) {
+    let n_lanes = traffic.lanes.len();
+    detectors.hint.resize(detectors.list.len() * n_lanes, 0);
+    for (i, det) in detectors.list.iter_mut().enumerate() {
+        let p = det.position_m;
+        if det.kind == "off-ramp" {
+            continue;
+        }
+        for (l, lane) in traffic.lanes.iter().enumerate() {
+            if det.mask & (1 << l) == 0 {
+                continue;
+            }
+            // Candidates: front now in [p, p + L + travel]; lane is sorted descending.
+            let hi = p + 60.0;
+            let ahead = |s: u32| traffic.vehicles[s as usize].x > hi;
+            let start = if lanes_sorted {
+                let hint = &mut detectors.hint[i * n_lanes + l];
+                let mut k = (*hint as usize).min(lane.len());
+                while k > 0 && !ahead(lane[k - 1]) {
+                    k -= 1;
+                }
+                while k < lane.len() && ahead(lane[k]) {
+                    k += 1;
+                }
+                *hint = k as u32;
+                k
+            } else {
+                lane.partition_point(|&s| ahead(s))
+            };
+            for &s in &lane[start..] {
+                let v = &traffic.vehicles[s as usize];
+                if v.x < p {
+                    break;
+                }
+                let v0 = (v.v - v.a * dt).max(0.0);
+                let m = Passage {
+                    x0: v.x_prev,
+                    x1: v.x,
+                    v0,
+                    v1: v.v,
+                    len: v.human.length_m,
+                    cav: v.is_cav(),
+                };
+                det.observe(l, m, dt);
+            }
+        }
+    }
+}
+
+/// Phase 7: finiteness, collisions and the surrogate safety measures (`safety.rs`), over
+/// each lane's (leader, follower) pairs at the end of the step. A pair whose follower's
+/// front is past its leader's rear is a collision when it starts (it was not overlapping at
+/// the end of the previous step). Keeps each lane sorted even after a collision.
+fn check_invariants(
+    clock: &Clock,
+    origin: f64,
+    traffic: &mut Traffic,
+    safety: &mut Safety,
+) -> Result<(), SimError> {
+    let step = clock.step;
+    let t = crate::record::step_time(step, clock.dt);
+    let dt = clock.dt;
+    let in_window = step > clock.warmup_step;
+    let Traffic {
+        lanes, vehicles, ..
+    } = traffic;
+    // Outside the measurement window only an overlapping pair passes the test below, and
+    // `on_close` ignores it there.
+    safety.in_window = in_window;
+    let mut horizon = if in_window { safety.ttc_horizon_s } else { 0.0 };
+    std::mem::swap(&mut safety.overlapping, &mut safety.overlapping_now);
+    safety.overlapping_now.clear();
+    for (l, lane) in lanes.iter_mut().enumerate() {
+        let mut sorted = true;
+        let Some((&first, rest)) = lane.split_first() else {
+            continue;
+        };
+        // Each record is looked up once: what the next pair needs of the follower (then its
+        // leader) is kept in locals.
+        let v0 = &vehicles[first as usize];
+        check_finite(v0, l, t)?;
+        let (mut li, mut lead_rear, mut lead_x, mut lead_v) = (first, v0.rear(), v0.x, v0.v);
+        for &s in rest.iter() {
+            let fol = &vehicles[s as usize];
+            check_finite(fol, l, t)?;
+            let (fx, fv, frear) = (fol.x, fol.v, fol.rear());
+            let gap = lead_rear - fx;
+            if gap < 0.0 {
+                overlap(safety, vehicles, li, s, l, t, origin);
+                if fx > lead_x {
+                    sorted = false;
+                }
+            }
+            // TTC = g / closing, divided out only when it is below the threshold or the
+            // smallest so far (`ttc_horizon_s`, the larger of the two).
+            // One comparison per pair: a pair that is not closing in gives a bound ≤ 0,
+            // which only an overlap passes (`on_close` then finds no TTC).
+            if gap < (fv - lead_v) * horizon {
+                let lead_id = vehicles[li as usize].id;
+                safety.on_close(&mut vehicles[s as usize], lead_id, gap, lead_v, step, dt);
+                horizon = safety.ttc_horizon_s;
+            }
+            (li, lead_rear, lead_x, lead_v) = (s, frear, fx, fv);
+        }
+        if !sorted {
+            lane.sort_by(|&a, &b| vehicles[b as usize].x.total_cmp(&vehicles[a as usize].x));
+        }
+    }
+    Ok(())
 }
