@@ -15,7 +15,7 @@ use std::path::PathBuf;
 #[command(
     after_help = "Run `platoonsim <COMMAND> --help` for a command's flags.\n\nExit codes: 0 \
                   success; 1 error; 2 invalid arguments; 3 `run` had collisions (unless \
-                  --allow-collisions); 141 standard output was closed (e.g. `| head`)."
+                  --allow-collisions) or a `sweep` had runs with collisions; 141 standard output was closed (e.g. `| head`)."
 )]
 pub struct Cli {
     /// Hide progress bars (they are also hidden when stderr is not a terminal).
@@ -54,6 +54,12 @@ pub enum Command {
     /// it is in the lane, coloured by speed (0-120 km/h), CAVs thick and humans thin. Writes
     /// STEM.png and STEM.svg.
     TimeSpace(TimeSpaceArgs),
+    /// Run a sweep described by a TOML file (a scenario, seeds, fixed --set keys, axes whose
+    /// product makes the cells, a reference level for paired differences); write runs.csv,
+    /// summary.csv, summary.md, run.json and figures to OUT. Resumable, and shardable over a
+    /// scheduler's job array (--shard I/N, or SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX,
+    /// HQ_TASK_ID); see docs/sweeps.md.
+    Sweep(crate::commands::sweep::SweepArgs),
 }
 
 /// Which scenario, and what to change in it. Overrides act on the scenario file before it

@@ -22,11 +22,13 @@ pub mod detectors;
 pub mod experiments;
 pub mod hash;
 pub mod paper;
+pub mod progress;
 pub mod record;
 pub mod report;
 pub mod runner;
 pub mod safety;
 pub mod stats;
+pub mod sweep;
 pub mod table;
 
 pub use design::{Cell, Labels, RunSpec};

@@ -6,6 +6,7 @@ pub mod reproduce;
 pub mod run;
 pub mod scenarios;
 pub mod show;
+pub mod sweep;
 pub mod time_space;
 
 use crate::args::{Cli, Command};
@@ -23,6 +24,7 @@ pub fn dispatch(cli: Cli) -> Result<ExitCode> {
         Command::Experiment(args) => experiment::experiment(&args, cli.quiet),
         Command::Reproduce(args) => reproduce::reproduce(&args, cli.quiet),
         Command::TimeSpace(args) => time_space::time_space(&args),
+        Command::Sweep(args) => return sweep::sweep(&args, cli.quiet),
     };
     done.map(|()| ExitCode::SUCCESS)
 }
