@@ -2,7 +2,8 @@
 //! fastest), each cell resolved by the scenario crate from the spec's `[set]` entries and the
 //! cell's levels, passed as `--set` arguments, so a spec key is read and checked exactly as
 //! `platoonsim run --set KEY=VALUE` reads and checks it. A key that fails is reported under
-//! its spec key: each `[set]` entry and each axis level is first tried on its own.
+//! its spec key: the `[set]` entries are tried together and, if they fail, one by one; each
+//! axis level is tried on top of them before the cells are built.
 
 use super::spec::{label, set_arg, Spec, SpecError};
 use crate::design::{Cell, Labels};
@@ -46,8 +47,13 @@ pub fn cells(spec: &Spec) -> Result<Vec<Cell>, SpecError> {
     };
     // The scenario itself, then each fixed key, then each level on top of the fixed keys.
     load(Vec::new()).map_err(|e| err("scenario".into(), e))?;
-    for (i, (k, _)) in spec.set.iter().enumerate() {
-        load(fixed[..=i].to_vec()).map_err(|e| err(format!("set.\"{k}\""), e))?;
+    if let Err(all) = load(fixed.clone()) {
+        // Keys may depend on each other (a duration and its warm-up): blame a key only if it
+        // fails on its own, else the combination.
+        for (i, (k, _)) in spec.set.iter().enumerate() {
+            load(vec![fixed[i].clone()]).map_err(|e| err(format!("set.\"{k}\""), e))?;
+        }
+        return Err(err("set (the keys together)".into(), all));
     }
     for a in &spec.axes {
         for v in &a.levels {
