@@ -7,7 +7,7 @@
 //! |---|---|---|
 //! | Slurm job array | `SLURM_ARRAY_TASK_ID` − `SLURM_ARRAY_TASK_MIN` + 1 | `SLURM_ARRAY_TASK_COUNT`, else `MAX` − `MIN` + 1 |
 //! | Kubernetes Indexed Job | `JOB_COMPLETION_INDEX` + 1 (it counts from 0) | `--shards N` |
-//! | HyperQueue array (`--array 1-N`) | `HQ_TASK_ID` | `--shards N` |
+//! | HyperQueue tasks (`hq submit --array 0-(N-1)`, or N tasks of one job from its Python API) | `HQ_TASK_ID` + 1 (task ids from 0) | `--shards N` |
 
 use std::fmt;
 
@@ -101,9 +101,9 @@ impl Shard {
         if let Some(i) = int("HQ_TASK_ID")? {
             let n = count.ok_or(
                 "HQ_TASK_ID is set (a HyperQueue task): give the shard count, the size of the \
-                 array 1-N, with --shards N",
+                 array 0-(N-1), with --shards N",
             )?;
-            return make(i, n as i64, &format!("HQ_TASK_ID={i}"));
+            return make(i + 1, n as i64, &format!("HQ_TASK_ID={i}"));
         }
         Ok(None)
     }
@@ -142,9 +142,10 @@ mod tests {
             Ok(Shard::new(3, 3))
         );
         assert_eq!(s(&[("JOB_COMPLETION_INDEX", "0")], Some(5)), Ok(Shard::new(1, 5)));
-        assert_eq!(s(&[("HQ_TASK_ID", "4")], Some(4)), Ok(Shard::new(4, 4)));
+        assert_eq!(s(&[("HQ_TASK_ID", "3")], Some(4)), Ok(Shard::new(4, 4)));
+        assert_eq!(s(&[("HQ_TASK_ID", "0")], Some(4)), Ok(Shard::new(1, 4)));
         assert!(s(&[("HQ_TASK_ID", "4")], None).unwrap_err().contains("--shards"));
-        assert!(s(&[("HQ_TASK_ID", "5")], Some(4)).unwrap_err().contains("HQ_TASK_ID=5"));
+        assert!(s(&[("HQ_TASK_ID", "4")], Some(4)).unwrap_err().contains("HQ_TASK_ID=4"));
         assert!(s(&[("SLURM_ARRAY_TASK_ID", "x")], None).unwrap_err().contains("SLURM_ARRAY_TASK_ID"));
         assert!(s(&[("JOB_COMPLETION_INDEX", "2")], None).unwrap_err().contains("JOB_COMPLETION_INDEX"));
     }
