@@ -184,6 +184,11 @@ pub struct RunArgs {
     #[arg(long)]
     pub allow_collisions: bool,
 
+    /// Format of the tables detectors, trips and trajectories: csv, or parquet (typed columns,
+    /// compressed; detectors.parquet, trips.parquet, trajectories.parquet).
+    #[arg(long, value_enum, default_value = "csv")]
+    pub format: crate::tables::FormatArg,
+
     /// Also write trips.csv: one row per vehicle that entered the road (entrance, exit, times,
     /// travel time, lane changes, largest platoon). Does not change the simulation.
     #[arg(long)]
@@ -461,6 +466,10 @@ pub struct ExperimentArgs {
 
     #[command(flatten)]
     pub network: NetworkArgs,
+
+    /// Format of the tables runs and summary: csv, or parquet (typed columns, compressed).
+    #[arg(long, value_enum, default_value = "csv")]
+    pub format: crate::tables::FormatArg,
 }
 
 /// The SR-99 experiments' flags.

@@ -14,6 +14,7 @@ mod atomic;
 mod commands;
 mod output;
 mod progress;
+mod tables;
 
 use clap::Parser;
 use std::process::ExitCode;

@@ -45,6 +45,10 @@ pub struct SweepArgs {
     /// Recompute every run instead of reusing existing run files.
     #[arg(long, conflicts_with = "collect")]
     pub fresh: bool,
+
+    /// Format of the tables runs and summary: csv, or parquet (typed columns, compressed).
+    #[arg(long, value_enum, default_value = "csv")]
+    pub format: crate::tables::FormatArg,
 }
 
 /// Which shard this process runs: the flag, else the environment (unless --collect or
@@ -88,8 +92,10 @@ pub fn sweep(args: &SweepArgs, quiet: bool) -> Result<ExitCode> {
         fresh: args.fresh,
         bar: progress::wanted(quiet),
         lines: progress::lines_wanted(quiet),
+        format: args.format.table(),
         arguments: std::env::args().collect(),
     };
+    let ext = args.format.ext();
     let done = sweep::run(&spec, &opts).with_context(|| format!("sweep {} failed", spec.name))?;
     match shard {
         Some(s) => outln!(
@@ -107,7 +113,7 @@ pub fn sweep(args: &SweepArgs, quiet: bool) -> Result<ExitCode> {
         )?,
         None => outln!(
             "sweep {}: {} runs ({} computed, {} reused) in {:.1} s. Files in {}: summary.md, \
-             summary.csv, runs.csv, run.json, {} figures, runs/.",
+             summary.{ext}, runs.{ext}, run.json, {} figures, runs/.",
             spec.name,
             done.total,
             done.computed,

@@ -1,7 +1,8 @@
 //! Sweeps of any scenario described as data (`platoonsim sweep SPEC.toml`): the cartesian
 //! product of axes of scenario keys, times seeds, run by the experiments' runner (parallel,
 //! resumable through atomic run files, provenance in `run.json`) and summarized like the
-//! experiments: `runs.csv`, `summary.csv`, `summary.md` and a figure per shown metric.
+//! experiments: `runs.csv`, `summary.csv` (or `.parquet`), `summary.md` and a figure per
+//! shown metric.
 //!
 //! * [`spec`]: the sweep file and its validation (errors name the spec key);
 //! * [`plan`]: the cells, resolved through the scenario crate's `--set` machinery;
@@ -50,6 +51,8 @@ pub struct Options {
     pub bar: bool,
     /// Progress lines on stderr (no terminal).
     pub lines: bool,
+    /// `runs` and `summary` as CSV or Parquet.
+    pub format: crate::columnar::Format,
     /// The command line, for the provenance.
     pub arguments: Vec<String>,
 }
@@ -155,8 +158,11 @@ pub fn run_with(spec: &Spec, opts: &Options, exec: Executor<'_>) -> Result<Done,
             let p = opts.out.join(name);
             write_atomic(&p, bytes).map_err(|e| Error::io(&p, e))
         };
-        write("runs.csv", &crate::table::runs_csv(&cells, &outcomes)?)?;
-        write("summary.csv", &collect::summary_csv(spec, &cells, &rows)?)?;
+        let labels = crate::table::label_columns(&cells);
+        let runs = crate::table::runs_csv(&cells, &outcomes)?;
+        crate::columnar::write_table(&opts.out, "runs", &runs, &labels, opts.format)?;
+        let summary = collect::summary_csv(spec, &cells, &rows)?;
+        crate::columnar::write_table(&opts.out, "summary", &summary, &labels, opts.format)?;
         done.figures = report::figures(&opts.out, spec, &cells, &rows, &shown)?;
         let mut md = report::markdown(spec, &cells, &outcomes, &rows, &shown);
         if !done.figures.is_empty() {
