@@ -22,7 +22,6 @@ use platoonsim_sim::{
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-
 /// The file of a run's collisions; like the record files, a stale one is removed by a run
 /// without collisions, so that its absence means "no collision".
 pub const COLLISIONS_FILE: &str = "collisions.csv";
@@ -75,7 +74,10 @@ pub fn write_run_as(
         let csv = trips_csv(config, trips)?;
         match format {
             FormatArg::Csv => put(table("trips"), &csv)?,
-            FormatArg::Parquet => put(table("trips"), &tables::csv_to_parquet(&csv, &tables::trip_kind)?)?,
+            FormatArg::Parquet => put(
+                table("trips"),
+                &tables::csv_to_parquet(&csv, &tables::trip_kind)?,
+            )?,
         }
     }
     if let Some(rows) = &output.trajectories {

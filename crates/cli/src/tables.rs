@@ -7,8 +7,8 @@ use anyhow::{Context, Result};
 use clap::ValueEnum;
 use platoonsim_columnar::{from_csv, Kind, Table, Values, Writer, ROW_GROUP_ROWS};
 use platoonsim_experiment::atomic::write_atomic_file;
-use std::path::Path;
 use platoonsim_sim::TrajectoryPoint;
+use std::path::Path;
 
 /// The tables' file format.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
@@ -65,19 +65,42 @@ pub fn csv_to_parquet(csv: &[u8], kind: &dyn Fn(&str) -> Kind) -> Result<Vec<u8>
 /// from 1).
 fn trajectories_table(rows: &[TrajectoryPoint]) -> Table {
     let mut t = Table::default();
-    t.push("t_s", Values::F64(rows.iter().map(|r| Some(r.t_s)).collect()));
+    t.push(
+        "t_s",
+        Values::F64(rows.iter().map(|r| Some(r.t_s)).collect()),
+    );
     t.push("id", Values::U64(rows.iter().map(|r| Some(r.id)).collect()));
     t.push(
         "kind",
-        Values::Str(rows.iter().map(|r| Some(r.kind.as_str().to_string())).collect()),
+        Values::Str(
+            rows.iter()
+                .map(|r| Some(r.kind.as_str().to_string()))
+                .collect(),
+        ),
     );
-    t.push("lane", Values::U64(rows.iter().map(|r| Some(u64::from(r.lane) + 1)).collect()));
-    t.push("x_m", Values::F64(rows.iter().map(|r| Some(r.x_m)).collect()));
-    t.push("v_mps", Values::F64(rows.iter().map(|r| Some(r.v_mps)).collect()));
-    t.push("a_mps2", Values::F64(rows.iter().map(|r| Some(r.a_mps2)).collect()));
+    t.push(
+        "lane",
+        Values::U64(rows.iter().map(|r| Some(u64::from(r.lane) + 1)).collect()),
+    );
+    t.push(
+        "x_m",
+        Values::F64(rows.iter().map(|r| Some(r.x_m)).collect()),
+    );
+    t.push(
+        "v_mps",
+        Values::F64(rows.iter().map(|r| Some(r.v_mps)).collect()),
+    );
+    t.push(
+        "a_mps2",
+        Values::F64(rows.iter().map(|r| Some(r.a_mps2)).collect()),
+    );
     t.push(
         "mode",
-        Values::Str(rows.iter().map(|r| Some(r.mode.as_str().to_string())).collect()),
+        Values::Str(
+            rows.iter()
+                .map(|r| Some(r.mode.as_str().to_string()))
+                .collect(),
+        ),
     );
     t
 }
@@ -88,7 +111,8 @@ pub fn write_trajectories_parquet(path: &Path, rows: &[TrajectoryPoint]) -> Resu
     write_atomic_file(path, |f| {
         let mut w = Writer::new(f, &trajectories_table(&[])).map_err(std::io::Error::other)?;
         for chunk in rows.chunks(ROW_GROUP_ROWS) {
-            w.write(&trajectories_table(chunk)).map_err(std::io::Error::other)?;
+            w.write(&trajectories_table(chunk))
+                .map_err(std::io::Error::other)?;
         }
         w.finish().map_err(std::io::Error::other)
     })

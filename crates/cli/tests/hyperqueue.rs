@@ -17,11 +17,18 @@ use std::time::Instant;
 const SHARDS: usize = 4;
 
 fn hyperqueue_available() -> Result<(), String> {
-    match Command::new("python3").args(["-c", "import hyperqueue.cluster"]).output() {
+    match Command::new("python3")
+        .args(["-c", "import hyperqueue.cluster"])
+        .output()
+    {
         Ok(o) if o.status.success() => Ok(()),
         Ok(o) => Err(format!(
             "python3 cannot import hyperqueue ({})",
-            String::from_utf8_lossy(&o.stderr).trim().lines().last().unwrap_or("")
+            String::from_utf8_lossy(&o.stderr)
+                .trim()
+                .lines()
+                .last()
+                .unwrap_or("")
         )),
         Err(e) => Err(format!("cannot start python3: {e}")),
     }
@@ -79,17 +86,25 @@ fn sweep_on_hyperqueue_equals_the_local_sweep() {
             .unwrap()
             .parse()
             .unwrap();
-        assert!(log.contains(&format!("({n} computed, 0 reused)")), "task {i}: {log}");
+        assert!(
+            log.contains(&format!("({n} computed, 0 reused)")),
+            "task {i}: {log}"
+        );
         handled += n;
     }
     assert_eq!(handled, 18);
     let collect = std::fs::read_to_string(work.join("collect.out")).unwrap();
-    assert!(collect.contains("18 runs (0 computed, 18 reused)"), "{collect}");
+    assert!(
+        collect.contains("18 runs (0 computed, 18 reused)"),
+        "{collect}"
+    );
     for f in ["runs.csv", "summary.csv"] {
         assert!(
             std::fs::read(out.join(f)).unwrap() == std::fs::read(local.join(f)).unwrap(),
             "{f} differs between HyperQueue and the local sweep"
         );
     }
-    eprintln!("HyperQueue: server, worker, {SHARDS} shard tasks and the collect task in {wall:.1} s");
+    eprintln!(
+        "HyperQueue: server, worker, {SHARDS} shard tasks and the collect task in {wall:.1} s"
+    );
 }

@@ -41,7 +41,11 @@ fn sweep_of_a_user_corridor_with_paired_differences() {
     let dir = scratch("acceptance");
     let out = dir.join("out");
     let o = sweep(&[&spec(), "--out", s(&out)]);
-    assert!(stdout(&o).contains("18 runs (18 computed, 0 reused)"), "{}", stdout(&o));
+    assert!(
+        stdout(&o).contains("18 runs (18 computed, 0 reused)"),
+        "{}",
+        stdout(&o)
+    );
 
     let runs = read_csv(&out.join("runs.csv"));
     assert_eq!(runs.len(), 18);
@@ -74,7 +78,12 @@ fn sweep_of_a_user_corridor_with_paired_differences() {
     let summary: serde_json::Value =
         serde_json::from_slice(&std::fs::read(single.join("summary.json")).unwrap()).unwrap();
     let run = cell(&runs, "0.6", "pd")[1];
-    for m in ["discharge_flow_vphpl", "lane_changes_per_vehicle", "avg_platoon_length", "vehicles_entered"] {
+    for m in [
+        "discharge_flow_vphpl",
+        "lane_changes_per_vehicle",
+        "avg_platoon_length",
+        "vehicles_entered",
+    ] {
         assert_eq!(num(run, m), summary[m].as_f64().unwrap(), "{m}");
     }
     // Paired differences: the run minus the baseline run of the same seed.
@@ -88,7 +97,9 @@ fn sweep_of_a_user_corridor_with_paired_differences() {
                 assert_eq!(num(r, &format!("{m}_pct")), pct);
             }
         }
-        assert!(base.iter().all(|r| r["lane_changes_per_vehicle_diff"].is_empty()));
+        assert!(base
+            .iter()
+            .all(|r| r["lane_changes_per_vehicle_diff"].is_empty()));
     }
 
     // summary.csv: mean, sd and the Student-t interval (t(0.975, 2) = 4.3027) of each cell,
@@ -119,7 +130,10 @@ fn sweep_of_a_user_corridor_with_paired_differences() {
         assert!((num(r, &format!("{col}ci_low")) - (mean - hw)).abs() < 1e-9 * hw.max(1.0));
         assert_eq!(r[&format!("{col}n")], "3");
     }
-    assert_eq!(row("0.6", "pd", "discharge_flow_vphpl")["reference"], "strategy.kind=none");
+    assert_eq!(
+        row("0.6", "pd", "discharge_flow_vphpl")["reference"],
+        "strategy.kind=none"
+    );
     assert_eq!(row("0.6", "none", "discharge_flow_vphpl")["diff_mean"], "");
     assert!(summary.iter().all(|r| r["runs_with_collisions"] == "0"));
     // Traffic: at 60 % CAV the PD lane makes vehicles change lanes more than the baseline,
@@ -133,14 +147,26 @@ fn sweep_of_a_user_corridor_with_paired_differences() {
     );
 
     // Figures against the first axis, one per shown metric, and the report.
-    for m in ["discharge_flow_vphpl", "lane_changes_per_vehicle", "avg_platoon_length"] {
+    for m in [
+        "discharge_flow_vphpl",
+        "lane_changes_per_vehicle",
+        "avg_platoon_length",
+    ] {
         for ext in ["png", "svg"] {
             let f = out.join(format!("fig_{m}.{ext}"));
-            assert!(std::fs::metadata(&f).map(|m| m.len() > 1000).unwrap_or(false), "{f:?}");
+            assert!(
+                std::fs::metadata(&f)
+                    .map(|m| m.len() > 1000)
+                    .unwrap_or(false),
+                "{f:?}"
+            );
         }
     }
     let md = std::fs::read_to_string(out.join("summary.md")).unwrap();
-    assert!(md.contains("| 0.6 | pd | 3 |") && md.contains("fig_avg_platoon_length.png"), "{md}");
+    assert!(
+        md.contains("| 0.6 | pd | 3 |") && md.contains("fig_avg_platoon_length.png"),
+        "{md}"
+    );
     let prov: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("run.json")).unwrap()).unwrap();
     assert_eq!(prov["cells"].as_array().unwrap().len(), 6);
@@ -150,7 +176,10 @@ fn sweep_of_a_user_corridor_with_paired_differences() {
     let again = sweep(&[&spec(), "--out", s(&out)]);
     assert!(stdout(&again).contains("(0 computed, 18 reused)"));
     let log = stderr(&again);
-    assert!(log.contains("18/18 runs (100 %), 0 computed") && log.contains("runs/min"), "{log}");
+    assert!(
+        log.contains("18/18 runs (100 %), 0 computed") && log.contains("runs/min"),
+        "{log}"
+    );
     let quiet = sweep(&["--quiet", &spec(), "--out", s(&out)]);
     assert_eq!(stderr(&quiet), "");
 }
@@ -196,7 +225,11 @@ fn three_shards_then_collect_equal_the_unsharded_sweep() {
         .collect();
     for c in &children {
         assert!(c.status.success(), "{}", stderr(c));
-        assert!(stdout(c).contains("6 of 18 runs (6 computed, 0 reused)"), "{}", stdout(c));
+        assert!(
+            stdout(c).contains("6 of 18 runs (6 computed, 0 reused)"),
+            "{}",
+            stdout(c)
+        );
     }
     assert_eq!(run_files(&out), 18);
     assert!(!out.join("runs.csv").exists(), "a shard writes no tables");
@@ -215,12 +248,20 @@ fn three_shards_then_collect_equal_the_unsharded_sweep() {
             .output()
             .unwrap();
         assert!(o.status.success(), "{}", stderr(&o));
-        assert!(stdout(&o).contains(&format!("shard {id}/3: 6 of 18 runs")), "{}", stdout(&o));
+        assert!(
+            stdout(&o).contains(&format!("shard {id}/3: 6 of 18 runs")),
+            "{}",
+            stdout(&o)
+        );
         if id == 2 {
             // Collecting before the last shard names what is missing and computes nothing.
             let early = platoonsim(&["-q", "sweep", &spec(), "--out", s(&out), "--collect"]);
             assert!(!early.status.success());
-            assert!(stderr(&early).contains("6 of 18 runs have no valid run file"), "{}", stderr(&early));
+            assert!(
+                stderr(&early).contains("6 of 18 runs have no valid run file"),
+                "{}",
+                stderr(&early)
+            );
             assert_eq!(run_files(&out), 12);
         }
     }
@@ -235,7 +276,10 @@ fn killed_mid_way_a_rerun_computes_only_the_missing_runs() {
     let spec = dir.join("long.toml");
     let text = std::fs::read_to_string(spec_dir().join("sweep.toml"))
         .unwrap()
-        .replace("scenario = \"ramps.toml\"", &format!("scenario = {:?}", s(&spec_dir().join("ramps.toml"))))
+        .replace(
+            "scenario = \"ramps.toml\"",
+            &format!("scenario = {:?}", s(&spec_dir().join("ramps.toml"))),
+        )
         .replace("\"run.duration_s\" = 600", "\"run.duration_s\" = 1800");
     std::fs::write(&spec, text).unwrap();
     let out = dir.join("out");
@@ -273,8 +317,16 @@ fn spec_errors_name_the_spec_key() {
             "penetration",
         ),
         ("[set]\n\"road.bogus\" = 1", "set.\"road.bogus\"", "bogus"),
-        ("[axes]\n\"strategy.kind\" = [\"none\", \"fast\"]", "axes.\"strategy.kind\" = \"fast\"", "flow-aware"),
-        ("[compare]\n\"strategy.kind\" = \"none\"", "compare.\"strategy.kind\"", "not an axis"),
+        (
+            "[axes]\n\"strategy.kind\" = [\"none\", \"fast\"]",
+            "axes.\"strategy.kind\" = \"fast\"",
+            "flow-aware",
+        ),
+        (
+            "[compare]\n\"strategy.kind\" = \"none\"",
+            "compare.\"strategy.kind\"",
+            "not an axis",
+        ),
         ("metrics = [\"speed\"]", "metrics", "speed"),
     ];
     for (i, (extra, key, detail)) in cases.iter().enumerate() {
@@ -283,7 +335,10 @@ fn spec_errors_name_the_spec_key() {
         let o = platoonsim(&["-q", "sweep", s(&f), "--out", s(&dir.join("o"))]);
         assert_eq!(o.status.code(), Some(1), "{extra}");
         let e = stderr(&o);
-        assert!(e.contains(key) && e.contains(detail) && !e.contains("panicked"), "{extra}: {e}");
+        assert!(
+            e.contains(key) && e.contains(detail) && !e.contains("panicked"),
+            "{extra}: {e}"
+        );
     }
     let o = platoonsim(&["-q", "sweep", &spec(), "--shard", "4/3"]);
     assert!(!o.status.success() && stderr(&o).contains("4/3"));
@@ -292,5 +347,9 @@ fn spec_errors_name_the_spec_key() {
         .env("HQ_TASK_ID", "2")
         .output()
         .unwrap();
-    assert!(!o.status.success() && stderr(&o).contains("--shards"), "{}", stderr(&o));
+    assert!(
+        !o.status.success() && stderr(&o).contains("--shards"),
+        "{}",
+        stderr(&o)
+    );
 }

@@ -9,7 +9,9 @@
 //!
 //! Arrow and Parquet stay here, out of the engine crates, which know nothing of files.
 
-use arrow_array::builder::{BooleanBuilder, Float64Builder, Int64Builder, StringBuilder, UInt64Builder};
+use arrow_array::builder::{
+    BooleanBuilder, Float64Builder, Int64Builder, StringBuilder, UInt64Builder,
+};
 use arrow_array::{ArrayRef, RecordBatch};
 use arrow_schema::{DataType, Field, Schema};
 use parquet::arrow::ArrowWriter;
@@ -117,7 +119,11 @@ pub struct Table {
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     #[error("column '{name}' has {len} rows, the first column {rows}")]
-    Ragged { name: String, len: usize, rows: usize },
+    Ragged {
+        name: String,
+        len: usize,
+        rows: usize,
+    },
     #[error("cannot encode Parquet: {0}")]
     Parquet(String),
 }
@@ -176,7 +182,11 @@ impl<W: Write + Send> Writer<W> {
         let mut from = 0;
         loop {
             let to = (from + ROW_GROUP_ROWS).min(rows);
-            let arrays: Vec<ArrayRef> = table.columns.iter().map(|c| c.values.array(from, to)).collect();
+            let arrays: Vec<ArrayRef> = table
+                .columns
+                .iter()
+                .map(|c| c.values.array(from, to))
+                .collect();
             let batch = RecordBatch::try_new(self.schema.clone(), arrays)
                 .map_err(|e| Error::Parquet(e.to_string()))?;
             self.inner.write(&batch).map_err(pq)?;
@@ -218,7 +228,9 @@ pub enum Kind {
 /// column's type by name. A cell that is not of its column's type is an error naming the
 /// column, the row and the text.
 pub fn from_csv(bytes: &[u8], kind: &dyn Fn(&str) -> Kind) -> Result<Table, Error> {
-    let mut r = csv::ReaderBuilder::new().has_headers(true).from_reader(bytes);
+    let mut r = csv::ReaderBuilder::new()
+        .has_headers(true)
+        .from_reader(bytes);
     let bad = |e: csv::Error| Error::Parquet(format!("cannot read the CSV table: {e}"));
     let header: Vec<String> = r.headers().map_err(bad)?.iter().map(String::from).collect();
     let mut cells: Vec<Vec<String>> = vec![Vec::new(); header.len()];
@@ -237,34 +249,57 @@ pub fn from_csv(bytes: &[u8], kind: &dyn Fn(&str) -> Kind) -> Result<Table, Erro
             k => k,
         };
         let parse = |row: usize, v: &str, what: &str| {
-            Error::Parquet(format!("column '{name}', row {}: '{v}' is not {what}", row + 2))
+            Error::Parquet(format!(
+                "column '{name}', row {}: '{v}' is not {what}",
+                row + 2
+            ))
         };
         let values = match k {
             Kind::F64 => Values::F64(
                 col.iter()
                     .enumerate()
-                    .map(|(i, v)| (!v.is_empty()).then(|| v.parse().map_err(|_| parse(i, v, "a number"))).transpose())
+                    .map(|(i, v)| {
+                        (!v.is_empty())
+                            .then(|| v.parse().map_err(|_| parse(i, v, "a number")))
+                            .transpose()
+                    })
                     .collect::<Result<_, _>>()?,
             ),
             Kind::I64 => Values::I64(
                 col.iter()
                     .enumerate()
-                    .map(|(i, v)| (!v.is_empty()).then(|| v.parse().map_err(|_| parse(i, v, "an integer"))).transpose())
+                    .map(|(i, v)| {
+                        (!v.is_empty())
+                            .then(|| v.parse().map_err(|_| parse(i, v, "an integer")))
+                            .transpose()
+                    })
                     .collect::<Result<_, _>>()?,
             ),
             Kind::U64 => Values::U64(
                 col.iter()
                     .enumerate()
-                    .map(|(i, v)| (!v.is_empty()).then(|| v.parse().map_err(|_| parse(i, v, "a count"))).transpose())
+                    .map(|(i, v)| {
+                        (!v.is_empty())
+                            .then(|| v.parse().map_err(|_| parse(i, v, "a count")))
+                            .transpose()
+                    })
                     .collect::<Result<_, _>>()?,
             ),
             Kind::Bool => Values::Bool(
                 col.iter()
                     .enumerate()
-                    .map(|(i, v)| (!v.is_empty()).then(|| v.parse().map_err(|_| parse(i, v, "true or false"))).transpose())
+                    .map(|(i, v)| {
+                        (!v.is_empty())
+                            .then(|| v.parse().map_err(|_| parse(i, v, "true or false")))
+                            .transpose()
+                    })
                     .collect::<Result<_, _>>()?,
             ),
-            Kind::Str | Kind::Auto => Values::Str(col.into_iter().map(|v| (!v.is_empty()).then_some(v)).collect()),
+            Kind::Str | Kind::Auto => Values::Str(
+                col.into_iter()
+                    .map(|v| (!v.is_empty()).then_some(v))
+                    .collect(),
+            ),
         };
         t.push(name, values);
     }
@@ -288,8 +323,14 @@ mod tests {
         let mut t = Table::default();
         t.push("x_m", Values::F64(vec![Some(1.5), None, Some(f64::NAN)]));
         t.push("id", Values::U64(vec![Some(1), Some(2), Some(3)]));
-        t.push("kind", Values::Str(vec![Some("cav".into()), Some("human".into()), None]));
-        t.push("measured", Values::Bool(vec![Some(true), Some(false), None]));
+        t.push(
+            "kind",
+            Values::Str(vec![Some("cav".into()), Some("human".into()), None]),
+        );
+        t.push(
+            "measured",
+            Values::Bool(vec![Some(true), Some(false), None]),
+        );
         let bytes = parquet_bytes(&t).unwrap();
         assert_eq!(&bytes[..4], b"PAR1");
         let r = SerializedFileReader::new(bytes::Bytes::from(bytes)).unwrap();
@@ -319,11 +360,19 @@ mod tests {
         })
         .unwrap();
         assert_eq!(t.columns[0].values, Values::F64(vec![Some(0.2), Some(0.4)]));
-        assert_eq!(t.columns[1].values, Values::Str(vec![Some("none".into()), Some("pd".into())]));
+        assert_eq!(
+            t.columns[1].values,
+            Values::Str(vec![Some("none".into()), Some("pd".into())])
+        );
         assert_eq!(t.columns[2].values, Values::U64(vec![Some(1), Some(2)]));
         assert_eq!(t.columns[3].values, Values::F64(vec![Some(1.5), None]));
-        assert_eq!(t.columns[4].values, Values::Bool(vec![Some(true), Some(false)]));
-        let e = from_csv(b"seed\nx\n", &|_| Kind::U64).unwrap_err().to_string();
+        assert_eq!(
+            t.columns[4].values,
+            Values::Bool(vec![Some(true), Some(false)])
+        );
+        let e = from_csv(b"seed\nx\n", &|_| Kind::U64)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("'seed', row 2: 'x'"), "{e}");
     }
 

@@ -43,12 +43,19 @@ pub fn kind(labels: &[String], column: &str) -> Kind {
 /// Write the table `<dir>/<stem>.<ext>` from its CSV bytes, in `format`; the file of the
 /// other format, left by an earlier invocation, is removed so that the directory holds one
 /// version of each table.
-pub fn write_table(dir: &Path, stem: &str, csv: &[u8], labels: &[String], format: Format) -> Result<(), Error> {
+pub fn write_table(
+    dir: &Path,
+    stem: &str,
+    csv: &[u8],
+    labels: &[String],
+    format: Format,
+) -> Result<(), Error> {
     let path = dir.join(format!("{stem}.{}", format.ext()));
     let bytes = match format {
         Format::Csv => csv.to_vec(),
         Format::Parquet => {
-            let table = from_csv(csv, &|c| kind(labels, c)).map_err(|e| Error::Other(format!("{stem}: {e}")))?;
+            let table = from_csv(csv, &|c| kind(labels, c))
+                .map_err(|e| Error::Other(format!("{stem}: {e}")))?;
             parquet_bytes(&table).map_err(|e| Error::Other(format!("{stem}: {e}")))?
         }
     };

@@ -31,7 +31,12 @@ impl Lines {
         Lines::new(label, total, 5.0, Box::new(|l| eprintln!("{l}")))
     }
 
-    pub fn new(label: &str, total: usize, step_pct: f64, sink: Box<dyn Fn(&str) + Send + Sync>) -> Lines {
+    pub fn new(
+        label: &str,
+        total: usize,
+        step_pct: f64,
+        sink: Box<dyn Fn(&str) + Send + Sync>,
+    ) -> Lines {
         Lines {
             label: label.to_string(),
             total,
@@ -119,22 +124,38 @@ mod tests {
     fn a_line_every_step_and_at_the_end() {
         let got = Arc::new(Mutex::new(Vec::<String>::new()));
         let g = got.clone();
-        let lines = Lines::new("s", 40, 10.0, Box::new(move |l| g.lock().unwrap().push(l.to_string())));
+        let lines = Lines::new(
+            "s",
+            40,
+            10.0,
+            Box::new(move |l| g.lock().unwrap().push(l.to_string())),
+        );
         for _ in 0..40 {
             lines.advance(1, true);
         }
         let got = got.lock().unwrap();
         // At 0 % is never printed; 10 %, 20 %, ..., 100 %: one line per 4 runs.
         assert_eq!(got.len(), 10, "{got:?}");
-        assert!(got[0].starts_with("s: 4/40 runs (10 %), 4 computed"), "{}", got[0]);
-        assert!(got[9].starts_with("s: 40/40 runs (100 %)") && got[9].contains("done"), "{}", got[9]);
+        assert!(
+            got[0].starts_with("s: 4/40 runs (10 %), 4 computed"),
+            "{}",
+            got[0]
+        );
+        assert!(
+            got[9].starts_with("s: 40/40 runs (100 %)") && got[9].contains("done"),
+            "{}",
+            got[9]
+        );
     }
 
     #[test]
     fn rate_and_time_left() {
         let lines = Lines::new("x", 100, 5.0, Box::new(|_| {}));
         let l = lines.line(25, 20, 600.0);
-        assert_eq!(l, "x: 25/100 runs (25 %), 20 computed, 2.0 runs/min, about 38 min left, 10 min elapsed");
+        assert_eq!(
+            l,
+            "x: 25/100 runs (25 %), 20 computed, 2.0 runs/min, about 38 min left, 10 min elapsed"
+        );
         assert_eq!(duration(4.0 * 3600.0 + 300.0), "4 h 05 min");
     }
 }

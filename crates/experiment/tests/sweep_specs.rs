@@ -11,13 +11,18 @@ use std::path::{Path, PathBuf};
 use toml::Value;
 
 fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("platoonsim-sweep-specs-{}-{name}", std::process::id()));
+    let d = std::env::temp_dir().join(format!(
+        "platoonsim-sweep-specs-{}-{name}",
+        std::process::id()
+    ));
     let _ = std::fs::remove_dir_all(&d);
     d
 }
 
 fn shipped(file: &str) -> Spec {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../sweeps").join(file);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../sweeps")
+        .join(file);
     let mut spec = Spec::from_file(&path).unwrap();
     spec.seeds = vec![1, 2];
     for (k, v) in &mut spec.set {
@@ -79,7 +84,10 @@ fn same_runs(name: ExperimentName, file: &str, derived: &[(&str, &str)]) {
             (!t.is_empty()).then(|| t.parse().unwrap())
         };
         for (m, v) in &o.fields.0 {
-            let theirs = derived.iter().find(|(e, _)| e == m).map_or(m.as_str(), |(_, s)| s);
+            let theirs = derived
+                .iter()
+                .find(|(e, _)| e == m)
+                .map_or(m.as_str(), |(_, s)| s);
             match value(theirs) {
                 Some(x) => assert_eq!(x, *v, "{labels:?} seed {} {m}", o.seed),
                 None => assert!(v.is_nan(), "{labels:?} seed {} {m}: {v} vs empty", o.seed),

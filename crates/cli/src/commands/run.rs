@@ -34,7 +34,10 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
         );
     }
     let paragraph = output::paragraph(&config, &out.summary, &args.out);
-    outln!("{}", paragraph.replace("detectors.csv", &format!("detectors.{}", args.format.ext())))?;
+    outln!(
+        "{}",
+        paragraph.replace("detectors.csv", &format!("detectors.{}", args.format.ext()))
+    )?;
     let ext = args.format.ext();
     let mut extra = Vec::new();
     if let Some(trips) = &out.trips {

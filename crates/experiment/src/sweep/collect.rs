@@ -53,7 +53,9 @@ pub fn add_differences(spec: &Spec, outcomes: &mut [Outcome]) -> Vec<String> {
         outs.iter().position(|o| o.cell == cell && o.seed == seed)
     };
     for i in 0..outcomes.len() {
-        let Some(rc) = refs[outcomes[i].cell] else { continue };
+        let Some(rc) = refs[outcomes[i].cell] else {
+            continue;
+        };
         let r = find(outcomes, rc, outcomes[i].seed);
         for m in &metrics {
             let x = outcomes[i].fields.get(m);
@@ -61,7 +63,11 @@ pub fn add_differences(spec: &Spec, outcomes: &mut [Outcome]) -> Vec<String> {
             let (d, p) = match (x, b) {
                 (Some(x), Some(b)) => (
                     x - b,
-                    if b != 0.0 { 100.0 * (x - b) / b } else { f64::NAN },
+                    if b != 0.0 {
+                        100.0 * (x - b) / b
+                    } else {
+                        f64::NAN
+                    },
                 ),
                 _ => (f64::NAN, f64::NAN),
             };
@@ -84,7 +90,12 @@ pub struct Row {
 }
 
 /// Statistics per cell and metric (cells in order, metrics in `runs.csv` order).
-pub fn summarize(spec: &Spec, cells: &[Cell], outcomes: &[Outcome], metrics: &[String]) -> Vec<Row> {
+pub fn summarize(
+    spec: &Spec,
+    cells: &[Cell],
+    outcomes: &[Outcome],
+    metrics: &[String],
+) -> Vec<Row> {
     let refs = references(spec);
     let mut rows = Vec::new();
     for c in 0..cells.len() {
@@ -121,16 +132,34 @@ pub fn reference_text(spec: &Spec) -> Option<String> {
 pub fn summary_csv(spec: &Spec, cells: &[Cell], rows: &[Row]) -> Result<Vec<u8>, Error> {
     let labels = label_columns(cells);
     let reference = reference_text(spec);
-    let mut w = csv::WriterBuilder::new().has_headers(false).from_writer(Vec::new());
+    let mut w = csv::WriterBuilder::new()
+        .has_headers(false)
+        .from_writer(Vec::new());
     let mut header = labels.clone();
     header.extend(
-        ["metric", "mean", "sd", "n", "ci_low", "ci_high", "runs_with_collisions"].map(String::from),
+        [
+            "metric",
+            "mean",
+            "sd",
+            "n",
+            "ci_low",
+            "ci_high",
+            "runs_with_collisions",
+        ]
+        .map(String::from),
     );
     if reference.is_some() {
         header.extend(
             [
-                "reference", "diff_mean", "diff_sd", "diff_n", "diff_ci_low", "diff_ci_high",
-                "pct_mean", "pct_ci_low", "pct_ci_high",
+                "reference",
+                "diff_mean",
+                "diff_sd",
+                "diff_n",
+                "diff_ci_low",
+                "diff_ci_high",
+                "pct_mean",
+                "pct_ci_low",
+                "pct_ci_high",
             ]
             .map(String::from),
         );
@@ -143,7 +172,13 @@ pub fn summary_csv(spec: &Spec, cells: &[Cell], rows: &[Row]) -> Result<Vec<u8>,
             .collect();
         let s = &r.stats;
         row.push(r.metric.clone());
-        row.extend([csv_num(s.mean), csv_num(s.sd), s.n.to_string(), csv_num(s.ci_low), csv_num(s.ci_high)]);
+        row.extend([
+            csv_num(s.mean),
+            csv_num(s.sd),
+            s.n.to_string(),
+            csv_num(s.ci_low),
+            csv_num(s.ci_high),
+        ]);
         row.push(r.collided.to_string());
         if let Some(reference) = &reference {
             match (&r.diff, &r.pct) {

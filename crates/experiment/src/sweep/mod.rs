@@ -125,7 +125,14 @@ pub fn run_with(spec: &Spec, opts: &Options, exec: Executor<'_>) -> Result<Done,
             let first: Vec<String> = missing
                 .iter()
                 .take(5)
-                .map(|s| format!("{} ({}, seed {})", s.key(), crate::safety::cell_name(&cells[s.cell].labels), s.seed))
+                .map(|s| {
+                    format!(
+                        "{} ({}, seed {})",
+                        s.key(),
+                        crate::safety::cell_name(&cells[s.cell].labels),
+                        s.seed
+                    )
+                })
                 .collect();
             return Err(Error::Other(format!(
                 "--collect: {} of {total} runs have no valid run file in {} (run the missing \
@@ -168,10 +175,16 @@ pub fn run_with(spec: &Spec, opts: &Options, exec: Executor<'_>) -> Result<Done,
         if !done.figures.is_empty() {
             md.push_str("## Figures\n\n");
             for f in &done.figures {
-                md.push_str(&format!("![{}]({}.png)\n\n*{}* ([SVG]({}.svg))\n\n", f.title, f.stem, f.title, f.stem));
+                md.push_str(&format!(
+                    "![{}]({}.png)\n\n*{}* ([SVG]({}.svg))\n\n",
+                    f.title, f.stem, f.title, f.stem
+                ));
             }
         }
-        done.collided = outcomes.iter().filter(|o| crate::safety::collided(o)).count();
+        done.collided = outcomes
+            .iter()
+            .filter(|o| crate::safety::collided(o))
+            .count();
         done.tables = true;
         done.wall_seconds = start.elapsed().as_secs_f64();
         md.push_str(&format!(
@@ -184,7 +197,10 @@ pub fn run_with(spec: &Spec, opts: &Options, exec: Executor<'_>) -> Result<Done,
             done.wall_seconds
         ));
         write("summary.md", md.as_bytes())?;
-        write("run.json", &provenance(spec, opts, &cells, &outcomes, &done)?)?;
+        write(
+            "run.json",
+            &provenance(spec, opts, &cells, &outcomes, &done)?,
+        )?;
     }
     done.wall_seconds = start.elapsed().as_secs_f64();
     Ok(done)
@@ -214,7 +230,13 @@ struct Provenance<'a> {
     cells: Vec<CellProvenance<'a>>,
 }
 
-fn provenance(spec: &Spec, opts: &Options, cells: &[Cell], outcomes: &[Outcome], done: &Done) -> Result<Vec<u8>, Error> {
+fn provenance(
+    spec: &Spec,
+    opts: &Options,
+    cells: &[Cell],
+    outcomes: &[Outcome],
+    done: &Done,
+) -> Result<Vec<u8>, Error> {
     let p = Provenance {
         sweep: &spec.name,
         version: VERSION,
@@ -235,12 +257,17 @@ fn provenance(spec: &Spec, opts: &Options, cells: &[Cell], outcomes: &[Outcome],
             .enumerate()
             .map(|(i, c)| CellProvenance {
                 labels: &c.labels,
-                keys: outcomes.iter().filter(|o| o.cell == i).map(|o| o.key.as_str()).collect(),
+                keys: outcomes
+                    .iter()
+                    .filter(|o| o.cell == i)
+                    .map(|o| o.key.as_str())
+                    .collect(),
                 scenario: &c.config,
             })
             .collect(),
     };
-    let mut bytes = serde_json::to_vec_pretty(&p).map_err(|e| Error::Other(format!("cannot encode run.json: {e}")))?;
+    let mut bytes = serde_json::to_vec_pretty(&p)
+        .map_err(|e| Error::Other(format!("cannot encode run.json: {e}")))?;
     bytes.push(b'\n');
     Ok(bytes)
 }

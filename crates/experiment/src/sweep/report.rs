@@ -50,7 +50,13 @@ fn row<'a>(rows: &'a [Row], cell: usize, metric: &str) -> Option<&'a Row> {
 }
 
 /// The body of `summary.md`.
-pub fn markdown(spec: &Spec, cells: &[Cell], outcomes: &[Outcome], rows: &[Row], shown: &[String]) -> String {
+pub fn markdown(
+    spec: &Spec,
+    cells: &[Cell],
+    outcomes: &[Outcome],
+    rows: &[Row],
+    shown: &[String],
+) -> String {
     let mut md = format!("# Sweep {}\n\n", spec.name);
     md.push_str(&format!(
         "Scenario `{}`; {} cells x {} seeds = {} runs. Axes: {}. Mean ± half-width of the 95 % \
@@ -64,7 +70,13 @@ pub fn markdown(spec: &Spec, cells: &[Cell], outcomes: &[Outcome], rows: &[Row],
         } else {
             spec.axes
                 .iter()
-                .map(|a| format!("`{}` = {}", a.key, a.levels.iter().map(label).collect::<Vec<_>>().join(", ")))
+                .map(|a| {
+                    format!(
+                        "`{}` = {}",
+                        a.key,
+                        a.levels.iter().map(label).collect::<Vec<_>>().join(", ")
+                    )
+                })
                 .collect::<Vec<_>>()
                 .join("; ")
         }
@@ -92,8 +104,14 @@ pub fn markdown(spec: &Spec, cells: &[Cell], outcomes: &[Outcome], rows: &[Row],
             tr.push(r.map_or("0".into(), |r| r.stats.n.to_string()));
             tr.push(r.map_or("–".into(), |r| pm(&r.stats, dec)));
             if spec.compare.is_some() {
-                tr.push(r.and_then(|r| r.diff.as_ref()).map_or("–".into(), |d| pm(d, dec)));
-                tr.push(r.and_then(|r| r.pct.as_ref()).map_or("–".into(), |d| pm(d, 2)));
+                tr.push(
+                    r.and_then(|r| r.diff.as_ref())
+                        .map_or("–".into(), |d| pm(d, dec)),
+                );
+                tr.push(
+                    r.and_then(|r| r.pct.as_ref())
+                        .map_or("–".into(), |d| pm(d, 2)),
+                );
             }
             trs.push(tr);
         }
@@ -108,7 +126,13 @@ fn plot_error(e: platoonsim_plot::PlotError) -> Error {
 }
 
 /// One figure per shown metric (none without axes); returns them.
-pub fn figures(dir: &Path, spec: &Spec, cells: &[Cell], rows: &[Row], shown: &[String]) -> Result<Vec<Figure>, Error> {
+pub fn figures(
+    dir: &Path,
+    spec: &Spec,
+    cells: &[Cell],
+    rows: &[Row],
+    shown: &[String],
+) -> Result<Vec<Figure>, Error> {
     let Some(first) = spec.axes.first() else {
         return Ok(Vec::new());
     };
@@ -134,7 +158,9 @@ pub fn figures(dir: &Path, spec: &Spec, cells: &[Cell], rows: &[Row], shown: &[S
                     .map(|g| {
                         let st: Vec<_> = (0..n_first).map(|l| get(l, g)).collect();
                         let f = |pick: fn(&crate::Stats) -> f64| -> Vec<f64> {
-                            st.iter().map(|s| s.as_ref().map_or(f64::NAN, pick)).collect()
+                            st.iter()
+                                .map(|s| s.as_ref().map_or(f64::NAN, pick))
+                                .collect()
                         };
                         Series {
                             name: group_name(g),
@@ -165,7 +191,11 @@ pub fn figures(dir: &Path, spec: &Spec, cells: &[Cell], rows: &[Row], shown: &[S
                             (
                                 group_name(g),
                                 st.iter().map(|s| s.map_or(f64::NAN, |s| s.mean)).collect(),
-                                Some(st.iter().map(|s| s.map_or(f64::NAN, |s| s.half_width())).collect()),
+                                Some(
+                                    st.iter()
+                                        .map(|s| s.map_or(f64::NAN, |s| s.half_width()))
+                                        .collect(),
+                                ),
                             )
                         })
                         .collect(),

@@ -76,7 +76,12 @@ impl Shard {
         };
         if let Some(id) = int("SLURM_ARRAY_TASK_ID")? {
             let min = int("SLURM_ARRAY_TASK_MIN")?;
-            let n = match (count, int("SLURM_ARRAY_TASK_COUNT")?, min, int("SLURM_ARRAY_TASK_MAX")?) {
+            let n = match (
+                count,
+                int("SLURM_ARRAY_TASK_COUNT")?,
+                min,
+                int("SLURM_ARRAY_TASK_MAX")?,
+            ) {
                 (Some(n), ..) => n as i64,
                 (None, Some(c), ..) => c,
                 (None, None, Some(lo), Some(hi)) => hi - lo + 1,
@@ -114,7 +119,11 @@ mod tests {
     use super::*;
 
     fn env<'a>(vars: &'a [(&'a str, &'a str)]) -> impl Fn(&str) -> Option<String> + 'a {
-        move |k| vars.iter().find(|(n, _)| *n == k).map(|(_, v)| v.to_string())
+        move |k| {
+            vars.iter()
+                .find(|(n, _)| *n == k)
+                .map(|(_, v)| v.to_string())
+        }
     }
 
     #[test]
@@ -134,19 +143,44 @@ mod tests {
         let s = |vars: &[(&str, &str)], n| Shard::from_env(&env(vars), n);
         assert_eq!(s(&[], None), Ok(None));
         assert_eq!(
-            s(&[("SLURM_ARRAY_TASK_ID", "0"), ("SLURM_ARRAY_TASK_MIN", "0"), ("SLURM_ARRAY_TASK_MAX", "3")], None),
+            s(
+                &[
+                    ("SLURM_ARRAY_TASK_ID", "0"),
+                    ("SLURM_ARRAY_TASK_MIN", "0"),
+                    ("SLURM_ARRAY_TASK_MAX", "3")
+                ],
+                None
+            ),
             Ok(Shard::new(1, 4))
         );
         assert_eq!(
-            s(&[("SLURM_ARRAY_TASK_ID", "3"), ("SLURM_ARRAY_TASK_COUNT", "3"), ("SLURM_ARRAY_TASK_MIN", "1")], None),
+            s(
+                &[
+                    ("SLURM_ARRAY_TASK_ID", "3"),
+                    ("SLURM_ARRAY_TASK_COUNT", "3"),
+                    ("SLURM_ARRAY_TASK_MIN", "1")
+                ],
+                None
+            ),
             Ok(Shard::new(3, 3))
         );
-        assert_eq!(s(&[("JOB_COMPLETION_INDEX", "0")], Some(5)), Ok(Shard::new(1, 5)));
+        assert_eq!(
+            s(&[("JOB_COMPLETION_INDEX", "0")], Some(5)),
+            Ok(Shard::new(1, 5))
+        );
         assert_eq!(s(&[("HQ_TASK_ID", "3")], Some(4)), Ok(Shard::new(4, 4)));
         assert_eq!(s(&[("HQ_TASK_ID", "0")], Some(4)), Ok(Shard::new(1, 4)));
-        assert!(s(&[("HQ_TASK_ID", "4")], None).unwrap_err().contains("--shards"));
-        assert!(s(&[("HQ_TASK_ID", "4")], Some(4)).unwrap_err().contains("HQ_TASK_ID=4"));
-        assert!(s(&[("SLURM_ARRAY_TASK_ID", "x")], None).unwrap_err().contains("SLURM_ARRAY_TASK_ID"));
-        assert!(s(&[("JOB_COMPLETION_INDEX", "2")], None).unwrap_err().contains("JOB_COMPLETION_INDEX"));
+        assert!(s(&[("HQ_TASK_ID", "4")], None)
+            .unwrap_err()
+            .contains("--shards"));
+        assert!(s(&[("HQ_TASK_ID", "4")], Some(4))
+            .unwrap_err()
+            .contains("HQ_TASK_ID=4"));
+        assert!(s(&[("SLURM_ARRAY_TASK_ID", "x")], None)
+            .unwrap_err()
+            .contains("SLURM_ARRAY_TASK_ID"));
+        assert!(s(&[("JOB_COMPLETION_INDEX", "2")], None)
+            .unwrap_err()
+            .contains("JOB_COMPLETION_INDEX"));
     }
 }

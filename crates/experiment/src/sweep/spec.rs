@@ -83,14 +83,16 @@ impl Spec {
                 meta.len()
             )));
         }
-        let text = std::fs::read_to_string(path).map_err(|e| err(format!("cannot read it: {e}")))?;
+        let text =
+            std::fs::read_to_string(path).map_err(|e| err(format!("cannot read it: {e}")))?;
         let stem = path
             .file_stem()
             .map_or_else(|| "sweep".to_string(), |s| s.to_string_lossy().into_owned());
         let mut spec = Spec::from_toml(&text, &origin, &stem)?;
         // A scenario path is relative to the sweep file, so a spec and its corridor travel
         // together.
-        if looks_like_path(&spec.scenario) || platoonsim_scenario::builtin(&spec.scenario).is_none() {
+        if looks_like_path(&spec.scenario) || platoonsim_scenario::builtin(&spec.scenario).is_none()
+        {
             let p = PathBuf::from(&spec.scenario);
             if p.is_relative() {
                 let dir = path.parent().unwrap_or(Path::new(""));
@@ -111,7 +113,14 @@ impl Spec {
             .parse()
             .map_err(|e: toml::de::Error| err("(syntax)", e.to_string().trim_end().to_string()))?;
         const KEYS: [&str; 8] = [
-            "name", "description", "scenario", "seeds", "metrics", "set", "axes", "compare",
+            "name",
+            "description",
+            "scenario",
+            "seeds",
+            "metrics",
+            "set",
+            "axes",
+            "compare",
         ];
         for k in doc.keys() {
             if !KEYS.contains(&k.as_str()) {
@@ -193,10 +202,7 @@ impl Spec {
                     let levels = match v {
                         Value::Array(a) if !a.is_empty() => a.clone(),
                         _ => {
-                            return Err(err(
-                                &key,
-                                format!("{v} is not a non-empty list of levels"),
-                            ))
+                            return Err(err(&key, format!("{v} is not a non-empty list of levels")))
                         }
                     };
                     for (i, l) in levels.iter().enumerate() {
@@ -219,7 +225,9 @@ impl Spec {
             }
             Some(v) => return Err(err("axes", format!("{v} is not a table of KEY = [LEVELS]"))),
         };
-        let cells = axes.iter().try_fold(1usize, |n, a| n.checked_mul(a.levels.len()));
+        let cells = axes
+            .iter()
+            .try_fold(1usize, |n, a| n.checked_mul(a.levels.len()));
         match cells.and_then(|c| c.checked_mul(seeds.len())) {
             Some(runs) if runs <= MAX_RUNS => {}
             _ => {
@@ -239,7 +247,10 @@ impl Spec {
                         &key,
                         format!(
                             "is not an axis; the axes are {}",
-                            axes.iter().map(|a| a.key.as_str()).collect::<Vec<_>>().join(", ")
+                            axes.iter()
+                                .map(|a| a.key.as_str())
+                                .collect::<Vec<_>>()
+                                .join(", ")
                         ),
                     ));
                 };
@@ -248,7 +259,12 @@ impl Spec {
                         &key,
                         format!(
                             "{v} is not one of the axis' levels ({})",
-                            axes[a].levels.iter().map(label).collect::<Vec<_>>().join(", ")
+                            axes[a]
+                                .levels
+                                .iter()
+                                .map(label)
+                                .collect::<Vec<_>>()
+                                .join(", ")
                         ),
                     ));
                 };
@@ -408,7 +424,10 @@ mod tests {
         assert_eq!(s.cell_count(), 6);
         assert_eq!(s.compare, Some((1, 0)));
         assert_eq!(label(&s.axes[0].levels[1]), "0.4");
-        assert_eq!(set_arg("strategy.kind", &s.axes[1].levels[2]), "strategy.kind=\"flow-aware\"");
+        assert_eq!(
+            set_arg("strategy.kind", &s.axes[1].levels[2]),
+            "strategy.kind=\"flow-aware\""
+        );
     }
 
     #[test]
@@ -418,10 +437,22 @@ mod tests {
             ("scenario = \"x\"\nseeds = 0", "seeds"),
             ("scenario = \"x\"\nseeds = [1, 1]", "seeds"),
             ("scenario = \"x\"\nseeds = 1\nbogus = 2", "bogus"),
-            ("scenario = \"x\"\nseeds = 1\n[axes]\n\"run.penetration\" = []", "axes.\"run.penetration\""),
-            ("scenario = \"x\"\nseeds = 1\n[axes]\n\"a b\" = [1]", "axes.\"a b\""),
-            ("scenario = \"x\"\nseeds = 1\n[set]\n\"run.seed\" = 1", "set.\"run.seed\""),
-            ("scenario = \"x\"\nseeds = 1\n[axes]\n\"a\" = [1, 1.0]", "axes.\"a\""),
+            (
+                "scenario = \"x\"\nseeds = 1\n[axes]\n\"run.penetration\" = []",
+                "axes.\"run.penetration\"",
+            ),
+            (
+                "scenario = \"x\"\nseeds = 1\n[axes]\n\"a b\" = [1]",
+                "axes.\"a b\"",
+            ),
+            (
+                "scenario = \"x\"\nseeds = 1\n[set]\n\"run.seed\" = 1",
+                "set.\"run.seed\"",
+            ),
+            (
+                "scenario = \"x\"\nseeds = 1\n[axes]\n\"a\" = [1, 1.0]",
+                "axes.\"a\"",
+            ),
             (
                 "scenario = \"x\"\nseeds = 1\n[axes]\n\"a\" = [1]\n[compare]\n\"b\" = 1",
                 "compare.\"b\"",
