@@ -15,7 +15,8 @@ use std::path::PathBuf;
 #[command(
     after_help = "Run `platoonsim <COMMAND> --help` for a command's flags.\n\nExit codes: 0 \
                   success; 1 error; 2 invalid arguments; 3 `run` had collisions (unless \
-                  --allow-collisions) or a `sweep` had runs with collisions; 141 standard output was closed (e.g. `| head`)."
+                  --allow-collisions) or a `sweep` had runs with collisions; 141 standard \
+                  output was closed (e.g. `| head`)."
 )]
 pub struct Cli {
     /// Hide progress bars (they are also hidden when stderr is not a terminal).

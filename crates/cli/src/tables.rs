@@ -110,7 +110,9 @@ fn trajectories_table(rows: &[TrajectoryPoint]) -> Table {
 pub fn write_trajectories_parquet(path: &Path, rows: &[TrajectoryPoint]) -> Result<()> {
     write_atomic_file(path, |f| {
         let mut w = Writer::new(f, &trajectories_table(&[])).map_err(std::io::Error::other)?;
-        for chunk in rows.chunks(ROW_GROUP_ROWS) {
+        // Small batches keep the per-row text of the batch being built small; the writer
+        // still makes row groups of ROW_GROUP_ROWS.
+        for chunk in rows.chunks(ROW_GROUP_ROWS / 8) {
             w.write(&trajectories_table(chunk))
                 .map_err(std::io::Error::other)?;
         }

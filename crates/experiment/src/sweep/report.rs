@@ -58,6 +58,9 @@ pub fn markdown(
     shown: &[String],
 ) -> String {
     let mut md = format!("# Sweep {}\n\n", spec.name);
+    if let Some(d) = &spec.description {
+        md.push_str(&format!("{d}\n\n"));
+    }
     md.push_str(&format!(
         "Scenario `{}`; {} cells x {} seeds = {} runs. Axes: {}. Mean ± half-width of the 95 % \
          confidence interval (Student t) over the seeds.",

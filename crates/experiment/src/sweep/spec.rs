@@ -33,7 +33,7 @@ pub struct SpecError {
 
 /// How many runs one sweep may ask for: far beyond any study, well short of exhausting
 /// memory with run specs.
-pub const MAX_RUNS: usize = 1_000_000;
+pub const MAX_RUNS: usize = 100_000;
 
 /// The largest sweep file read (as for scenario files).
 pub const MAX_FILE_BYTES: u64 = 1 << 20;
@@ -52,6 +52,8 @@ pub struct Spec {
     pub name: String,
     /// Where the spec came from (for messages).
     pub origin: String,
+    /// The file's `description`, if any (shown in `summary.md`).
+    pub description: Option<String>,
     /// A built-in scenario name or a file path (resolved against the spec's directory).
     pub scenario: String,
     pub seeds: Vec<u64>,
@@ -143,11 +145,11 @@ impl Spec {
                 ))
             }
         };
-        if let Some(v) = doc.get("description") {
-            if !v.is_str() {
-                return Err(err("description", format!("{v} is not a string")));
-            }
-        }
+        let description = match doc.get("description") {
+            None => None,
+            Some(Value::String(d)) => Some(d.clone()),
+            Some(v) => return Err(err("description", format!("{v} is not a string"))),
+        };
         let scenario = match doc.get("scenario") {
             Some(Value::String(s)) if !s.trim().is_empty() => s.clone(),
             Some(v) => {
@@ -293,6 +295,7 @@ impl Spec {
         Ok(Spec {
             name,
             origin: origin.to_string(),
+            description,
             scenario,
             seeds,
             set,
