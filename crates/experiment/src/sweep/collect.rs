@@ -98,13 +98,13 @@ pub fn summarize(
 ) -> Vec<Row> {
     let refs = references(spec);
     let mut rows = Vec::new();
-    for c in 0..cells.len() {
+    for (c, reference) in refs.iter().enumerate().take(cells.len()) {
         for m in metrics {
             let v = values(outcomes, c, m);
             if v.is_empty() {
                 continue;
             }
-            let compared = refs[c].is_some();
+            let compared = reference.is_some();
             rows.push(Row {
                 cell: c,
                 metric: m.clone(),

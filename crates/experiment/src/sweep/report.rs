@@ -95,7 +95,7 @@ pub fn markdown(
     for m in shown {
         md.push_str(&format!("## {}\n\n", metric_label(m)));
         let mut header: Vec<String> = spec.axes.iter().map(|a| a.key.clone()).collect();
-        header.extend(["n".to_string(), format!("{m}")]);
+        header.extend(["n".to_string(), m.to_string()]);
         if spec.compare.is_some() {
             header.extend(["Δ".to_string(), "Δ (%)".to_string()]);
         }
