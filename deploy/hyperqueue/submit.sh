@@ -10,7 +10,7 @@ OUT=${2:?usage: submit.sh SPEC.toml OUT_DIR N [CPUS_PER_TASK]}
 N=${3:?usage: submit.sh SPEC.toml OUT_DIR N [CPUS_PER_TASK]}
 CPUS=${4:-1}
 mkdir -p "$OUT"
-job=$(hq submit --output-mode quiet --array 0-$((N - 1)) --cpus "$CPUS" \
+job=$(hq --output-mode quiet submit --array 0-$((N - 1)) --cpus "$CPUS" \
     --stdout "$OUT/hq-%{TASK_ID}.log" --stderr "$OUT/hq-%{TASK_ID}.log" \
     -- platoonsim sweep "$SPEC" --out "$OUT" --shards "$N" --jobs "$CPUS")
 echo "HyperQueue job $job: $N shards"
