@@ -1,8 +1,8 @@
 //! Progress as log lines, for work running without a terminal (a Slurm or Kubernetes log,
-//! `nohup`): one line on stderr each time another `step_pct` percent of the runs is done,
-//! with the runs done, the rate of computed runs and an estimate of the time left. The
-//! terminal keeps its progress bar ([`crate::runner::bar`]); the caller chooses one or the
-//! other.
+//! `nohup`): one line on stderr after the first run and each time another `step_pct` percent
+//! of the runs is done, with the runs done, the rate of computed runs and an estimate of the
+//! time left. The terminal keeps its progress bar ([`crate::runner::bar`]); the caller chooses
+//! one or the other.
 
 use std::sync::Mutex;
 use std::time::Instant;
@@ -134,18 +134,21 @@ mod tests {
             lines.advance(1, true);
         }
         let got = got.lock().unwrap();
-        // At 0 % is never printed; 10 %, 20 %, ..., 100 %: one line per 4 runs.
-        assert_eq!(got.len(), 10, "{got:?}");
+        // The first run (so that a log shows the rate early), then 10 %, 20 %, ..., 100 %:
+        // one line per 4 runs.
+        assert_eq!(got.len(), 11, "{got:?}");
         assert!(
-            got[0].starts_with("s: 4/40 runs (10 %), 4 computed"),
+            got[0].starts_with("s: 1/40 runs (2 %), 1 computed"),
             "{}",
             got[0]
         );
         assert!(
-            got[9].starts_with("s: 40/40 runs (100 %)") && got[9].contains("done"),
+            got[1].starts_with("s: 4/40 runs (10 %), 4 computed"),
             "{}",
-            got[9]
+            got[1]
         );
+        assert!(got[10].starts_with("s: 40/40 runs (100 %)"), "{}", got[10]);
+        assert!(got[10].contains("done"), "{}", got[10]);
     }
 
     #[test]
