@@ -147,24 +147,25 @@ impl ScenarioArgs {
     }
 }
 
-/// Platoon organization strategy.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum StrategyArg {
-    /// No organization (the baseline).
-    None,
-    /// Pseudo-dedicated lane: in its zone and time window, CAVs move toward the leftmost lane.
-    Pd,
-    /// PD lane only while nearby detectors report flow below and speed above the thresholds.
-    FlowAware,
+/// The strategy names of the engine's table ([`platoonsim_sim::STRATEGIES`]), with their
+/// descriptions for `--help`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StrategyArg(pub StrategyKind);
+
+impl ValueEnum for StrategyArg {
+    fn value_variants<'a>() -> &'a [Self] {
+        static ALL: std::sync::OnceLock<Vec<StrategyArg>> = std::sync::OnceLock::new();
+        ALL.get_or_init(|| StrategyKind::all().map(StrategyArg).collect())
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        Some(clap::builder::PossibleValue::new(self.0.as_str()).help(self.0.entry().about))
+    }
 }
 
 impl From<StrategyArg> for StrategyKind {
     fn from(s: StrategyArg) -> Self {
-        match s {
-            StrategyArg::None => StrategyKind::None,
-            StrategyArg::Pd => StrategyKind::Pd,
-            StrategyArg::FlowAware => StrategyKind::FlowAware,
-        }
+        s.0
     }
 }
 
@@ -591,7 +592,7 @@ mod tests {
         assert_eq!(o.duration_s, Some(600.0));
         assert_eq!(o.warmup_s, Some(120.0));
         assert_eq!(o.seed, Some(7));
-        assert_eq!(o.strategy, Some(StrategyKind::FlowAware));
+        assert_eq!(o.strategy, Some(StrategyKind::FLOW_AWARE));
         assert_eq!(
             o.set,
             vec![

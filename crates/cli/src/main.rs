@@ -5,6 +5,9 @@
 //! Exit codes: 0 success; 1 an error (printed as `error: …`); 2 a usage error (from clap);
 //! [`EXIT_COLLISIONS`] a `run` whose simulation had collisions (unless `--allow-collisions`);
 //! [`EXIT_BROKEN_PIPE`] standard output was closed by its reader (`| head`), quietly.
+// The doc comments of the clap structs are the command-line help, written for the terminal:
+// `<N>`, `[[0.6,1.0]]` and the like are meant literally there, not as HTML or links.
+#![allow(rustdoc::invalid_html_tags, rustdoc::broken_intra_doc_links)]
 
 // First, so that its `outln!` is in scope in the modules below.
 #[macro_use]

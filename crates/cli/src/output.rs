@@ -270,20 +270,22 @@ pub fn describe_collision(e: &CollisionEvent) -> String {
 }
 
 /// The header of `trajectories.csv`.
-pub const TRAJECTORY_HEADER: &str = "t_s,id,kind,lane,x_m,v_mps,a_mps2,mode";
+pub const TRAJECTORY_HEADER: &str = "t_s,id,kind,lane,x_m,v_mps,a_mps2,mode,platoon_pos,regime";
 
 /// `trajectories.csv`, written row by row (it can be large): the header, then one row per
 /// sample. `lane` counts lateral positions from the right starting at 1 (one more than the
 /// engine's index: on the homogeneous road the lane numbers of detectors.csv; on a network
 /// position 1 is that of the acceleration lanes); `mode` is
-/// [`platoonsim_sim::vehicle::ModeLabel::as_str`]. Every field is a number or a fixed word,
+/// [`platoonsim_sim::vehicle::ModeLabel::as_str`]; `platoon_pos` the position in the CACC
+/// string (1: leads one or drives alone); `regime` an automated CAV's control regime
+/// ([`platoonsim_model::cav::CavMode::as_str`]), empty otherwise. Every field is a number or a fixed word,
 /// so no quoting is needed.
 pub fn write_trajectories(w: &mut dyn Write, rows: &[TrajectoryPoint]) -> std::io::Result<()> {
     writeln!(w, "{TRAJECTORY_HEADER}")?;
     for r in rows {
         writeln!(
             w,
-            "{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{}",
             r.t_s,
             r.id,
             r.kind.as_str(),
@@ -291,7 +293,9 @@ pub fn write_trajectories(w: &mut dyn Write, rows: &[TrajectoryPoint]) -> std::i
             r.x_m,
             r.v_mps,
             r.a_mps2,
-            r.mode.as_str()
+            r.mode.as_str(),
+            r.platoon_pos,
+            r.regime.map_or("", |m| m.as_str())
         )?;
     }
     Ok(())
@@ -570,12 +574,14 @@ mod tests {
             v_mps: 0.0,
             a_mps2: -1.25,
             mode: ModeLabel::Blc,
+            regime: None,
+            platoon_pos: 1,
         };
         let mut bytes = Vec::new();
         write_trajectories(&mut bytes, &[point]).unwrap();
         assert_eq!(
             String::from_utf8(bytes).unwrap(),
-            "t_s,id,kind,lane,x_m,v_mps,a_mps2,mode\n30.5,7,human,1,-120.5,0,-1.25,blc\n"
+            "t_s,id,kind,lane,x_m,v_mps,a_mps2,mode,platoon_pos,regime\n30.5,7,human,1,-120.5,0,-1.25,blc,1,\n"
         );
     }
 

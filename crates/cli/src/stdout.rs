@@ -1,9 +1,9 @@
 //! Standard output that reports failure instead of panicking: `println!` panics when the
 //! write fails (a closed pipe, `platoonsim show sr99 | head -1`; a full disk,
-//! `> /dev/full`). Every command prints through [`print`] / [`outln!`], which return the error;
+//! `> /dev/full`). Every command prints through `print` / `outln!`, which return the error;
 //! `main` maps a closed pipe to a quiet exit with [`crate::EXIT_BROKEN_PIPE`] and any other
 //! failure to `error: cannot write to standard output: …`. Messages to stderr go through
-//! [`errln!`], which never panics.
+//! `errln!`, which never panics.
 
 use std::fmt;
 use std::io::Write;

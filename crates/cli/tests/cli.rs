@@ -329,10 +329,10 @@ fn run_reports_a_malformed_file_with_line_and_column() {
 
 #[test]
 fn clap_rejects_an_unknown_strategy() {
-    let o = platoonsim(&["run", "homogeneous", "--strategy", "dedicated"]);
+    let o = platoonsim(&["run", "homogeneous", "--strategy", "platoons"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(
-        stderr(&o).contains("possible values: none, pd, flow-aware"),
+        stderr(&o).contains("possible values: none, pd, flow-aware, dedicated"),
         "{}",
         stderr(&o)
     );

@@ -130,7 +130,7 @@ fn sr99_trips_agree_with_the_summary_and_the_off_ramp_detectors() {
 fn trajectory_rows_lie_in_the_windows_and_move_forward() {
     let out = sr99_with_records("sr99-trajectories");
     let text = std::fs::read_to_string(out.join("trajectories.csv")).unwrap();
-    assert!(text.starts_with("t_s,id,kind,lane,x_m,v_mps,a_mps2,mode\n"));
+    assert!(text.starts_with("t_s,id,kind,lane,x_m,v_mps,a_mps2,mode,platoon_pos,regime\n"));
     let rows = read_csv(&out.join("trajectories.csv"));
     assert!(rows.len() > 1000, "{} rows", rows.len());
     let lanes = {
@@ -167,6 +167,61 @@ fn trajectory_rows_lie_in_the_windows_and_move_forward() {
     }
     // Every sample time of the window has rows.
     assert_eq!(times.len(), 121);
+}
+
+#[test]
+fn trajectory_strings_and_regimes_follow_the_cacc_rules() {
+    let out = sr99_with_records("sr99-strings");
+    let rows = read_csv(&out.join("trajectories.csv"));
+    // Per sample time and lane, the vehicles front first: a string member (position k > 1)
+    // is a CAV directly behind the vehicle at position k - 1, also a CAV.
+    let mut by_lane: std::collections::BTreeMap<(u64, u64), Vec<&_>> = Default::default();
+    for r in &rows {
+        let key = ((num(r, "t_s") * 2.0) as u64, num(r, "lane") as u64);
+        by_lane.entry(key).or_default().push(r);
+    }
+    let (mut members, mut regimes, mut handovers) = (0, 0, 0);
+    for lane in by_lane.values_mut() {
+        lane.sort_by(|a, b| num(b, "x_m").total_cmp(&num(a, "x_m")));
+        for (k, r) in lane.iter().enumerate() {
+            let pos = num(r, "platoon_pos");
+            let auto = r["mode"].ends_with("-auto");
+            // The regime is that of the step just simulated; the mode label says whether the
+            // automation drives from now on: they differ only in the step where a driver's
+            // relaxation ends and the automation takes back over.
+            assert!(
+                auto || r["regime"].is_empty(),
+                "regime only when automated: {r:?}"
+            );
+            if auto && r["regime"].is_empty() {
+                handovers += 1;
+            } else if auto {
+                assert!(
+                    ["speed", "gap", "gap-closing", "collision-avoidance"]
+                        .contains(&r["regime"].as_str()),
+                    "{r:?}"
+                );
+                regimes += 1;
+            }
+            if r["kind"] == "human" {
+                assert_eq!(pos, 1.0, "{r:?}");
+            }
+            // The trajectory window is the first 8 km, so a leader may be outside it.
+            if pos > 1.0 && k > 0 {
+                let ahead = lane[k - 1];
+                assert_eq!(r["kind"], "cav", "{r:?}");
+                assert_eq!(ahead["kind"], "cav", "{ahead:?} ahead of {r:?}");
+                assert_eq!(num(ahead, "platoon_pos"), pos - 1.0, "{ahead:?} / {r:?}");
+                members += 1;
+            }
+        }
+    }
+    assert!(members > 100, "{members} string members");
+    assert!(regimes > 1000, "{regimes} automated samples");
+    assert!(
+        handovers * 100 < regimes,
+        "{handovers} hand-backs in {regimes} samples"
+    );
 }
 
 #[test]

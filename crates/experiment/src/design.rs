@@ -185,7 +185,7 @@ mod tests {
         let p = Point {
             penetration: 0.25,
             demand_vphpl: 1800.0,
-            strategy: StrategyKind::Pd,
+            strategy: StrategyKind::PD,
             duration_s: 600.0,
             warmup_s: 200.0,
             set: vec![],
@@ -193,12 +193,9 @@ mod tests {
         let c = homogeneous(&p).unwrap();
         assert_eq!(c.penetration, 0.25);
         assert_eq!(c.demand.vph_per_lane, 1800.0);
-        match &c.strategy {
-            platoonsim_sim::Strategy::Pd { pd } => {
-                assert_eq!((pd.zone_start_m, pd.zone_end_m), (5000.0, 6000.0));
-                assert_eq!((pd.start_s, pd.end_s), (200.0, 600.0));
-            }
-            other => panic!("{other:?}"),
-        }
+        assert_eq!(c.strategy.kind, StrategyKind::PD);
+        let pd = c.strategy.pd.as_ref().unwrap();
+        assert_eq!((pd.zone_start_m, pd.zone_end_m), (5000.0, 6000.0));
+        assert_eq!((pd.start_s, pd.end_s), (200.0, 600.0));
     }
 }

@@ -72,7 +72,7 @@ fn pd_and_baseline(demand: f64) -> Vec<(Summary, Summary)> {
     let configs: Vec<Config> = SEEDS
         .iter()
         .flat_map(|&seed| {
-            [StrategyKind::None, StrategyKind::Pd].map(|strategy| {
+            [StrategyKind::NONE, StrategyKind::PD].map(|strategy| {
                 load(
                     "homogeneous",
                     Overrides {
@@ -233,10 +233,10 @@ fn flow_aware_gate_is_exactly_pd_when_always_met_and_exactly_baseline_when_never
         "strategy.speed_threshold_kmh=500",
     ];
     let configs = [
-        gate_config(StrategyKind::Pd, &[]),
-        gate_config(StrategyKind::FlowAware, &always),
-        gate_config(StrategyKind::None, &[]),
-        gate_config(StrategyKind::FlowAware, &never),
+        gate_config(StrategyKind::PD, &[]),
+        gate_config(StrategyKind::FLOW_AWARE, &always),
+        gate_config(StrategyKind::NONE, &[]),
+        gate_config(StrategyKind::FLOW_AWARE, &never),
     ];
     let t = Instant::now();
     let o = run_all(&configs);
@@ -347,7 +347,7 @@ fn braking_in_hard_cut_ins_stays_within_the_emergency_limit() {
                             duration_s: Some(1200.0),
                             warmup_s: Some(600.0),
                             seed: Some(1),
-                            strategy: Some(StrategyKind::Pd),
+                            strategy: Some(StrategyKind::PD),
                             set: set.iter().map(|s| s.to_string()).collect(),
                         },
                     );

@@ -24,7 +24,7 @@ fn scratch(name: &str) -> PathBuf {
 fn short_sr99() -> Cell {
     let o = Overrides {
         penetration: Some(0.4),
-        strategy: Some(StrategyKind::Pd),
+        strategy: Some(StrategyKind::PD),
         seed: Some(1),
         set: vec![demand_scale_set(1.1), "run.duration_s=600".into()],
         ..Overrides::default()

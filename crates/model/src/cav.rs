@@ -10,17 +10,17 @@
 //! ACC (3.3):  e = g − t_A v − d0,  d0 = max(s_min, min(75/v − 5, 2))
 //!             spacing > 120 m → speed regulation; < 100 m → gap family; between: previous family
 //!             (spacing = g + leader length, 4 m in `acc`); speed family: a = min(k0 (v_F − v),
-//!             closing law) [D]
+//!             closing law) \[D\]
 //!             regulation  |e| < 0.2 and |Δv| < 0.1 : a = k1 e + k2 Δv    (0.23, 0.07)
 //!             avoidance   e < 0                    : a = k1c e + k2c Δv  (0.8, 0.23)
 //!             closing     otherwise                : a = k1g e + k2g Δv  (0.04, 0.8)
 //! CACC (3.4): e = g − t_C v − s_min,  ė = Δv − t_C a,  v(k+1) = v(k) + kp e + kd ė  (per 0.1 s)
-//!             tg = g/v > 2 s and e > 1.66 m → speed regulation (capped by the closing law [D]);
-//!             tg < 1.5 s, or tg > 2 s with e ≤ 1.66 m [D] → CACC family; between: previous family
+//!             tg = g/v > 2 s and e > 1.66 m → speed regulation (capped by the closing law \[D\]);
+//!             tg < 1.5 s, or tg > 2 s with e ≤ 1.66 m \[D\] → CACC family; between: previous family
 //!             regulation  0 < e < 0.2 and |Δv| < 0.1 : (0.45, 0.0125)
 //!             avoidance   e < 0                      : (0.45, 0.05)
 //!             closing     otherwise                  : (0.005, 0.05)
-//!               [D] 6.21 (default): "otherwise" only while approaching (Δv < 0); with Δv ≥ 0
+//!               \[D\] 6.21 (default): "otherwise" only while approaching (Δv < 0); with Δv ≥ 0
 //!               the regulation gains (the single Milanés law of the PATH code); the cap on
 //!               speed regulation follows the same choice
 //!             a = (v(k+1) − v(k)) / 0.1 applied over Δt
@@ -55,13 +55,13 @@
 //! | – | `sensor_range_m` | 250 | m | spec 3.9 |
 //! | – | `time_gap_shares` | 0.6:0.57, 0.7:0.24, 0.9:0.07, 1.1:0.12 | s : share | Nowakowski, spec 3.5 |
 //! | – | `time_gap_ramp_per_s` | 0.06 | s/s | spec 3.5 transitions (15 s for 0.9 s) [D: on] |
-//! | – | `yield_while_automated` | true | – | spec 6.5 [D]: automation answers mandatory yield requests |
-//! | – | `yield_to_organizers` | false | – | [D]: … and requests of CAVs joining the PD lane |
-//! | – | `organize_while_automated` | true | – | [D]: automation stays on while waiting for a PD-lane gap |
-//! | – | `cacc_closing_only_approaching` | true | – | [D] 6.21: CACC gap closing only while Δv < 0 |
-//! | – | `organize_regardless_of_speed` | true | – | [S] + [D] 6.22: no a_ant ≥ 0 test for a PD-lane move |
+//! | – | `yield_while_automated` | true | – | spec 6.5 \[D\]: automation answers mandatory yield requests |
+//! | – | `yield_to_organizers` | false | – | \[D\]: … and requests of CAVs joining the PD lane |
+//! | – | `organize_while_automated` | true | – | \[D\]: automation stays on while waiting for a PD-lane gap |
+//! | – | `cacc_closing_only_approaching` | true | – | \[D\] 6.21: CACC gap closing only while Δv < 0 |
+//! | – | `organize_regardless_of_speed` | true | – | \[S\] + \[D\] 6.22: no a_ant ≥ 0 test for a PD-lane move |
 //!
-//! Yielding through the automation (spec 4.5 applied to an automated CAV, [D]):
+//! Yielding through the automation (spec 4.5 applied to an automated CAV, \[D\]):
 //! a = min(a_auto, max(a_virtual, b_c)), a_virtual = the driver's relaxed car-following
 //! acceleration toward the requester standing its relaxed jam gap further back.
 
@@ -104,18 +104,18 @@ pub struct CavParams {
     /// lane-drop changes) through its automation: with the driver's cooperativeness draw it
     /// follows the requester as a virtual leader like a yielding driver (spec 4.5: relaxed
     /// parameters, never braking harder than b_c for the yield) and stays automated, so its
-    /// CACC links hold. Default true [D], against the spec's recommendation (open question
+    /// CACC links hold. Default true \[D\], against the spec's recommendation (open question
     /// 6.5): without it CAVs lower the capacity of merges (docs/model-choices.md).
     pub yield_while_automated: bool,
     /// With `yield_while_automated`: an automated CAV also yields, the same way, to a CAV that
     /// moves toward the PD lane for platoon organization (spec 4.7), i.e. it lets a joining CAV
-    /// in. Default false [D].
+    /// in. Default false \[D\].
     pub yield_to_organizers: bool,
     /// A CAV that wants to move toward the PD lane (platoon organization, spec 4.7) stays
     /// automated while its driver waits for a gap, and hands over only once both gaps are
     /// acceptable (a platoon follower then splits, spec 3.6.4); while the lag gap is acceptable
     /// its automation does not accelerate beyond what the target-lane leader allows. Default
-    /// true [D]. False = the PATH rule of spec 3.1: manual from the moment the desire arises,
+    /// true \[D\]. False = the PATH rule of spec 3.1: manual from the moment the desire arises,
     /// which under PD turns every CAV outside the PD lane into a manual vehicle
     /// (docs/model-choices.md 6.20).
     pub organize_while_automated: bool,
@@ -124,14 +124,14 @@ pub struct CavParams {
     /// above its target and the predecessor not slower (Δv ≥ 0), e.g. a string leaving a
     /// queue behind an accelerating leader, the gap-regulation gains apply, as in the single
     /// Milanés law of the PATH code the seed paper used; the cap on speed regulation uses the
-    /// same choice. Default true [D] (docs/model-choices.md 6.21). False = spec 3.4 as written.
+    /// same choice. Default true \[D\] (docs/model-choices.md 6.21). False = spec 3.4 as written.
     pub cacc_closing_only_approaching: bool,
     /// A CAV moving toward the PD lane does so "regardless of the speed difference between the
     /// current lane and the target lanes" (seed paper, spec 4.7): its forward-gap test drops the
     /// discretionary condition a_ant ≥ 0 (spec 4.3: the changer must not have to brake behind
     /// its new leader), which is a condition on the target lane's speed. The gap rules stay
     /// otherwise discretionary: the safety criterion of spec 4.3 applies, and the driver never
-    /// brakes to synchronize or drops back for a gap. Default true [D] (docs/model-choices.md
+    /// brakes to synchronize or drops back for a gap. Default true \[D\] (docs/model-choices.md
     /// 6.22). False = the discretionary rules of spec 4.3 as written.
     pub organize_regardless_of_speed: bool,
 }
@@ -188,6 +188,18 @@ pub enum CavMode {
     GapRegulation,
     GapClosing,
     CollisionAvoidance,
+}
+
+impl CavMode {
+    /// `speed`, `gap`, `gap-closing` or `collision-avoidance`, as in the trajectory records.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            CavMode::SpeedRegulation => "speed",
+            CavMode::GapRegulation => "gap",
+            CavMode::GapClosing => "gap-closing",
+            CavMode::CollisionAvoidance => "collision-avoidance",
+        }
+    }
 }
 
 /// A controller's output: the commanded acceleration (before the safety override and limits),
@@ -385,7 +397,7 @@ pub fn cacc(
 }
 
 /// Sub-mode and gains (kp, kd) of the CACC law for a gap above its target outside the
-/// regulation band: gap closing (spec 3.4), or with `cacc_closing_only_approaching` [D] 6.21
+/// regulation band: gap closing (spec 3.4), or with `cacc_closing_only_approaching` \[D\] 6.21
 /// the regulation gains unless the follower approaches its predecessor (Δv < 0): the soft
 /// closing gains exist for the approach.
 #[inline]

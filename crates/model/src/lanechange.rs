@@ -35,8 +35,8 @@
 //! | t_min,LC | `min_interval_s` | 5 | fixed (×`return_factor` = 3 back) | s |
 //! | – | `slow_down_desire` | 0.5 | fixed | – |
 //! | w_CAV | `cav_weight_leader`, `cav_weight_follower` | 0.5, 0 | fixed | – |
-//! | – | `follower_anticipates` | true | a platoon follower upstream of a busy on-ramp uses `cav_weight_leader` [D] | – |
-//! | – | `yield_range_m` | 100 | fixed; farthest yield requester (rear ahead of the driver's front) [D] | m |
+//! | – | `follower_anticipates` | true | a platoon follower upstream of a busy on-ramp uses `cav_weight_leader` \[D\] | – |
+//! | – | `yield_range_m` | 100 | fixed; farthest yield requester (rear ahead of the driver's front) \[D\] | m |
 //! | v_ref floor | `min_reference_speed_mps` | 2.3 | fixed | m/s |
 //! | – | `min_speed_gain_mps` | 2.34 (5 mph) | fixed; γ_d = 0 below this gain ([P15-doc] gate) | m/s |
 
@@ -114,7 +114,7 @@ pub struct LaneChangeDists {
     pub cav_weight_follower: f64,
     /// A platoon follower in the anticipation range of a busy on-ramp (spec 4.2
     /// "Anticipatory") weighs its discretionary desire with `cav_weight_leader` instead of
-    /// `cav_weight_follower` [D]. No effect on a road without on-ramps.
+    /// `cav_weight_follower` \[D\]. No effect on a road without on-ramps.
     pub follower_anticipates: bool,
     /// No lane changes within this distance of an entrance ("forbid zone", spec 4.1) (m).
     pub forbid_zone_m: f64,
@@ -129,7 +129,7 @@ pub struct LaneChangeDists {
     /// `anticipation_distance_m` of the exit.
     pub exit_lane_penalty: f64,
     /// A driver answers a yield request only from a requester whose rear is at most this far
-    /// ahead of its front (spec 4.5 "immediate leaders in the adjacent lanes"; [D]) (m).
+    /// ahead of its front (spec 4.5 "immediate leaders in the adjacent lanes"; \[D\]) (m).
     pub yield_range_m: f64,
 }
 

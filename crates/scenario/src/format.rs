@@ -7,7 +7,7 @@ use crate::raw::{
     RawOffRamp, RawOnRamp, RawRoad, RawRun, RawScenario, RawStrategy,
 };
 use platoonsim_sim::config::{DetectorKind, Network};
-use platoonsim_sim::{Config, Strategy};
+use platoonsim_sim::{Config, LaneChoice, Strategy};
 use toml::{Table, Value};
 
 /// A [`RawScenario`] with every key set to the config's value. With a network, positions are
@@ -18,17 +18,22 @@ pub fn to_raw(config: &Config, description: Option<String>) -> RawScenario {
     let origin = config.road.network.as_ref().map_or(0.0, |n| n.origin_m);
     let file = |x: f64| x + origin;
     let mut strategy = RawStrategy::default();
-    let (kind, pd, thresholds) = match &config.strategy {
-        Strategy::None => ("none", None, None),
-        Strategy::Pd { pd } => ("pd", Some(pd), None),
-        Strategy::FlowAware { pd, thresholds } => ("flow-aware", Some(pd), Some(thresholds)),
-    };
-    strategy.kind = Some(kind.to_string());
+    let Strategy {
+        kind,
+        pd,
+        thresholds,
+    } = &config.strategy;
+    strategy.kind = Some(kind.as_str().to_string());
     if let Some(pd) = pd {
         strategy.zone_start_m = Some(file(pd.zone_start_m));
         strategy.zone_end_m = Some(file(pd.zone_end_m));
         strategy.start_s = Some(pd.start_s);
         strategy.end_s = Some(pd.end_s);
+        strategy.lane = match pd.lane {
+            LaneChoice::Leftmost => None,
+            LaneChoice::Rightmost => Some(Value::String("rightmost".into())),
+            LaneChoice::Index(i) => Some(Value::Integer(i64::from(i) + 1)),
+        };
     }
     if let Some(t) = thresholds {
         strategy.flow_threshold_vphpl = Some(t.flow_threshold_vphpl);

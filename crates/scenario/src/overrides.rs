@@ -5,55 +5,9 @@
 //! on the document, an override is checked exactly like the same value written in the file.
 
 use crate::error::ScenarioError;
-use std::fmt;
-use std::str::FromStr;
 use toml::{Table, Value};
 
-/// The platoon-organization strategy named on the command line or in `strategy.kind`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum StrategyKind {
-    /// No organization (the baseline).
-    None,
-    /// Pseudo-dedicated lane.
-    Pd,
-    /// Flow-Aware pseudo-dedicated lane.
-    FlowAware,
-}
-
-impl StrategyKind {
-    pub const ALL: [StrategyKind; 3] = [
-        StrategyKind::None,
-        StrategyKind::Pd,
-        StrategyKind::FlowAware,
-    ];
-
-    /// The name used in files and on the command line.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            StrategyKind::None => "none",
-            StrategyKind::Pd => "pd",
-            StrategyKind::FlowAware => "flow-aware",
-        }
-    }
-}
-
-impl fmt::Display for StrategyKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
-
-impl FromStr for StrategyKind {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        StrategyKind::ALL
-            .into_iter()
-            .find(|k| k.as_str() == s)
-            .ok_or_else(|| {
-                format!("must be one of \"none\", \"pd\", \"flow-aware\" (found \"{s}\")")
-            })
-    }
-}
+pub use platoonsim_sim::StrategyKind;
 
 /// Everything the command line may change in a scenario. `set` is applied first, in order
 /// (a later `--set` of the same key wins); the typed fields after it.
@@ -364,7 +318,7 @@ mod tests {
 
     #[test]
     fn strategy_kind_names() {
-        for k in StrategyKind::ALL {
+        for k in StrategyKind::all() {
             assert_eq!(k.as_str().parse::<StrategyKind>(), Ok(k));
         }
         assert!("PD".parse::<StrategyKind>().is_err());

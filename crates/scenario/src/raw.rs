@@ -229,6 +229,9 @@ pub struct RawStrategy {
     pub speed_threshold_kmh: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub radius_m: Option<f64>,
+    /// `"leftmost"`, `"rightmost"` or a lane number (1 = rightmost).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lane: Option<toml::Value>,
 }
 
 /// Parse TOML text into a document (a table). Syntax errors carry toml's line and column.

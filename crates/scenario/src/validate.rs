@@ -271,6 +271,7 @@ pub fn validate(
         frame,
         (road.control_start, road.control_end),
         &run,
+        road.lanes,
     );
 
     // --- model sections

@@ -6,7 +6,8 @@ use super::{defaults, quoted, Checker, Frame, Num};
 use crate::limits;
 use crate::overrides::StrategyKind;
 use crate::raw::{num, RawStrategy};
-use platoonsim_sim::{FlowAwareConfig, PdConfig, Strategy};
+use platoonsim_sim::{FlowAwareConfig, LaneChoice, PdConfig, Strategy};
+use toml::Value;
 
 /// `[strategy]`. The zone defaults to the control section (`control`, in the file's
 /// coordinate) and the time window to the measurement window of `run`.
@@ -16,18 +17,42 @@ pub(super) fn check_strategy(
     frame: &Frame,
     control: (Option<Num>, Option<Num>),
     run: &Run,
+    lanes: u32,
 ) -> Strategy {
     let (cstart, cend) = control;
     let kind = match s.kind.as_deref() {
-        None => StrategyKind::None,
+        None => StrategyKind::NONE,
         Some(k) => k.parse().unwrap_or_else(|_| {
             c.push(
                 "strategy.kind",
                 quoted(k),
-                "must be one of \"none\", \"pd\", \"flow-aware\"",
+                format!("must be one of {}", StrategyKind::names()),
             );
-            StrategyKind::None
+            StrategyKind::NONE
         }),
+    };
+    let lane = match &s.lane {
+        None => LaneChoice::Leftmost,
+        Some(Value::String(n)) if n == "leftmost" => LaneChoice::Leftmost,
+        Some(Value::String(n)) if n == "rightmost" => LaneChoice::Rightmost,
+        Some(Value::Integer(i)) if (1..=i64::from(lanes.max(1))).contains(i) => {
+            LaneChoice::Index(*i as u32 - 1)
+        }
+        Some(other) => {
+            let shown = match other {
+                Value::String(n) => quoted(n),
+                v => v.to_string(),
+            };
+            c.push(
+                "strategy.lane",
+                shown,
+                format!(
+                    "must be \"leftmost\", \"rightmost\" or a lane number 1 to {lanes} \
+                     (the road's lanes; 1 = the rightmost lane)"
+                ),
+            );
+            LaneChoice::Leftmost
+        }
     };
     let zs = c.opt(s.zone_start_m, cstart.map_or(0.0, |n| n.v));
     let ze = c.opt(s.zone_end_m, cend.map_or(0.0, |n| n.v));
@@ -112,17 +137,16 @@ pub(super) fn check_strategy(
         zone_end_m: ze.v - frame.origin,
         start_s: ts.v,
         end_s: te.v,
+        lane,
     };
-    match kind {
-        StrategyKind::None => Strategy::None,
-        StrategyKind::Pd => Strategy::Pd { pd },
-        StrategyKind::FlowAware => Strategy::FlowAware {
-            pd,
-            thresholds: FlowAwareConfig {
-                flow_threshold_vphpl: flow.v,
-                speed_threshold_kmh: speed.v,
-                radius_m: radius.v,
-            },
-        },
+    let entry = kind.entry();
+    Strategy {
+        kind,
+        pd: entry.organizes.then_some(pd),
+        thresholds: entry.needs_thresholds.then_some(FlowAwareConfig {
+            flow_threshold_vphpl: flow.v,
+            speed_threshold_kmh: speed.v,
+            radius_m: radius.v,
+        }),
     }
 }

@@ -7,7 +7,7 @@ use common::*;
 use platoonsim_scenario::{
     demand_scale_set, from_toml, load, load_with, to_toml, Overrides, ScenarioError,
 };
-use platoonsim_sim::Strategy;
+use platoonsim_sim::StrategyKind;
 
 const SMALL_CORRIDOR: &str = include_str!("fixtures/small_corridor.toml");
 const SR99: &str = include_str!("../scenarios/sr99.toml");
@@ -61,9 +61,8 @@ fn small_corridor_fixture_loads() {
         ]
     );
     assert_eq!(c.measurement_detector, 5);
-    let Strategy::Pd { pd } = &c.strategy else {
-        panic!()
-    };
+    assert_eq!(c.strategy.kind, StrategyKind::PD);
+    let pd = c.strategy.pd.as_ref().unwrap();
     assert_eq!(
         (pd.zone_start_m, pd.zone_end_m, pd.start_s),
         (0.0, 3200.0, 0.0)

@@ -39,7 +39,7 @@ fn homogeneous_has_the_papers_road() {
     );
     assert_eq!(c.detectors[c.measurement_detector].name, "discharge");
     assert_eq!(c.aggregation_s, 300.0);
-    assert_eq!(c.strategy, Strategy::None);
+    assert_eq!(c.strategy, Strategy::none());
     // Model sections: the spec defaults, 110 km/h desired speed.
     assert_eq!(c.human, Default::default());
     assert_eq!(c.human.desired_speed_kmh.mean, 110.0);
@@ -64,30 +64,28 @@ fn homogeneous_strategy_defaults_follow_the_road_and_the_run() {
     let pd = load_with(
         "homogeneous",
         &Overrides {
-            strategy: Some(StrategyKind::Pd),
+            strategy: Some(StrategyKind::PD),
             ..Overrides::default()
         },
     )
     .unwrap();
-    let Strategy::Pd { pd } = pd.strategy else {
-        panic!("{:?}", pd.strategy)
-    };
+    assert_eq!(pd.strategy.kind, StrategyKind::PD);
+    let pd = pd.strategy.pd.unwrap();
     assert_eq!((pd.zone_start_m, pd.zone_end_m), (5000.0, 6000.0));
     assert_eq!((pd.start_s, pd.end_s), (1200.0, 3600.0));
 
     let fa = load_with(
         "homogeneous",
         &Overrides {
-            strategy: Some(StrategyKind::FlowAware),
+            strategy: Some(StrategyKind::FLOW_AWARE),
             duration_s: Some(1800.0),
             warmup_s: Some(600.0),
             ..Overrides::default()
         },
     )
     .unwrap();
-    let Strategy::FlowAware { pd, thresholds } = fa.strategy else {
-        panic!()
-    };
+    assert_eq!(fa.strategy.kind, StrategyKind::FLOW_AWARE);
+    let (pd, thresholds) = (fa.strategy.pd.unwrap(), fa.strategy.thresholds.unwrap());
     assert_eq!((pd.start_s, pd.end_s), (600.0, 1800.0));
     // Thresholds: the calibrated table at the run's penetration (50 %).
     let (q, v) = platoonsim_scenario::thresholds::default_at(0.5, (0.0, 0.0));
@@ -97,15 +95,13 @@ fn homogeneous_strategy_defaults_follow_the_road_and_the_run() {
     // Between calibrated rows the thresholds are interpolated; an explicit value wins.
     let at = |pen: f64, set: &[&str]| {
         let mut o = Overrides {
-            strategy: Some(StrategyKind::FlowAware),
+            strategy: Some(StrategyKind::FLOW_AWARE),
             penetration: Some(pen),
             ..Overrides::default()
         };
         o.set = set.iter().map(|s| s.to_string()).collect();
-        match load_with("homogeneous", &o).unwrap().strategy {
-            Strategy::FlowAware { thresholds, .. } => thresholds.flow_threshold_vphpl,
-            other => panic!("{other:?}"),
-        }
+        let s = load_with("homogeneous", &o).unwrap().strategy;
+        s.thresholds.unwrap().flow_threshold_vphpl
     };
     let (q25, q50, q75) = (at(0.25, &[]), at(0.5, &[]), at(0.75, &[]));
     assert_eq!(at(0.625, &[]), 0.5 * (q50 + q75));
@@ -117,10 +113,15 @@ fn homogeneous_strategy_defaults_follow_the_road_and_the_run() {
 
 #[test]
 fn resolved_toml_loads_back_to_the_same_config() {
-    for kind in StrategyKind::ALL {
+    let lanes = ["\"leftmost\"", "\"rightmost\"", "2"];
+    for (kind, lane) in StrategyKind::all().flat_map(|k| lanes.map(|l| (k, l))) {
         let o = Overrides {
             strategy: Some(kind),
-            set: vec!["human.buffer_s=0.2".into(), "strategy.radius_m=2000".into()],
+            set: vec![
+                "human.buffer_s=0.2".into(),
+                "strategy.radius_m=2000".into(),
+                format!("strategy.lane={lane}"),
+            ],
             ..Overrides::default()
         };
         let c = load_with("homogeneous", &o).unwrap();
@@ -173,7 +174,7 @@ fn set_round_trips() {
     assert_eq!(c.seed, 3);
     assert_eq!(c.human.buffer_s, 0.2);
     assert_eq!(c.cav.time_gap_shares, vec![(0.6, 1.0)]);
-    assert!(matches!(c.strategy, Strategy::FlowAware { .. }));
+    assert_eq!(c.strategy.kind, StrategyKind::FLOW_AWARE);
     assert_eq!(c.detectors[0].position_m, 4800.0);
     // A single field of a distribution: the other fields keep their defaults.
     assert_eq!(c.human.desired_speed_kmh.mean, 115.0);
@@ -209,7 +210,7 @@ fn typed_overrides_reach_the_config() {
         duration_s: Some(600.0),
         warmup_s: Some(120.0),
         seed: Some(42),
-        strategy: Some(StrategyKind::Pd),
+        strategy: Some(StrategyKind::PD),
         set: vec![],
     };
     let c = load_with("homogeneous", &o).unwrap();
@@ -218,7 +219,7 @@ fn typed_overrides_reach_the_config() {
     assert_eq!(c.duration_s, 600.0);
     assert_eq!(c.warmup_s, 120.0);
     assert_eq!(c.seed, 42);
-    assert!(matches!(c.strategy, Strategy::Pd { .. }));
+    assert_eq!(c.strategy.kind, StrategyKind::PD);
 }
 
 // ---------------------------------------------------------------- files and names

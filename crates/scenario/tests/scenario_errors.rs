@@ -5,7 +5,6 @@ mod common;
 
 use common::*;
 use platoonsim_scenario::{from_toml, load, load_with, to_toml, Overrides, ScenarioError};
-use platoonsim_sim::Strategy;
 
 // ---------------------------------------------------------------- structure errors
 
@@ -329,8 +328,20 @@ fn other_ranges() {
             "demand.vph_per_lane = -1: must be in [0, 10000] veh/h/lane",
         ),
         (
-            "strategy.kind=dedicated",
-            "strategy.kind = \"dedicated\": must be one of \"none\", \"pd\", \"flow-aware\"",
+            "strategy.kind=platoons",
+            "strategy.kind = \"platoons\": must be one of \"none\", \"pd\", \"flow-aware\", \"dedicated\"",
+        ),
+        (
+            "strategy.lane=0",
+            "strategy.lane = 0: must be \"leftmost\", \"rightmost\" or a lane number 1 to 3 (the road's lanes; 1 = the rightmost lane)",
+        ),
+        (
+            "strategy.lane=4",
+            "strategy.lane = 4: must be \"leftmost\", \"rightmost\" or a lane number 1 to 3 (the road's lanes; 1 = the rightmost lane)",
+        ),
+        (
+            "strategy.lane=\"middle\"",
+            "strategy.lane = \"middle\": must be \"leftmost\", \"rightmost\" or a lane number 1 to 3 (the road's lanes; 1 = the rightmost lane)",
         ),
         (
             "measurement.aggregation_s=0.01",
@@ -521,5 +532,5 @@ fn readme_example_scenario_is_valid() {
     let len = readme[start..].find("```").unwrap();
     let c = parse(&readme[start..start + len]).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(c.name, "two_lane_test");
-    assert!(matches!(c.strategy, Strategy::Pd { .. }));
+    assert_eq!(c.strategy.kind, platoonsim_sim::StrategyKind::PD);
 }

@@ -118,7 +118,7 @@ fn sr99_is_the_corridor_of_the_data() {
     assert_eq!(pos("end"), 17650.0);
     assert_eq!(c.detectors[c.measurement_detector].name, "end");
     assert_eq!(c.aggregation_s, 300.0);
-    assert_eq!(c.strategy, Strategy::None);
+    assert_eq!(c.strategy, Strategy::none());
 }
 
 #[test]
@@ -163,7 +163,7 @@ fn sr99_demand_scale_follows_the_penetration_unless_given() {
 
 #[test]
 fn sr99_strategy_zone_and_window_default_to_the_whole_corridor_and_run() {
-    for kind in [StrategyKind::Pd, StrategyKind::FlowAware] {
+    for kind in [StrategyKind::PD, StrategyKind::FLOW_AWARE] {
         let c = load_with(
             "sr99",
             &Overrides {
@@ -173,14 +173,10 @@ fn sr99_strategy_zone_and_window_default_to_the_whole_corridor_and_run() {
             },
         )
         .unwrap();
-        let pd = match c.strategy {
-            Strategy::Pd { pd } => pd,
-            Strategy::FlowAware { pd, thresholds } => {
-                assert_eq!(thresholds.radius_m, 1500.0);
-                pd
-            }
-            Strategy::None => panic!(),
-        };
+        if let Some(thresholds) = &c.strategy.thresholds {
+            assert_eq!(thresholds.radius_m, 1500.0);
+        }
+        let pd = c.strategy.pd.unwrap();
         assert_eq!((pd.zone_start_m, pd.zone_end_m), (0.0, 17660.0));
         assert_eq!((pd.start_s, pd.end_s), (0.0, 14400.0));
     }
@@ -194,8 +190,6 @@ fn sr99_strategy_zone_and_window_default_to_the_whole_corridor_and_run() {
         ],
     )
     .unwrap();
-    let Strategy::Pd { pd } = c.strategy else {
-        panic!()
-    };
+    let pd = c.strategy.pd.unwrap();
     assert_eq!((pd.zone_start_m, pd.zone_end_m), (10500.0, 12500.0));
 }

@@ -2,6 +2,7 @@
 //! `platoonsim-scenario` has validated (ranges, detector positions, …); [`Config::check`]
 //! repeats the invariants the engine relies on so that a library user cannot bypass them.
 
+use crate::organize::{LaneChoice, StrategyKind};
 use platoonsim_model::cav::CavParams;
 use platoonsim_model::human::HumanDists;
 use platoonsim_model::lanechange::LaneChangeDists;
@@ -256,28 +257,57 @@ impl DetectorSpec {
     }
 }
 
-/// Platoon organization strategy (issue 3). `None` = no organization (baseline).
-#[derive(Clone, Debug, PartialEq, Serialize, Default)]
-#[serde(tag = "kind", rename_all = "kebab-case")]
-pub enum Strategy {
-    #[default]
-    None,
-    /// Pseudo-dedicated lane (spec 4.7): the leftmost lane, inside the zone and time window.
-    Pd { pd: PdConfig },
-    /// Flow-Aware PD lane: PD only while nearby detectors report flow < ρ_q and speed > ρ_v.
-    FlowAware {
-        pd: PdConfig,
-        thresholds: FlowAwareConfig,
-    },
+/// Platoon organization strategy (`[strategy]`): which registered organizer
+/// ([`crate::organize::STRATEGIES`]) and its settings. Serialized as before the organizer
+/// table: `{"kind": "none"}`, with `pd` for an organizing strategy and `thresholds` for
+/// Flow-Aware.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Strategy {
+    pub kind: StrategyKind,
+    /// Zone, time window and lane; `None` for a strategy that does not organize.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pd: Option<PdConfig>,
+    /// Flow-Aware thresholds; `None` unless the strategy needs them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub thresholds: Option<FlowAwareConfig>,
 }
 
-/// Where and when the PD lane applies.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+impl Default for Strategy {
+    fn default() -> Self {
+        Strategy::none()
+    }
+}
+
+impl Strategy {
+    /// No organization (the baseline).
+    pub fn none() -> Strategy {
+        Strategy {
+            kind: StrategyKind::NONE,
+            pd: None,
+            thresholds: None,
+        }
+    }
+
+    /// The PD lane with these settings.
+    pub fn pd(pd: PdConfig) -> Strategy {
+        Strategy {
+            kind: StrategyKind::PD,
+            pd: Some(pd),
+            thresholds: None,
+        }
+    }
+}
+
+/// Where, when and which lane an organizing strategy applies.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct PdConfig {
     pub zone_start_m: f64,
     pub zone_end_m: f64,
     pub start_s: f64,
     pub end_s: f64,
+    /// The organized lane (default the leftmost through lane).
+    #[serde(skip_serializing_if = "LaneChoice::is_leftmost")]
+    pub lane: LaneChoice,
 }
 
 /// Flow-Aware thresholds.
@@ -411,6 +441,31 @@ impl Config {
             MAX_DEMAND_VPHPL,
             " veh/h/lane",
         )?;
+        let entry = self.strategy.kind.entry();
+        if entry.organizes && self.strategy.pd.is_none() {
+            return Err(format!(
+                "strategy.kind = \"{}\": needs its zone and time window (strategy.zone_start_m, \
+                 strategy.zone_end_m, strategy.start_s, strategy.end_s)",
+                entry.name
+            ));
+        }
+        if entry.needs_thresholds && self.strategy.thresholds.is_none() {
+            return Err(format!(
+                "strategy.kind = \"{}\": needs strategy.flow_threshold_vphpl, \
+                 strategy.speed_threshold_kmh and strategy.radius_m",
+                entry.name
+            ));
+        }
+        if let Some(LaneChoice::Index(i)) = self.strategy.pd.as_ref().map(|p| p.lane) {
+            if i >= self.road.lanes {
+                return Err(format!(
+                    "strategy.lane = {}: must be 1 to road.lanes = {} (or \"leftmost\", \
+                     \"rightmost\")",
+                    i + 1,
+                    self.road.lanes
+                ));
+            }
+        }
         for (i, d) in self.detectors.iter().enumerate() {
             if !(d.position_m.is_finite()
                 && d.position_m > 0.0
@@ -508,7 +563,7 @@ impl Config {
             ],
             aggregation_s: 300.0,
             measurement_detector: 2,
-            strategy: Strategy::None,
+            strategy: Strategy::none(),
             human: HumanDists::default(),
             cav: CavParams::default(),
             lane_change: LaneChangeDists::default(),
@@ -519,14 +574,13 @@ impl Config {
     /// The same run with the paper's PD set-up: the PD lane in the road's control section from
     /// the end of the warm-up to the end of the run.
     pub fn with_pd(mut self) -> Config {
-        self.strategy = Strategy::Pd {
-            pd: PdConfig {
-                zone_start_m: self.road.control_start_m,
-                zone_end_m: self.road.control_end_m,
-                start_s: self.warmup_s,
-                end_s: self.duration_s,
-            },
-        };
+        self.strategy = Strategy::pd(PdConfig {
+            zone_start_m: self.road.control_start_m,
+            zone_end_m: self.road.control_end_m,
+            start_s: self.warmup_s,
+            end_s: self.duration_s,
+            lane: LaneChoice::Leftmost,
+        });
         self
     }
 }

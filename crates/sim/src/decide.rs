@@ -3,10 +3,12 @@
 //! yielding (spec 4.5), and its acceleration: the human model (spec 2) for humans and CAVs
 //! driving manually, CAV control (spec 3) for automated CAVs.
 
+use crate::events::LaneChangeReason;
 use crate::network::NO_LANE;
+use crate::organize::Advice;
 use crate::sense::{Neighbours, NONE};
 use crate::sim::{Decision, Simulation};
-use crate::vehicle::{Mode, Relaxation, Vehicle, NEVER, NO_EXIT};
+use crate::vehicle::{Kind, Mode, Relaxation, Vehicle, NEVER, NO_EXIT};
 use platoonsim_model::cav::{self, Family};
 use platoonsim_model::human;
 use platoonsim_model::lanechange::{self as lcm, Side};
@@ -42,8 +44,10 @@ impl Simulation {
                     accel: 0.0,
                     mode: Mode::Cf,
                     family: Family::Speed,
+                    regime: None,
                     time_gap: 0.0,
                     change: None,
+                    why: LaneChangeReason::Discretionary,
                     takeover: false,
                 },
             );
@@ -57,7 +61,24 @@ impl Simulation {
                 decisions[s as usize] = self.decide_one(s);
             }
         }
+        if !self.commands.is_empty() {
+            self.apply_commands(&mut decisions);
+        }
         self.decisions = decisions;
+    }
+
+    /// The decision of a vehicle that must change toward `side` (a commanded change): a
+    /// mandatory desire of 1 with the model's gap acceptance and BLC behaviour (spec 4.3).
+    pub(crate) fn forced_change(&self, s: u32, v: &Vehicle, side: Side) -> Decision {
+        let nb = &self.sensed[s as usize].nb;
+        let (leader, _) = self.leader_or_wall(s, v, nb.leader);
+        let d = Desire {
+            side,
+            gamma: 1.0,
+            mandatory: true,
+            organize: false,
+        };
+        self.before_lane_change(s, v, nb, leader, d).0
     }
 
     /// The leader view (net gap, speed) of slot `ld` for vehicle `v`.
@@ -183,8 +204,10 @@ impl Simulation {
             accel: human::smooth_accel(v.a, target, v.human.smoothing),
             mode,
             family: v.family,
+            regime: None,
             time_gap: v.time_gap_s,
             change: None,
+            why: LaneChangeReason::Discretionary,
             takeover: false,
         }
     }
@@ -253,8 +276,10 @@ impl Simulation {
             accel: cav::finalize(p, v.v, cmd.accel, v_des, leader, self.dt),
             mode: Mode::Cf,
             family: cmd.family,
+            regime: Some(cmd.mode),
             time_gap,
             change: None,
+            why: LaneChangeReason::Discretionary,
             takeover: false,
         }
     }
@@ -276,71 +301,104 @@ impl Simulation {
         } else {
             None
         };
+        // A vehicle its strategy advises (`organize`) takes the longer way; the others (every
+        // vehicle without a strategy) pay nothing for strategies.
+        let advised = match v.kind {
+            Kind::Human => self.advise[0],
+            Kind::Cav => self.advise[1],
+        };
+        if advised {
+            return self.advised_desire(s, v, nb, since);
+        }
         let mandatory = if self.geom.plain {
             None
         } else {
-            self.mandatory(s, v)
+            self.mandatory(s, v, None)
         };
-        let is_cav = v.is_cav();
-        // A CAV that follows a CAV within sensor range is (or is about to be, "a CAV directly
-        // behind another CAV automatically starts to form a platoon" [S]) a platoon follower:
-        // no discretionary desire (w_CAV follower, spec 4.7).
-        let follower =
-            self.sensed[s as usize].linked || (is_cav && self.sensed[s as usize].cav_ahead);
-        // Platoon organization yields to a mandatory need and does not start within the
-        // anticipation range of the CAV's own exit [D].
-        let organize = mandatory.is_none() && self.may_organize(v);
-        let (side, gamma) = if organize {
-            let pd_lane = self.geom.leftmost_through(v.x)?;
-            if v.lane >= pd_lane {
-                return None; // γ_d = 0 in the PD lane (spec 4.7)
-            }
-            (Side::Left, 1.0)
-        } else {
-            let [left, right] = self.discretionary(s, v, nb, follower);
-            match mandatory {
-                // γ = γ_m + κ γ_d (same side); the other side's discretionary desire is 0.
-                Some((side, gm)) => {
-                    let gd = if side == Side::Left { left } else { right }.unwrap_or(0.0);
-                    (side, gm + v.lc.mandatory_weight * gd)
-                }
-                None => match (left, right) {
-                    (None, None) => return None,
-                    (Some(l), None) => (Side::Left, l),
-                    (None, Some(r)) => (Side::Right, r),
-                    (Some(l), Some(r)) => {
-                        if r > l {
-                            (Side::Right, r)
-                        } else {
-                            (Side::Left, l)
-                        }
-                    }
-                },
-            }
-        };
-        // Anti-oscillation (spec 4.2), second part: no quick return to the lane just left.
-        if let Some(since) = since {
-            if gamma < 1.0
-                && v.last_lc_side == Some(opposite(side))
-                && since < v.lc.return_factor * v.lc.min_interval_s
-            {
-                return None;
-            }
-        }
-        (gamma > v.lc.threshold).then_some(Desire {
-            side,
-            gamma,
-            mandatory: mandatory.is_some(),
-            organize,
-        })
+        let [left, right] = self.discretionary(s, v, nb, self.is_follower(s, v));
+        let (side, gamma) = combine(mandatory, left, right, v.lc.mandatory_weight)?;
+        settle(v, since, side, gamma, mandatory.is_some(), false)
     }
 
-    /// A CAV whose platoon organization is active and whose exit is not near: without a
-    /// mandatory need, its desire is the move toward the PD lane (spec 4.7).
-    pub(crate) fn may_organize(&self, v: &Vehicle) -> bool {
-        v.is_cav()
-            && self.organization_active(v)
-            && !self.exit_within(v, self.cfg.lane_change.anticipation_distance_m)
+    /// [`Self::desire`] of a vehicle its strategy advises: `Join` replaces the discretionary
+    /// desire when there is no mandatory need and the exit is not near [D] (spec 4.7);
+    /// `Avoid` adds a mandatory desire to leave the lane and closes it to discretionary
+    /// changes while that desire would be positive (the lane-drop rule).
+    #[inline(never)]
+    fn advised_desire(
+        &self,
+        s: u32,
+        v: &Vehicle,
+        nb: &Neighbours,
+        since: Option<f64>,
+    ) -> Option<Desire> {
+        let advice = self
+            .organizer
+            .advise(v, self.step as f64 * self.dt, &self.geom);
+        let avoid = match advice {
+            Advice::Avoid { lane, from_m } => Some((lane, from_m)),
+            _ => None,
+        };
+        let mandatory = if self.geom.plain && avoid.is_none() {
+            None
+        } else {
+            self.mandatory(s, v, avoid)
+        };
+        let join = match advice {
+            Advice::Join { lane, strength } if mandatory.is_none() && !self.exit_near(v) => {
+                Some((lane, strength))
+            }
+            _ => None,
+        };
+        let (side, gamma) = if let Some((lane, strength)) = join {
+            // γ_d = 0 in the organized lane (spec 4.7).
+            (toward(v.lane, lane)?, strength)
+        } else {
+            let [mut left, mut right] = self.discretionary(s, v, nb, self.is_follower(s, v));
+            if let Some((lane, from_m)) = avoid {
+                let closed = |target: u32| {
+                    target == lane && lcm::mandatory_desire(&v.lc, from_m - v.x, v.v, 1) > 0.0
+                };
+                if closed(v.lane + 1) {
+                    left = None;
+                }
+                if v.lane > 0 && closed(v.lane - 1) {
+                    right = None;
+                }
+            }
+            combine(mandatory, left, right, v.lc.mandatory_weight)?
+        };
+        settle(v, since, side, gamma, mandatory.is_some(), join.is_some())
+    }
+
+    /// A CAV that follows a CAV within sensor range is (or is about to be, "a CAV directly
+    /// behind another CAV automatically starts to form a platoon" [S]) a platoon follower: no
+    /// discretionary desire (w_CAV follower, spec 4.7).
+    #[inline]
+    fn is_follower(&self, s: u32, v: &Vehicle) -> bool {
+        self.sensed[s as usize].linked || (v.is_cav() && self.sensed[s as usize].cav_ahead)
+    }
+
+    /// The side toward which vehicle `v` organizes now (its strategy's `Join` advice, no
+    /// mandatory need aside: it is not near its exit), if it is not in the organized lane.
+    /// Used for yielding to organizing vehicles.
+    pub(crate) fn organizing_side(&self, v: &Vehicle) -> Option<Side> {
+        if !self.advise[v.kind as usize] || self.exit_near(v) {
+            return None;
+        }
+        match self
+            .organizer
+            .advise(v, self.step as f64 * self.dt, &self.geom)
+        {
+            Advice::Join { lane, .. } => toward(v.lane, lane),
+            _ => None,
+        }
+    }
+
+    /// Is the vehicle's off-ramp within the anticipation range (no organizing there)?
+    #[inline]
+    fn exit_near(&self, v: &Vehicle) -> bool {
+        self.exit_within(v, self.cfg.lane_change.anticipation_distance_m)
     }
 
     /// Is the vehicle's off-ramp within `range` ahead?
@@ -352,8 +410,23 @@ impl Simulation {
     /// acceleration lane or a dropped lane; one change toward the side where a lane goes on),
     /// or reaching the rightmost through lane at the driver's off-ramp (N = lanes to cross).
     /// The larger one wins.
-    fn mandatory(&self, s: u32, v: &Vehicle) -> Option<(Side, f64)> {
+    #[inline(always)]
+    fn mandatory(&self, s: u32, v: &Vehicle, avoid: Option<(u32, f64)>) -> Option<(Side, f64)> {
         let mut best: Option<(Side, f64)> = None;
+        // A lane the strategy closes to this vehicle (`Advice::Avoid`): leave it as a lane
+        // that ends at `from_m`, toward the right unless it is the rightmost lane.
+        if let Some((lane, from_m)) = avoid {
+            if v.lane == lane {
+                let g = lcm::mandatory_desire(&v.lc, from_m - v.x, v.v, 1);
+                if g > 0.0 {
+                    let side = if lane == 0 { Side::Left } else { Side::Right };
+                    best = Some((side, g));
+                }
+            }
+        }
+        if self.geom.plain {
+            return best;
+        }
         if let Some(w) = self.sensed[s as usize].here.wall {
             let probe = (w - 1.0).max(v.x);
             let side = if self.geom.through(v.lane + 1, probe) || v.lane == 0 {
@@ -362,7 +435,7 @@ impl Simulation {
                 Side::Right
             };
             let g = lcm::mandatory_desire(&v.lc, w - v.x, v.v, 1);
-            if g > 0.0 {
+            if g > 0.0 && best.is_none_or(|(_, b)| g > b) {
                 best = Some((side, g));
             }
         }
@@ -381,6 +454,7 @@ impl Simulation {
     /// Discretionary desires [left, right] (spec 4.2), `None` for a side that cannot be taken
     /// (no lane, an acceleration lane) or when there is nothing to gain. Includes w_CAV (spec
     /// 4.7), the exit constraint η_e and the on-ramp anticipation.
+    #[inline(always)]
     fn discretionary(
         &self,
         s: u32,
@@ -476,6 +550,7 @@ impl Simulation {
             if !open || w <= 0.0 || (!self.geom.plain && self.ends_too_soon(v, target)) {
                 continue;
             }
+
             let v_ant = self.anticipated_speed(s, v, target, j as usize, v_cur);
             out[i] = Some(w * eta * lcm::discretionary_desire(&v.lc, v_ant, v_cur, side));
         }
@@ -666,8 +741,16 @@ impl Simulation {
                     auto: false,
                 },
                 family: Family::Speed,
+                regime: None,
                 time_gap: v.time_gap_s,
                 change: change.then_some(d.side),
+                why: if d.mandatory {
+                    LaneChangeReason::Mandatory
+                } else if d.organize {
+                    LaneChangeReason::Organizing
+                } else {
+                    LaneChangeReason::Discretionary
+                },
                 takeover,
             },
             Gaps {
@@ -762,6 +845,72 @@ impl Simulation {
             lane.saturating_sub(right as usize)
         };
         bounded::min(v_f, caps[rank.min(caps.len() - 1)])
+    }
+}
+
+/// γ from the mandatory desire (if any) and the discretionary desires [left, right] (spec 4.2):
+/// γ = γ_m + κ γ_d on the mandatory side (the other side's discretionary desire is 0), else
+/// the larger discretionary desire (left on a tie); `None` without any.
+#[inline]
+fn combine(
+    mandatory: Option<(Side, f64)>,
+    left: Option<f64>,
+    right: Option<f64>,
+    kappa: f64,
+) -> Option<(Side, f64)> {
+    match mandatory {
+        Some((side, gm)) => {
+            let gd = if side == Side::Left { left } else { right }.unwrap_or(0.0);
+            Some((side, gm + kappa * gd))
+        }
+        None => match (left, right) {
+            (None, None) => None,
+            (Some(l), None) => Some((Side::Left, l)),
+            (None, Some(r)) => Some((Side::Right, r)),
+            (Some(l), Some(r)) => Some(if r > l {
+                (Side::Right, r)
+            } else {
+                (Side::Left, l)
+            }),
+        },
+    }
+}
+
+/// The desire if it passes the driver's threshold, after the second part of the
+/// anti-oscillation rule (spec 4.2): no quick return to the lane just left (`since`: seconds
+/// since the last change).
+#[inline]
+fn settle(
+    v: &Vehicle,
+    since: Option<f64>,
+    side: Side,
+    gamma: f64,
+    mandatory: bool,
+    organize: bool,
+) -> Option<Desire> {
+    if let Some(since) = since {
+        if gamma < 1.0
+            && v.last_lc_side == Some(opposite(side))
+            && since < v.lc.return_factor * v.lc.min_interval_s
+        {
+            return None;
+        }
+    }
+    (gamma > v.lc.threshold).then_some(Desire {
+        side,
+        gamma,
+        mandatory,
+        organize,
+    })
+}
+
+/// The side from `lane` toward `target`, `None` when there.
+#[inline]
+fn toward(lane: u32, target: u32) -> Option<Side> {
+    match lane.cmp(&target) {
+        std::cmp::Ordering::Less => Some(Side::Left),
+        std::cmp::Ordering::Greater => Some(Side::Right),
+        std::cmp::Ordering::Equal => None,
     }
 }
 

@@ -2,6 +2,7 @@
 //! front to back and lane by lane, each re-checked against the positions after integration
 //! and after the changes already applied in this step.
 
+use crate::events::Event;
 use crate::sense::NONE;
 use crate::sim::Simulation;
 use crate::vehicle::{Mode, Relaxation};
@@ -96,6 +97,18 @@ impl Simulation {
         v.last_lc_step = step;
         v.last_lc_side = Some(side);
         v.lane_changes += 1;
+        if self.observing {
+            let (id, kind, x) = (v.id, v.kind, v.x);
+            self.events.push(Event::LaneChange {
+                t_s: crate::record::step_time(step + 1, self.dt),
+                id,
+                kind,
+                from: from as u32,
+                to: to as u32,
+                x_m: x + self.cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m),
+                reason: self.decisions[s as usize].why,
+            });
+        }
         // The new follower relaxes (RCF), unless it is an automated CAV (spec 4.6).
         if tf != NONE {
             let f = &mut self.vehicles[tf as usize];

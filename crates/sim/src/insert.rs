@@ -14,10 +14,11 @@
 //! lost or violating car following.
 
 use crate::config::Config;
+use crate::events::Event;
 use crate::network::NO_LANE;
 use crate::rng::{Purpose, Stream};
 use crate::sim::Simulation;
-use crate::vehicle::{Kind, Mode, Relaxation, Vehicle, NEVER, NO_EXIT};
+use crate::vehicle::{Kind, Mode, ModeLabel, Relaxation, Vehicle, NEVER, NO_EXIT};
 use platoonsim_model::cav::{self, Family};
 use platoonsim_model::human::{self, HUMAN_DRAWS};
 use platoonsim_model::lanechange::LC_DRAWS;
@@ -182,6 +183,7 @@ fn create(cfg: &Config, id: u64, x: f64, t: f64, origin: u32) -> Vehicle {
         mode: Mode::Cf,
         relax: Relaxation::None,
         family: Family::Speed,
+        regime: None,
         last_lc_step: NEVER,
         last_lc_side: None,
         lane_changes: 0,
@@ -192,6 +194,7 @@ fn create(cfg: &Config, id: u64, x: f64, t: f64, origin: u32) -> Vehicle {
         planned_exit: exit,
         conflict_step: NEVER,
         conflict_leader: NEVER,
+        reported: (ModeLabel::Cf, None),
     }
 }
 
@@ -344,6 +347,18 @@ impl Simulation {
             }
         }
         self.metrics.entered += 1;
+        veh.reported = (veh.mode_label(), veh.regime);
+        if self.observing {
+            self.events.push(Event::Entered {
+                t_s: crate::record::step_time(self.step + 1, self.dt),
+                id: veh.id,
+                kind: veh.kind,
+                entrance: veh.origin,
+                lane: veh.lane,
+                x_m: x + self.cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m),
+                v_mps: speed,
+            });
+        }
         let s = self.alloc(veh);
         self.lanes[lane].insert(at, s);
     }

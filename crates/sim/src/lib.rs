@@ -8,33 +8,40 @@
 //!
 //! Modules by phase: `sense` (neighbours, platoons), `decide` (lane-change decisions and
 //! accelerations), `execute` (lane changes), `insert` (arrivals, insertion), `detector`,
-//! `metrics`, `strategy` (platoon organization), `rng` (named random streams).
+//! `metrics`, `organize` (platoon organization: the `Organizer` trait and the strategies), `rng` (named random streams).
 
+pub mod command;
 pub mod config;
 mod decide;
 pub mod detector;
+pub mod events;
 mod execute;
 mod here;
 mod insert;
 pub mod metrics;
 pub mod network;
+pub mod organize;
 pub mod record;
 pub mod rng;
 mod safety;
 mod sense;
 mod sim;
-mod strategy;
 pub mod summary;
 pub mod vehicle;
 mod yielding;
 
+pub use command::Command;
 pub use config::{
     Config, Demand, DetectorKind, DetectorSpec, FlowAwareConfig, LaneExtent, Network, OffRamp,
     OnRamp, PdConfig, Road, Strategy,
 };
+pub use events::{Departure, Event, LaneChangeReason, Observer};
+pub use organize::{Advice, LaneChoice, Organizer, StrategyKind, STRATEGIES};
+pub use platoonsim_model::lanechange::Side;
 pub use record::{Recording, TrajectoryPoint, TrajectorySpec, Trip, TripStatus};
-pub use sim::{strategy_name, Simulation};
+pub use sim::Simulation;
 pub use summary::{CollisionEvent, CollisionKind, DetectorRecord, Output, Summary};
+pub use vehicle::{Kind, ModeLabel, Vehicle};
 
 /// Progress callback: called with (simulated seconds so far, total seconds) every simulated minute.
 pub type Progress<'a> = &'a mut dyn FnMut(f64, f64);

@@ -1,6 +1,7 @@
 //! The paper's statistics (seed Sec. 4.1, spec 5.1.6), accumulated as vehicles leave (or at the
 //! end for those still on the road). Only vehicles that entered in the measurement window count.
 
+use crate::events::{Departure, Observer};
 use crate::vehicle::Vehicle;
 
 #[derive(Clone, Debug, Default)]
@@ -39,12 +40,14 @@ impl Metrics {
         }
     }
 
-    pub fn on_exit(&mut self, v: &Vehicle) {
+    /// A vehicle that left the road.
+    pub fn exited(&mut self, v: &Vehicle) {
         self.exited += 1;
         self.count(v);
     }
 
-    pub fn on_exit_in_network(&mut self, v: &Vehicle) {
+    /// A vehicle that did not leave by an exit (collided, or on the road at the end).
+    pub fn stayed(&mut self, v: &Vehicle) {
         self.count(v);
     }
 
@@ -78,6 +81,18 @@ impl Metrics {
     /// P_P (seed eq. 2); 0 if no CAV was counted.
     pub fn platooning_probability(&self) -> f64 {
         ratio(self.cavs_platooned as f64, self.cavs_counted)
+    }
+}
+
+/// The statistics observe the vehicles as they leave: those that left the road count as
+/// exited; a lane-end collision and the vehicles still on the road at the end count in the
+/// statistics only.
+impl Observer for Metrics {
+    fn on_exit(&mut self, v: &Vehicle, how: Departure, _t_s: f64) {
+        match how {
+            Departure::OffRamp(_) | Departure::RoadEnd => self.exited(v),
+            Departure::Collided | Departure::OnRoad => self.stayed(v),
+        }
     }
 }
 

@@ -8,7 +8,7 @@
 //!
 //! The homogeneous road is the special case of one open segment per lane and no ramps.
 //!
-//! Building the acceleration lanes from the on-ramps [D]:
+//! Building the acceleration lanes from the on-ramps \[D\]:
 //! * an on-ramp whose merge point is the start of the rightmost through lane there (within
 //!   1 m) is a *lane add*: its vehicles enter that lane directly;
 //! * otherwise it gets a segment [x, x + accel_lane_m) at (rightmost through lane − 1);

@@ -7,7 +7,10 @@
 //! off, the cost is one branch per vehicle that leaves and one per step.
 
 use crate::config::Config;
-use crate::vehicle::{Kind, ModeLabel, Vehicle, NO_EXIT};
+use crate::events::{Departure, Event, Observer};
+use crate::sim::Simulation;
+use crate::vehicle::{Kind, ModeLabel, Vehicle, NEVER, NO_EXIT};
+use platoonsim_model::cav::CavMode;
 
 /// What to record besides the summary and the detectors.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -168,6 +171,11 @@ pub struct TrajectoryPoint {
     pub lane: u32,
     pub kind: Kind,
     pub mode: ModeLabel,
+    /// An automated CAV's control regime in the last step (`None`: a human, or manual).
+    pub regime: Option<CavMode>,
+    /// Position in its CACC string after the step: 1 leads a string or drives alone (every
+    /// human), k the k-th vehicle of a string (at most 100, the limit of `cav.max_platoon`).
+    pub platoon_pos: u8,
 }
 
 /// Simulated time of step `step`: `step / n` when a second is a whole number n of steps (so
@@ -181,11 +189,36 @@ pub fn step_time(step: u64, dt: f64) -> f64 {
     }
 }
 
-/// The recorders of a running simulation.
+/// The recorders of a running simulation: an [`Observer`] of exits (trips) and steps
+/// (trajectory samples).
 #[derive(Debug, Default)]
 pub(crate) struct Recorder {
     pub trips: Option<Vec<Trip>>,
     pub trajectories: Option<TrajectoryRecorder>,
+    /// Entry position (engine) per entrance: 0 the mainline, i + 1 on-ramp i.
+    pub entry_x: Vec<f64>,
+    pub origin_m: f64,
+    pub dt: f64,
+}
+
+impl Observer for Recorder {
+    fn on_step(&mut self, sim: &Simulation, _events: &[Event]) {
+        if let Some(t) = self.trajectories.as_mut() {
+            if t.due(sim.step) {
+                t.sample(sim.step, &sim.vehicles, &sim.lanes);
+            }
+        }
+    }
+
+    fn on_exit(&mut self, v: &Vehicle, how: Departure, t_s: f64) {
+        let Some(trips) = self.trips.as_mut() else {
+            return;
+        };
+        // The step that ends at t_s (`step_time` inverted: exact for any run length).
+        let left_step = (how != Departure::OnRoad).then(|| (t_s / self.dt).round() as u64);
+        let entry_x = self.entry_x[v.origin as usize];
+        trips.push(trip_of(v, how, left_step, entry_x, self.origin_m, self.dt));
+    }
 }
 
 #[derive(Debug)]
@@ -247,8 +280,18 @@ impl TrajectoryRecorder {
         let t = step_time(step, self.dt);
         let start = self.rows.len();
         for lane in lanes {
+            // String positions from the sticky memberships: a vehicle is a member when the
+            // predecessor it joined is the one directly ahead of it now (a lane change in this
+            // step left its string).
+            let (mut ahead_id, mut ahead_pos) = (NEVER, 0u8);
             for &s in lane {
                 let v = &vehicles[s as usize];
+                let pos = if v.string_pred != NEVER && v.string_pred == ahead_id {
+                    ahead_pos.saturating_add(1)
+                } else {
+                    1
+                };
+                (ahead_id, ahead_pos) = (v.id, pos);
                 if v.x >= self.x_lo && v.x <= self.x_hi {
                     self.rows.push(TrajectoryPoint {
                         t_s: t,
@@ -259,6 +302,8 @@ impl TrajectoryRecorder {
                         v_mps: v.v,
                         a_mps2: v.a,
                         mode: v.mode_label(),
+                        regime: v.regime,
+                        platoon_pos: pos,
                     });
                 }
             }
@@ -268,17 +313,7 @@ impl TrajectoryRecorder {
 }
 
 /// How a trip ended, as the engine knows it when it records the trip.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum TripEnd {
-    /// Left by this off-ramp.
-    OffRamp(usize),
-    /// Left at the mainline end (where it meant to, or after missing its off-ramp).
-    RoadEnd,
-    /// Ran past the end of its lane and was removed.
-    Collided,
-    /// Still on the road at the end of the run.
-    OnRoad,
-}
+pub(crate) use crate::events::Departure as TripEnd;
 
 /// The trip of `v`, which ended as `end` in the step that ends at step `left_step` (`None`:
 /// still on the road); `entry_x` is its entry position (engine).

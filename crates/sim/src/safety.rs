@@ -66,6 +66,10 @@ pub struct Safety {
     /// one: a pair that overlaps in consecutive steps is one collision.
     pub overlapping: Vec<(u64, u64)>,
     pub overlapping_now: Vec<(u64, u64)>,
+    /// With observers attached: the emergency brakings that started in this step, at any time
+    /// (id, kind, deceleration m/s²), drained into events after integrate.
+    pub logging: bool,
+    pub brakings: Vec<(u64, Kind, f64)>,
 }
 
 impl Safety {
@@ -91,6 +95,8 @@ impl Safety {
             events: Vec::new(),
             overlapping: Vec::new(),
             overlapping_now: Vec::new(),
+            logging: false,
+            brakings: Vec::new(),
         }
     }
 
@@ -127,8 +133,13 @@ impl Safety {
             self.watch = (-self.max_decel).max(self.loosest_normal);
         }
         let normal = self.normal(v);
-        if in_window && law::is_emergency(a, normal) && !law::is_emergency(a_prev, normal) {
-            *self.emergency_brakings.get_mut(v.kind) += 1;
+        if law::is_emergency(a, normal) && !law::is_emergency(a_prev, normal) {
+            if in_window {
+                *self.emergency_brakings.get_mut(v.kind) += 1;
+            }
+            if self.logging {
+                self.brakings.push((v.id, v.kind, -a));
+            }
         }
     }
 

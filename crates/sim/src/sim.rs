@@ -1,12 +1,14 @@
 //! The simulation state and the step.
 
-use crate::config::{Config, DetectorKind, Strategy};
+use crate::config::{Config, DetectorKind};
 use crate::detector::{Detector, Passage};
+use crate::events::{Departure, Event, Observer};
 use crate::here::HereTables;
 use crate::insert::Entrance;
 use crate::metrics::Metrics;
 use crate::network::Geometry;
-use crate::record::{trip_of, Recorder, Recording, TrajectoryRecorder, TripEnd};
+use crate::organize::{self, Organizer};
+use crate::record::{Recorder, Recording, TrajectoryRecorder};
 use crate::safety::Safety;
 use crate::sense::{Sensed, NONE};
 use crate::summary::CollisionKind;
@@ -24,10 +26,13 @@ pub(crate) struct Decision {
     pub accel: f64,
     pub mode: crate::vehicle::Mode,
     pub family: platoonsim_model::cav::Family,
+    /// The control regime of an automated CAV's controller in this step (`None`: manual).
+    pub regime: Option<platoonsim_model::cav::CavMode>,
     /// Effective CAV time gap after this step (spec 3.5 transitions).
     pub time_gap: f64,
-    /// Lane change to execute after integration.
+    /// Lane change to execute after integration, and why.
     pub change: Option<Side>,
+    pub why: crate::events::LaneChangeReason,
     /// An automated CAV hands over to its driver in this step: relaxation starts (spec 4.6).
     pub takeover: bool,
 }
@@ -87,10 +92,21 @@ pub struct Simulation {
     /// Vehicles past the end of their lane in this step's integrate phase: (slot, lane, wall).
     pub(crate) crashed: Vec<(u32, u32, f64)>,
     pub(crate) vehicle_updates: u64,
-    /// Flow-Aware condition per road cell of `FA_CELL_M` (from the latest broadcasts).
-    pub(crate) fa_cells: Vec<bool>,
+    /// The platoon-organization strategy (`organize`), and whether it advises CAVs and
+    /// human drivers (asked once: a strategy that advises nobody costs nothing per vehicle).
+    pub(crate) organizer: Box<dyn Organizer>,
+    pub(crate) advise: [bool; 2],
     /// Optional trip and trajectory records (`record.rs`); off unless [`Simulation::record`].
     pub(crate) rec: Recorder,
+    /// Observers of the library user (`events.rs`), and the current step's events, buffered
+    /// only while there is one (`observing`).
+    pub(crate) observers: Vec<Box<dyn Observer>>,
+    pub(crate) events: Vec<Event>,
+    pub(crate) observing: bool,
+    /// Collision events already passed to the observers.
+    pub(crate) collisions_reported: usize,
+    /// Commands in force (`command.rs`), applied in the decide phase.
+    pub(crate) commands: Vec<crate::command::Active>,
 }
 
 impl Simulation {
@@ -134,7 +150,7 @@ impl Simulation {
         let lane_caps_mps = cfg.road.network.as_ref().map_or(Vec::new(), |n| {
             n.lane_speed_limits_kmh.iter().map(|c| c / 3.6).collect()
         });
-        Ok(Simulation {
+        let mut sim = Simulation {
             dt,
             step: 0,
             total_steps: steps(cfg.duration_s),
@@ -171,10 +187,35 @@ impl Simulation {
             safety: Safety::new(&cfg),
             crashed: Vec::new(),
             vehicle_updates: 0,
-            fa_cells: Vec::new(),
+            organizer: Box::new(crate::organize::NoOrganizer),
+            advise: [false; 2],
             rec: Recorder::default(),
+            observers: Vec::new(),
+            events: Vec::new(),
+            observing: false,
+            collisions_reported: 0,
+            commands: Vec::new(),
             cfg,
-        })
+        };
+        let organizer = organize::build(&sim.cfg);
+        sim.install(organizer);
+        Ok(sim)
+    }
+
+    /// Organize platoons with `organizer` instead of the strategy the config names (a
+    /// strategy of the library user's own; docs/organizers.md). The summary's `strategy` is
+    /// then the organizer's name. Must be called before the first step.
+    pub fn set_organizer(&mut self, organizer: Box<dyn Organizer>) -> Result<(), String> {
+        if self.step > 0 {
+            return Err("the organizer must be set before the first step".into());
+        }
+        self.install(organizer);
+        Ok(())
+    }
+
+    fn install(&mut self, organizer: Box<dyn Organizer>) {
+        self.advise = [organizer.advises_humans(), organizer.advises_cavs()];
+        self.organizer = organizer;
     }
 
     /// Also record what `recording` asks for (trips, trajectories); they come back in
@@ -192,8 +233,33 @@ impl Simulation {
                 .trajectories
                 .as_ref()
                 .map(|t| TrajectoryRecorder::new(t, &self.cfg, origin)),
+            entry_x: std::iter::once(0.0)
+                .chain(self.geom.on_ramps.iter().map(|r| r.x))
+                .collect(),
+            origin_m: origin,
+            dt: self.dt,
         };
         Ok(())
+    }
+
+    /// Attach an observer of the library user's own (events.rs; docs/library.md): it gets
+    /// every step's events and the state after the step, and every vehicle as it leaves.
+    /// Observers never change the simulation. Must be called before the first step.
+    pub fn observe(&mut self, observer: Box<dyn Observer>) -> Result<(), String> {
+        if self.step > 0 {
+            return Err("observers must be attached before the first step".into());
+        }
+        self.observers.push(observer);
+        self.observing = true;
+        self.safety.logging = true;
+        Ok(())
+    }
+
+    /// The first attached observer of type `T` (to read what it gathered).
+    pub fn observer<T: Observer + 'static>(&self) -> Option<&T> {
+        self.observers
+            .iter()
+            .find_map(|o| o.as_any().downcast_ref::<T>())
     }
 
     /// Output coordinate of engine x = 0 (the network origin; 0 on a plain road).
@@ -201,27 +267,38 @@ impl Simulation {
         self.cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m)
     }
 
-    /// Record the trip of slot `s` if trips are recorded: it ended as `end` in this step (or
-    /// is still on the road at the end of the run).
-    #[cold]
+    /// Slot `s` leaves the road as `how` in this step (or is still on it at the end): the
+    /// statistics, the trip record and the user's observers see it, in that order.
     #[inline(never)]
-    fn record_trip(&mut self, s: u32, end: TripEnd) {
-        let origin_m = self.origin_m();
-        let Some(trips) = self.rec.trips.as_mut() else {
-            return;
-        };
+    fn leave(&mut self, s: u32, how: Departure) {
+        let t = crate::record::step_time(self.step + 1, self.dt);
         let v = &self.vehicles[s as usize];
-        let entry_x = match v.origin {
-            0 => 0.0,
-            i => self.geom.on_ramps[i as usize - 1].x,
-        };
-        let left_step = (end != TripEnd::OnRoad).then_some(self.step + 1);
-        trips.push(trip_of(v, end, left_step, entry_x, origin_m, self.dt));
+        self.metrics.on_exit(v, how, t);
+        if self.rec.trips.is_some() {
+            self.rec.on_exit(v, how, t);
+        }
+        if self.observing {
+            for o in &mut self.observers {
+                o.on_exit(v, how, t);
+            }
+            if how != Departure::OnRoad {
+                let origin = self.origin_m();
+                self.events.push(Event::Exited {
+                    t_s: t,
+                    id: v.id,
+                    kind: v.kind,
+                    how,
+                    x_m: v.x + origin,
+                    v_mps: v.v,
+                });
+            }
+        }
     }
 
-    /// Simulated time (s).
+    /// Simulated time (s), as the records print it (`record::step_time`: 12.3 rather than
+    /// 12.300000000000001).
     pub fn time_s(&self) -> f64 {
-        self.step as f64 * self.dt
+        crate::record::step_time(self.step, self.dt)
     }
 
     /// True once the configured duration has been simulated.
@@ -292,14 +369,23 @@ impl Simulation {
             for d in &mut self.detectors {
                 d.close_interval();
             }
-            self.update_flow_aware();
+            self.broadcast();
         }
-        if let Some(t) = self.rec.trajectories.as_mut() {
-            if t.due(self.step) {
-                t.sample(self.step, &self.vehicles, &self.lanes);
-            }
+        if self
+            .rec
+            .trajectories
+            .as_ref()
+            .is_some_and(|t| t.due(self.step))
+        {
+            let mut rec = std::mem::take(&mut self.rec);
+            rec.on_step(self, &[]);
+            self.rec = rec;
         }
-        self.check_invariants()
+        let checked = self.check_invariants();
+        if self.observing {
+            self.notify();
+        }
+        checked
     }
 
     /// Phase 3: the decided acceleration bounded by the vehicle's emergency limit
@@ -373,6 +459,7 @@ impl Simulation {
                 }
                 veh.mode = d.mode;
                 veh.family = d.family;
+                veh.regime = d.regime;
                 veh.time_gap_s = d.time_gap;
                 if d.takeover {
                     veh.relax = Relaxation::Since(step);
@@ -387,6 +474,9 @@ impl Simulation {
             *vehicle_updates += lane.len() as u64;
         }
         self.lanes_sorted = sorted;
+        if self.observing {
+            self.log_brakings();
+        }
         if !self.crashed.is_empty() {
             self.remove_crashed();
         }
@@ -411,11 +501,11 @@ impl Simulation {
                 None,
                 v.x - w,
             );
-            self.lanes[l as usize].retain(|&o| o != s);
-            self.metrics.on_exit_in_network(&self.vehicles[s as usize]);
-            if self.rec.trips.is_some() {
-                self.record_trip(s, TripEnd::Collided);
+            if self.observing {
+                self.log_collisions();
             }
+            self.lanes[l as usize].retain(|&o| o != s);
+            self.leave(s, Departure::Collided);
             self.free.push(s);
         }
     }
@@ -431,10 +521,7 @@ impl Simulation {
                     break;
                 }
                 self.lanes[l].remove(0);
-                self.metrics.on_exit(&self.vehicles[s as usize]);
-                if self.rec.trips.is_some() {
-                    self.record_trip(s, TripEnd::RoadEnd);
-                }
+                self.leave(s, Departure::RoadEnd);
                 self.free.push(s);
             }
         }
@@ -468,10 +555,7 @@ impl Simulation {
                 if let Some(d) = self.exit_detector[exit] {
                     self.detectors[d].count_exit(speed, cav);
                 }
-                self.metrics.on_exit(&self.vehicles[s as usize]);
-                if self.rec.trips.is_some() {
-                    self.record_trip(s, TripEnd::OffRamp(exit));
-                }
+                self.leave(s, Departure::OffRamp(exit));
                 self.free.push(s);
             }
         }
@@ -597,20 +681,16 @@ impl Simulation {
 
     /// Run to the end and produce the outputs.
     pub fn finish(mut self, wall_seconds: f64) -> Output {
-        // Vehicles still on the road count with what they did so far.
-        for lane in &self.lanes {
-            for &s in lane {
-                self.metrics.on_exit_in_network(&self.vehicles[s as usize]);
-            }
+        // Vehicles still on the road count with what they did so far (in id order, the
+        // order of their trip records).
+        let mut on_road: Vec<u32> = self.lanes.iter().flatten().copied().collect();
+        on_road.sort_unstable_by_key(|&s| self.vehicles[s as usize].id);
+        self.step = self.step.saturating_sub(1); // `leave` stamps the end of the current step
+        for s in on_road {
+            self.leave(s, Departure::OnRoad);
         }
-        let trips = self.rec.trips.is_some().then(|| {
-            let mut on_road: Vec<u32> = self.lanes.iter().flatten().copied().collect();
-            on_road.sort_unstable_by_key(|&s| self.vehicles[s as usize].id);
-            for s in on_road {
-                self.record_trip(s, TripEnd::OnRoad);
-            }
-            self.rec.trips.take().unwrap_or_default()
-        });
+        self.step += 1;
+        let trips = self.rec.trips.take();
         let trajectories = self.rec.trajectories.take().map(|t| t.rows);
         let cfg = &self.cfg;
         let det = &self.detectors[cfg.measurement_detector];
@@ -655,7 +735,7 @@ impl Simulation {
             scenario: cfg.name.clone(),
             penetration: cfg.penetration,
             demand_vphpl: cfg.demand.vph_per_lane,
-            strategy: strategy_name(&cfg.strategy).to_string(),
+            strategy: self.organizer.name().to_string(),
             seed: cfg.seed,
             dt_s: cfg.dt_s,
             duration_s: cfg.duration_s,
@@ -707,6 +787,82 @@ impl Simulation {
             trips,
             trajectories,
         }
+    }
+
+    /// The emergency brakings that started in this step's integrate phase, as events.
+    #[cold]
+    #[inline(never)]
+    fn log_brakings(&mut self) {
+        let t = crate::record::step_time(self.step + 1, self.dt);
+        for (id, kind, decel) in self.safety.brakings.drain(..) {
+            self.events.push(Event::EmergencyBraking {
+                t_s: t,
+                id,
+                kind,
+                decel_mps2: decel,
+            });
+        }
+    }
+
+    /// The collisions recorded since the last call, as events.
+    #[cold]
+    #[inline(never)]
+    fn log_collisions(&mut self) {
+        for c in &self.safety.events[self.collisions_reported..] {
+            self.events.push(Event::Collision(c.clone()));
+        }
+        self.collisions_reported = self.safety.events.len();
+    }
+
+    /// End of a step with observers attached: the rear-end collisions and the mode changes
+    /// of the step become events, and every observer gets the step's events and the state.
+    #[cold]
+    #[inline(never)]
+    fn notify(&mut self) {
+        self.log_collisions();
+        let t = crate::record::step_time(self.step, self.dt);
+        let Simulation {
+            lanes,
+            vehicles,
+            events,
+            ..
+        } = self;
+        for lane in lanes.iter() {
+            for &s in lane {
+                let v = &mut vehicles[s as usize];
+                let now = (v.mode_label(), v.regime);
+                if v.reported != now {
+                    events.push(Event::ModeChange {
+                        t_s: t,
+                        id: v.id,
+                        kind: v.kind,
+                        from: v.reported.0,
+                        to: now.0,
+                        regime_from: v.reported.1,
+                        regime_to: now.1,
+                    });
+                    v.reported = now;
+                }
+            }
+        }
+        let mut observers = std::mem::take(&mut self.observers);
+        for o in &mut observers {
+            o.on_step(self, &self.events);
+        }
+        self.observers = observers;
+        self.events.clear();
+    }
+
+    /// At the end of an aggregation interval: the detectors' broadcasts to the organizer
+    /// (the Flow-Aware condition is recomputed from them).
+    fn broadcast(&mut self) {
+        let interval = self.cfg.aggregation_s;
+        let casts: Vec<_> = self
+            .detectors
+            .iter()
+            .filter_map(|d| d.broadcast(interval).map(|b| (d.position_m, b)))
+            .collect();
+        self.organizer.on_broadcasts(&self.geom, &casts);
     }
 
     /// Renumber the slots in lane order, front first (memory locality only: neighbours in a
@@ -799,13 +955,4 @@ fn non_finite(v: &Vehicle, lane: usize, t: f64) -> String {
         v.v,
         v.a
     )
-}
-
-/// Short name of a strategy (summary field).
-pub fn strategy_name(s: &Strategy) -> &'static str {
-    match s {
-        Strategy::None => "none",
-        Strategy::Pd { .. } => "pd",
-        Strategy::FlowAware { .. } => "flow-aware",
-    }
 }

@@ -1,7 +1,7 @@
 //! Vehicle state: identity, drawn parameters, kinematics, driving mode and statistics.
 
 use crate::rng::Stream;
-use platoonsim_model::cav::Family;
+use platoonsim_model::cav::{CavMode, Family};
 use platoonsim_model::human::HumanParams;
 use platoonsim_model::lanechange::{LaneChangeParams, Side};
 
@@ -88,10 +88,11 @@ pub struct Vehicle {
     pub kind: Kind,
     /// CAV controller family (hysteresis state, spec 3.3/3.4).
     pub family: Family,
+    /// The CAV controller's regime in the last step while automated (spec 3.9); `None` for a
+    /// human driver or a CAV driven manually.
+    pub regime: Option<CavMode>,
     /// Side of the last lane change.
     pub last_lc_side: Option<Side>,
-    /// Entered during the measurement window: counts in the statistics.
-    pub measured: bool,
     /// Lane changes made.
     pub lane_changes: u32,
     /// Largest platoon this CAV has been in (1 = never), paper definition: a chain of CAVs each
@@ -117,6 +118,10 @@ pub struct Vehicle {
     /// with which leader: a conflict continues while both stay the same from step to step.
     pub conflict_step: u64,
     pub conflict_leader: u64,
+    /// Entered during the measurement window: counts in the statistics (read when it leaves).
+    pub measured: bool,
+    /// The driving mode and regime last reported to observers (`events.rs`).
+    pub(crate) reported: (ModeLabel, Option<CavMode>),
 }
 
 impl Vehicle {
@@ -204,6 +209,8 @@ mod tests {
         // cache line (the record did not grow for them).
         assert!(offset_of!(Vehicle, origin) > offset_of!(Vehicle, rng));
         assert!(offset_of!(Vehicle, planned_exit) > offset_of!(Vehicle, rng));
+        assert!(offset_of!(Vehicle, measured) > offset_of!(Vehicle, rng));
+        assert!(offset_of!(Vehicle, reported) > offset_of!(Vehicle, rng));
         let end_of_rng = offset_of!(Vehicle, rng) + size_of::<Stream>();
         assert_eq!(size_of::<Vehicle>(), end_of_rng.next_multiple_of(64));
     }

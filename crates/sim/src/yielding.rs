@@ -55,12 +55,11 @@ impl Simulation {
                     && matches!(
                         r.mode,
                         Mode::Blc {
-                            side: Side::Left,
+                            side,
                             mandatory: false,
                             ..
-                        }
+                        } if self.organizing_side(r) == Some(side)
                     )
-                    && self.may_organize(r)
             };
             if automated && !mandatory && !joining() {
                 return None;

@@ -46,7 +46,7 @@ pub fn bench(args: &BenchArgs, quiet: bool) -> Result<()> {
         duration_s: Some(args.duration),
         warmup_s: Some((args.duration / 3.0).min(1200.0)),
         seed: Some(args.seed),
-        strategy: Some(StrategyKind::None),
+        strategy: Some(StrategyKind::NONE),
         set: Vec::new(),
     };
     let config = load_with(SCENARIO, &overrides).context("cannot set up the benchmark")?;

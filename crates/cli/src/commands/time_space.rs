@@ -3,6 +3,9 @@
 
 use crate::args::TimeSpaceArgs;
 use crate::output::TRAJECTORY_HEADER;
+
+/// Columns of the first `trajectories.csv` format (before `platoon_pos` and `regime`).
+const TRAJECTORY_COLUMNS_V1: usize = 8;
 use anyhow::{bail, Context, Result};
 use platoonsim_plot::{TimeSpace, Track, TrackSample};
 use std::collections::{BTreeSet, HashMap};
@@ -44,13 +47,16 @@ pub fn read_tracks<R: Read>(input: R, path: &Path, lane: u32) -> Result<Vec<Trac
         .iter()
         .collect::<Vec<_>>()
         .join(",");
-    if header != TRAJECTORY_HEADER {
+    // Files written before the `platoon_pos` and `regime` columns were added are read too:
+    // the columns used here are the first eight.
+    let columns: Vec<&str> = header.split(',').collect();
+    let current: Vec<&str> = TRAJECTORY_HEADER.split(',').collect();
+    if columns != current && columns != current[..TRAJECTORY_COLUMNS_V1] {
         bail!(
             "{name} is not a trajectories.csv: its header is '{header}', expected \
              '{TRAJECTORY_HEADER}' (write one with `platoonsim run ... --trajectories PERIOD_S`)"
         );
     }
-    let columns: Vec<&str> = TRAJECTORY_HEADER.split(',').collect();
     let mut tracks: Vec<Track> = vec![];
     // Vehicle id -> (index in `tracks`, whether its last sample was in the lane).
     let mut index: HashMap<u64, (usize, bool)> = HashMap::new();
@@ -61,7 +67,7 @@ pub fn read_tracks<R: Read>(input: R, path: &Path, lane: u32) -> Result<Vec<Trac
         let line = record.position().map_or(0, |p| p.line());
         if record.len() != columns.len() {
             bail!(
-                "{name} line {line}: {} fields, expected {} ({TRAJECTORY_HEADER})",
+                "{name} line {line}: {} fields, expected {} ({header})",
                 record.len(),
                 columns.len()
             );

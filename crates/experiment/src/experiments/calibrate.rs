@@ -46,14 +46,14 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
                 ("flow_threshold_vphpl", String::new()),
                 ("speed_threshold_kmh", String::new()),
             ];
-            let mut c = cell(&[], point(s, p, d, StrategyKind::None))?;
+            let mut c = cell(&[], point(s, p, d, StrategyKind::NONE))?;
             c.labels
                 .0
                 .extend(none.iter().map(|(k, v)| (k.to_string(), v.clone())));
             cells.push(c);
             for &q in &s.flow_thresholds {
                 for &v in &s.speed_thresholds {
-                    let mut pt = point(s, p, d, StrategyKind::FlowAware);
+                    let mut pt = point(s, p, d, StrategyKind::FLOW_AWARE);
                     pt.set = vec![
                         format!("strategy.flow_threshold_vphpl={q}"),
                         format!("strategy.speed_threshold_kmh={v}"),

@@ -29,7 +29,7 @@ pub const FILL_S: f64 = 300.0;
 pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {
     let mut stage1 = Vec::new();
     for &p in &PENETRATIONS {
-        let mut pt = point(s, p, s.capacity_demand_vphpl, StrategyKind::None);
+        let mut pt = point(s, p, s.capacity_demand_vphpl, StrategyKind::NONE);
         pt.warmup_s = FILL_S.min(s.duration_s);
         stage1.push(cell(&[("stage", "baseline".into())], pt)?);
     }
@@ -43,7 +43,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
                 "capacity: no baseline capacity at penetration {p} (stage 1 gave {cap})"
             )));
         }
-        let pt = point(s, p, cap.round(), StrategyKind::Pd);
+        let pt = point(s, p, cap.round(), StrategyKind::PD);
         stage2.push(cell(&[("stage", "pd".into())], pt)?);
     }
     outcomes.extend(run_cells(runner, &stage2, seeds, stage1.len())?);

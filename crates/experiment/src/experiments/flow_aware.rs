@@ -9,7 +9,6 @@ use crate::runner::{Outcome, Runner};
 use crate::table::{self, md_table, pm, SummaryRow};
 use crate::{Cell, Error};
 use platoonsim_scenario::StrategyKind;
-use platoonsim_sim::Strategy;
 
 pub const PENETRATION: f64 = 0.5;
 pub const DEMAND: f64 = 2500.0;
@@ -17,9 +16,9 @@ pub const DEMAND: f64 = 2500.0;
 pub const TOLERANCE_PCT: f64 = 0.5;
 
 const STRATEGIES: [StrategyKind; 3] = [
-    StrategyKind::None,
-    StrategyKind::FlowAware,
-    StrategyKind::Pd,
+    StrategyKind::NONE,
+    StrategyKind::FLOW_AWARE,
+    StrategyKind::PD,
 ];
 
 pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {
@@ -55,10 +54,9 @@ pub(super) fn markdown(
     _outcomes: &[Outcome],
     rows: &[SummaryRow],
 ) -> (String, Vec<Check>) {
-    let thresholds = cells.iter().find_map(|c| match &c.config.strategy {
-        Strategy::FlowAware { thresholds, .. } => Some(thresholds.clone()),
-        _ => None,
-    });
+    let thresholds = cells
+        .iter()
+        .find_map(|c| c.config.strategy.thresholds.clone());
     let th = thresholds.map_or("?".to_string(), |t| {
         format!(
             "ρ_q = {} veh/h/lane, ρ_v = {} km/h, detectors within {} m",
@@ -104,7 +102,7 @@ pub(super) fn markdown(
         let f = |m: &str, dec: usize| get(name, m).map_or("–".into(), |r| pm(&r.stats, dec));
         trs.push(vec![
             match k {
-                StrategyKind::None => "baseline".into(),
+                StrategyKind::NONE => "baseline".into(),
                 other => other.as_str().to_string(),
             },
             f("discharge_flow_vphpl", 1),

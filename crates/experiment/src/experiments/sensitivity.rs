@@ -17,7 +17,7 @@ pub const PENETRATION: f64 = 0.5;
 pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {
     let mut cells = Vec::new();
     for &d in &DEMANDS {
-        for k in [StrategyKind::None, StrategyKind::Pd] {
+        for k in [StrategyKind::NONE, StrategyKind::PD] {
             cells.push(cell(&[], point(s, PENETRATION, d, k))?);
         }
     }

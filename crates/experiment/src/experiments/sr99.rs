@@ -7,7 +7,7 @@
 //!
 //! The first seed of the 40 % cells keeps its detector records (every lane): the speed
 //! contours (paper Fig. 6) and the lane-by-lane CAV flow ratio and speed upstream of Florin
-//! Rd (Fig. 7); see [`super::sr99_figures`].
+//! Rd (Fig. 7); see `sr99_figures.rs`.
 
 use super::{checks_md, find, Check, Done, Extra, Settings};
 use crate::corridor::{self, Criterion};
@@ -28,9 +28,9 @@ pub const PENETRATIONS: [f64; 6] = [0.0, 0.2, 0.4, 0.6, 0.8, 1.0];
 pub const FIGURE_PENETRATION: f64 = 0.4;
 /// The strategies at a penetration strictly between 0 and 1.
 pub const STRATEGIES: [StrategyKind; 3] = [
-    StrategyKind::None,
-    StrategyKind::Pd,
-    StrategyKind::FlowAware,
+    StrategyKind::NONE,
+    StrategyKind::PD,
+    StrategyKind::FLOW_AWARE,
 ];
 
 /// Changes vs the baseline at the same penetration: (name, metric it is computed from). The
@@ -667,10 +667,7 @@ mod tests {
             assert!((base_multiplier(cell).unwrap() - base).abs() < 1e-9);
             assert_eq!(cell.config.duration_s, 600.0);
         }
-        assert!(matches!(
-            c[5].config.strategy,
-            platoonsim_sim::Strategy::Pd { .. }
-        ));
+        assert_eq!(c[5].config.strategy.kind, StrategyKind::PD);
 
         // One scale for all, or a table file.
         let fixed = Settings {

@@ -133,7 +133,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
         let mut new = Vec::new();
         for &i in &open {
             let p = searches[i].penetration;
-            new.push(sr99::cell(s, p, StrategyKind::None, cands[i][step])?);
+            new.push(sr99::cell(s, p, StrategyKind::NONE, cands[i][step])?);
         }
         let mut specs = design::runs(&new, seeds);
         design::keep_detectors(&mut specs, Scope::CrossSection, |_, _| true);

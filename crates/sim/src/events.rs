@@ -1,0 +1,147 @@
+//! What happens in a run, as typed events, and the observers that receive them.
+//!
+//! The engine buffers a step's events only while an observer is attached
+//! ([`crate::Simulation::observe`]): without one, a run pays one branch per event site. Events
+//! of a step come in the order of the step's phases (docs/library.md): emergency brakings and
+//! lane-end collisions (integrate), lane changes, exits, entries, rear-end collisions, then the
+//! driving-mode changes seen at the end of the step. All carry the simulated time at the end of
+//! the step.
+//!
+//! The built-in records are observers too: the paper's statistics ([`crate::metrics::Metrics`])
+//! and the trip and trajectory records are called through [`Observer`] (statically, without a
+//! virtual call).
+
+use crate::summary::CollisionEvent;
+use crate::vehicle::{Kind, ModeLabel, Vehicle};
+use crate::Simulation;
+use platoonsim_model::cav::CavMode;
+
+/// Why a vehicle changed lanes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LaneChangeReason {
+    /// A mandatory desire (a lane that ends, the way to its off-ramp, a lane its strategy
+    /// closes to it), possibly with a discretionary part on the same side (spec 4.2).
+    Mandatory,
+    /// A discretionary desire: speed gain, on-ramp anticipation (spec 4.2).
+    Discretionary,
+    /// Platoon organization: the strategy's `Join` advice (spec 4.7).
+    Organizing,
+    /// A lane change commanded from outside ([`crate::Command::ChangeLane`]).
+    Commanded,
+}
+
+impl LaneChangeReason {
+    /// `mandatory`, `discretionary`, `organizing` or `commanded`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            LaneChangeReason::Mandatory => "mandatory",
+            LaneChangeReason::Discretionary => "discretionary",
+            LaneChangeReason::Organizing => "organizing",
+            LaneChangeReason::Commanded => "commanded",
+        }
+    }
+}
+
+/// How a vehicle left the road, or that it is still on it at the end of the run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Departure {
+    /// By this off-ramp (index into the network's off-ramps).
+    OffRamp(usize),
+    /// At the end of the mainline (where it meant to, or after missing its off-ramp).
+    RoadEnd,
+    /// It ran past the end of its lane and was removed (a lane-end collision).
+    Collided,
+    /// Still on the road when the run ends (reported once, by [`Observer::on_exit`] at the end).
+    OnRoad,
+}
+
+/// One event. Yielding in this model is done by slowing down, so it appears as a
+/// [`Event::ModeChange`] to `ycf`, never as a lane change.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Event {
+    /// A vehicle was inserted at an entrance (0 the mainline, i + 1 on-ramp i).
+    Entered {
+        t_s: f64,
+        id: u64,
+        kind: Kind,
+        entrance: u32,
+        lane: u32,
+        x_m: f64,
+        v_mps: f64,
+    },
+    /// A vehicle left the road.
+    Exited {
+        t_s: f64,
+        id: u64,
+        kind: Kind,
+        how: Departure,
+        x_m: f64,
+        v_mps: f64,
+    },
+    /// A lane change from lane `from` to `to` (engine indices, 0 = rightmost).
+    LaneChange {
+        t_s: f64,
+        id: u64,
+        kind: Kind,
+        from: u32,
+        to: u32,
+        x_m: f64,
+        reason: LaneChangeReason,
+    },
+    /// The driving mode or the CAV controller's regime changed in this step.
+    ModeChange {
+        t_s: f64,
+        id: u64,
+        kind: Kind,
+        from: ModeLabel,
+        to: ModeLabel,
+        regime_from: Option<CavMode>,
+        regime_to: Option<CavMode>,
+    },
+    /// An emergency braking episode started: a deceleration beyond the vehicle's normal
+    /// braking (docs/safety.md). Counted at all times (the summary counts those in the
+    /// measurement window).
+    EmergencyBraking {
+        t_s: f64,
+        id: u64,
+        kind: Kind,
+        decel_mps2: f64,
+    },
+    /// A collision (the same record as `collisions.csv`).
+    Collision(CollisionEvent),
+}
+
+impl Event {
+    /// The simulated time of the event (s).
+    pub fn t_s(&self) -> f64 {
+        match self {
+            Event::Entered { t_s, .. }
+            | Event::Exited { t_s, .. }
+            | Event::LaneChange { t_s, .. }
+            | Event::ModeChange { t_s, .. }
+            | Event::EmergencyBraking { t_s, .. } => *t_s,
+            Event::Collision(c) => c.t_s,
+        }
+    }
+}
+
+/// Something that watches a run: it reads, it never changes the simulation.
+pub trait Observer: AsAny + Send {
+    /// After each step: the step's events (in phase order) and the state after the step.
+    fn on_step(&mut self, _sim: &Simulation, _events: &[Event]) {}
+    /// A vehicle leaves the road (`how`), with its record as it leaves; at the end of the run,
+    /// once for each vehicle still on the road ([`Departure::OnRoad`]). `t_s` is the time at
+    /// the end of the step.
+    fn on_exit(&mut self, _v: &Vehicle, _how: Departure, _t_s: f64) {}
+}
+
+/// Lets [`crate::Simulation::observer`] hand back an observer as its own type.
+pub trait AsAny {
+    fn as_any(&self) -> &dyn std::any::Any;
+}
+
+impl<T: std::any::Any> AsAny for T {
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+}
