@@ -62,7 +62,7 @@ pub fn csv_to_parquet(csv: &[u8], kind: &dyn Fn(&str) -> Kind) -> Result<Vec<u8>
 }
 
 /// The trajectory samples as a table with the columns of `trajectories.csv` (lane counted
-/// from 1).
+/// from 1; `regime` null where the CSV cell is empty).
 fn trajectories_table(rows: &[TrajectoryPoint]) -> Table {
     let mut t = Table::default();
     t.push(
@@ -99,6 +99,23 @@ fn trajectories_table(rows: &[TrajectoryPoint]) -> Table {
         Values::Str(
             rows.iter()
                 .map(|r| Some(r.mode.as_str().to_string()))
+                .collect(),
+        ),
+    );
+    t.push(
+        "platoon_pos",
+        Values::U64(
+            rows.iter()
+                .map(|r| Some(u64::from(r.platoon_pos)))
+                .collect(),
+        ),
+    );
+    // Null where the CSV cell is empty: a vehicle that is not an automated CAV.
+    t.push(
+        "regime",
+        Values::Str(
+            rows.iter()
+                .map(|r| r.regime.map(|m| m.as_str().to_string()))
                 .collect(),
         ),
     );

@@ -149,7 +149,7 @@ fn parquet_tables_equal_the_csv_tables() {
         .find(|l| l.contains("trajectories.parquet"))
         .unwrap();
     assert!(
-        traj.contains("8 columns") && traj.contains("2 string") && traj.contains("2 uint64"),
+        traj.contains("10 columns") && traj.contains("3 string") && traj.contains("3 uint64"),
         "{traj}"
     );
     let runs = report
