@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Every test: the Rust workspace, then the viewer's browser tests (tests/browser: headless
 # Chromium from Debian's package driven by playwright-core). README and .ci/run call this.
-# With --install it first installs what the browser tests need (Debian's chromium, the npm
-# packages of tests/browser/package-lock.json); without it a missing browser skips them,
-# except under CI=true, where it fails.
+# With --install it first installs what the tests need (Debian's chromium, the npm packages
+# of tests/browser/package-lock.json, the Python packages of .ci/python-deps); without it a
+# missing browser or package skips those tests, except under CI=true, where it fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -13,6 +13,9 @@ if [ "${1:-}" = "--install" ]; then
         DEBIAN_FRONTEND=noninteractive apt-get install -y chromium
     fi
     (cd tests/browser && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund)
+    # The Python packages that tests drive: HyperQueue (the real-scheduler test), pyarrow
+    # (Parquet read back).
+    bash .ci/python-deps
 fi
 
 echo "== cargo test --workspace --release"

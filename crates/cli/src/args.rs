@@ -15,7 +15,8 @@ use std::path::PathBuf;
 #[command(
     after_help = "Run `platoonsim <COMMAND> --help` for a command's flags.\n\nExit codes: 0 \
                   success; 1 error; 2 invalid arguments; 3 `run` had collisions (unless \
-                  --allow-collisions); 141 standard output was closed (e.g. `| head`)."
+                  --allow-collisions) or a `sweep` had runs with collisions; 141 standard \
+                  output was closed (e.g. `| head`)."
 )]
 pub struct Cli {
     /// Hide progress bars (they are also hidden when stderr is not a terminal).
@@ -59,6 +60,12 @@ pub enum Command {
     /// driving mode, play/pause/step, zoom and pan, a minimap, detectors and a speed contour.
     /// Opens offline in any current browser; loads nothing from the network.
     View(ViewArgs),
+    /// Run a sweep described by a TOML file (a scenario, seeds, fixed --set keys, axes whose
+    /// product makes the cells, a reference level for paired differences); write runs.csv,
+    /// summary.csv, summary.md, run.json and figures to OUT. Resumable, and shardable over a
+    /// scheduler's job array (--shard I/N, or SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX,
+    /// HQ_TASK_ID); see docs/sweeps.md.
+    Sweep(crate::commands::sweep::SweepArgs),
 }
 
 /// Which scenario, and what to change in it. Overrides act on the scenario file before it
@@ -184,6 +191,11 @@ pub struct RunArgs {
     /// collisions.csv among them.
     #[arg(long)]
     pub allow_collisions: bool,
+
+    /// Format of the tables detectors, trips and trajectories: csv, or parquet (typed columns,
+    /// compressed; detectors.parquet, trips.parquet, trajectories.parquet).
+    #[arg(long, value_enum, default_value = "csv")]
+    pub format: crate::tables::FormatArg,
 
     /// Also write trips.csv: one row per vehicle that entered the road (entrance, exit, times,
     /// travel time, lane changes, largest platoon). Does not change the simulation.
@@ -479,6 +491,10 @@ pub struct ExperimentArgs {
 
     #[command(flatten)]
     pub network: NetworkArgs,
+
+    /// Format of the tables runs and summary: csv, or parquet (typed columns, compressed).
+    #[arg(long, value_enum, default_value = "csv")]
+    pub format: crate::tables::FormatArg,
 }
 
 /// The SR-99 experiments' flags.

@@ -17,6 +17,7 @@ mod atomic;
 mod commands;
 mod output;
 mod progress;
+mod tables;
 
 use clap::Parser;
 use std::process::ExitCode;

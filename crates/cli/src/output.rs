@@ -5,6 +5,7 @@
 //! |---|---|
 //! | `summary.json` | [`Summary`], pretty JSON |
 //! | `detectors.csv` | one row per detector, lane (1 = rightmost, `all`) and interval |
+//! | `*.parquet` | with `--format parquet`: the tables detectors, trips and trajectories as Parquet instead of CSV ([`crate::tables`]) |
 //! | `scenario.json` | the resolved [`Config`] |
 //! | `scenario.toml` | the same as a complete scenario file (`platoonsim run DIR/scenario.toml` reruns it) |
 //! | `trips.csv` | with `--trips`: one row per vehicle that entered the road ([`trips_csv`]) |
@@ -12,6 +13,7 @@
 //! | `collisions.csv` | only if the run had collisions: one row per [`CollisionEvent`] ([`collisions_csv`]) |
 
 use crate::atomic::{write_atomic, write_atomic_with};
+use crate::tables::{self, FormatArg};
 use anyhow::{Context, Result};
 use platoonsim_experiment::detectors::Scope;
 use platoonsim_sim::{
@@ -20,48 +22,81 @@ use platoonsim_sim::{
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// The optional per-vehicle files; one left by an earlier run in the same directory is removed
-/// when this run does not write it, so that the directory holds one run's files.
-pub const RECORD_FILES: [&str; 2] = ["trips.csv", "trajectories.csv"];
-
 /// The file of a run's collisions; like the record files, a stale one is removed by a run
 /// without collisions, so that its absence means "no collision".
 pub const COLLISIONS_FILE: &str = "collisions.csv";
 
-/// Write every output file of a run into `dir` (which must exist); returns the paths written.
-/// `trips.csv` and `trajectories.csv` are written if the output has the records,
-/// `collisions.csv` if the run had collisions.
+/// Write every output file of a run into `dir` (which must exist) with CSV tables; returns
+/// the paths written. See [`write_run_as`].
+#[cfg(test)]
 pub fn write_run(dir: &Path, config: &Config, output: &Output) -> Result<Vec<PathBuf>> {
-    let files: [(&str, Vec<u8>); 4] = [
+    write_run_as(dir, config, output, FormatArg::Csv)
+}
+
+/// Write every output file of a run into `dir`, the tables (`detectors`, `trips`,
+/// `trajectories`) in `format`; returns the paths written. `trips` and `trajectories` are
+/// written if the output has the records, `collisions.csv` if the run had collisions. A table
+/// of an earlier run that this one does not write (in either format) is removed.
+pub fn write_run_as(
+    dir: &Path,
+    config: &Config,
+    output: &Output,
+    format: FormatArg,
+) -> Result<Vec<PathBuf>> {
+    let files: [(&str, Vec<u8>); 3] = [
         ("summary.json", json(&output.summary)?),
-        ("detectors.csv", detectors_csv(&output.detectors)?),
         ("scenario.json", json(config)?),
         (
             "scenario.toml",
             platoonsim_scenario::to_toml(config).into_bytes(),
         ),
     ];
-    let mut written = Vec::with_capacity(files.len());
-    for (name, bytes) in files {
-        let path = dir.join(name);
-        write_atomic(&path, &bytes).with_context(|| format!("cannot write {}", path.display()))?;
+    let mut written = Vec::with_capacity(files.len() + 3);
+    let mut put = |path: PathBuf, bytes: &[u8]| -> Result<()> {
+        write_atomic(&path, bytes).with_context(|| format!("cannot write {}", path.display()))?;
         written.push(path);
+        Ok(())
+    };
+    for (name, bytes) in files {
+        put(dir.join(name), &bytes)?;
     }
-    let [trips_file, trajectories_file] = RECORD_FILES.map(|name| dir.join(name));
+    let ext = format.ext();
+    let table = |stem: &str| dir.join(format!("{stem}.{ext}"));
+    let detectors = detectors_csv(&output.detectors)?;
+    match format {
+        FormatArg::Csv => put(table("detectors"), &detectors)?,
+        FormatArg::Parquet => put(
+            table("detectors"),
+            &tables::csv_to_parquet(&detectors, &tables::detector_kind)?,
+        )?,
+    }
     if let Some(trips) = &output.trips {
-        let bytes = trips_csv(config, trips)?;
-        write_atomic(&trips_file, &bytes)
-            .with_context(|| format!("cannot write {}", trips_file.display()))?;
-        written.push(trips_file);
-    } else {
-        remove_stale(&trips_file)?;
+        let csv = trips_csv(config, trips)?;
+        match format {
+            FormatArg::Csv => put(table("trips"), &csv)?,
+            FormatArg::Parquet => put(
+                table("trips"),
+                &tables::csv_to_parquet(&csv, &tables::trip_kind)?,
+            )?,
+        }
     }
     if let Some(rows) = &output.trajectories {
-        write_atomic_with(&trajectories_file, |w| write_trajectories(w, rows))
-            .with_context(|| format!("cannot write {}", trajectories_file.display()))?;
-        written.push(trajectories_file);
-    } else {
-        remove_stale(&trajectories_file)?;
+        let path = table("trajectories");
+        match format {
+            FormatArg::Csv => write_atomic_with(&path, |w| write_trajectories(w, rows))
+                .with_context(|| format!("cannot write {}", path.display()))?,
+            FormatArg::Parquet => tables::write_trajectories_parquet(&path, rows)?,
+        }
+        written.push(path);
+    }
+    // Tables this run did not write, in either format, are an earlier run's.
+    for stem in ["detectors", "trips", "trajectories"] {
+        for other in [FormatArg::Csv, FormatArg::Parquet] {
+            let path = dir.join(format!("{stem}.{}", other.ext()));
+            if !written.contains(&path) {
+                remove_stale(&path)?;
+            }
+        }
     }
     let collisions_file = dir.join(COLLISIONS_FILE);
     if output.collision_events.is_empty() {

@@ -8,6 +8,12 @@ pub fn wanted(quiet: bool) -> bool {
     !quiet && std::io::stderr().is_terminal()
 }
 
+/// Whether to print progress lines instead of a bar: not with `--quiet`, and only when
+/// stderr is not a terminal (a log file, a scheduler's output).
+pub fn lines_wanted(quiet: bool) -> bool {
+    !quiet && !std::io::stderr().is_terminal()
+}
+
 /// A bar counting simulated seconds; hidden (drawing nothing) unless `show`.
 pub fn sim_bar(total_s: f64, show: bool, label: &str) -> ProgressBar {
     if !show {

@@ -19,6 +19,15 @@ pub fn write_atomic_with<F>(path: &Path, fill: F) -> io::Result<()>
 where
     F: FnOnce(&mut dyn Write) -> io::Result<()>,
 {
+    write_atomic_file(path, |f| fill(f))
+}
+
+/// [`write_atomic_with`] handing `fill` the buffered file itself (a concrete, `Send` writer,
+/// as the Parquet writer needs).
+pub fn write_atomic_file<F>(path: &Path, fill: F) -> io::Result<()>
+where
+    F: FnOnce(&mut io::BufWriter<File>) -> io::Result<()>,
+{
     let tmp = tmp_path(path)?;
     let result = (|| {
         let mut f = io::BufWriter::with_capacity(1 << 16, File::create(&tmp)?);

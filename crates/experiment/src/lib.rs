@@ -16,17 +16,20 @@
 //! * [`atomic`]: the one atomic file writer (also used by the CLI).
 
 pub mod atomic;
+pub mod columnar;
 pub mod corridor;
 pub mod design;
 pub mod detectors;
 pub mod experiments;
 pub mod hash;
 pub mod paper;
+pub mod progress;
 pub mod record;
 pub mod report;
 pub mod runner;
 pub mod safety;
 pub mod stats;
+pub mod sweep;
 pub mod table;
 
 pub use design::{Cell, Labels, RunSpec};

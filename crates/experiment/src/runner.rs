@@ -81,6 +81,8 @@ pub struct Runner<'a> {
     pub reuse_from: Vec<PathBuf>,
     /// Advanced by one per run, reused or computed.
     pub bar: ProgressBar,
+    /// Progress lines for logs (no terminal), advanced with the bar.
+    pub log: Option<std::sync::Arc<crate::progress::Lines>>,
     pub exec: Executor<'a>,
     computed: AtomicUsize,
     reused: AtomicUsize,
@@ -100,6 +102,7 @@ impl<'a> Runner<'a> {
             engine: Some(record::engine_id().to_string()),
             reuse_from: Vec::new(),
             bar,
+            log: None,
             exec,
             computed: AtomicUsize::new(0),
             reused: AtomicUsize::new(0),
@@ -174,7 +177,7 @@ impl<'a> Runner<'a> {
                 Some(fields) => {
                     results[u] = Some(Ok((fields, false)));
                     self.reused.fetch_add(mult, Ordering::Relaxed);
-                    self.bar.inc(mult as u64);
+                    self.advance(mult, false);
                 }
                 None => todo.push(u),
             }
@@ -188,7 +191,7 @@ impl<'a> Runner<'a> {
                     if r.is_ok() {
                         self.computed.fetch_add(mult, Ordering::Relaxed);
                     }
-                    self.bar.inc(mult as u64);
+                    self.advance(mult, true);
                     (u, r.map(|f| (f, true)))
                 })
                 .collect()
@@ -229,6 +232,19 @@ impl<'a> Runner<'a> {
             Some(e) => Err(e),
             None => Ok(out),
         }
+    }
+
+    fn advance(&self, n: usize, computed: bool) {
+        self.bar.inc(n as u64);
+        if let Some(log) = &self.log {
+            log.advance(n, computed);
+        }
+    }
+
+    /// Whether a valid run file of `spec` is already there (or in [`Runner::reuse_from`],
+    /// whose files are then copied here): it would be reused, not computed.
+    pub fn is_done(&self, spec: &RunSpec) -> bool {
+        self.load(&spec.key(), spec.seed, spec.detectors).is_some()
     }
 
     /// A valid existing run file's metrics, or `None` (missing or unusable: recompute): from

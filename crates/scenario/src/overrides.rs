@@ -151,6 +151,17 @@ pub fn parse_value(text: &str) -> Value {
     }
 }
 
+/// Is `key` a well-formed dotted key path, as `--set` reads it (`a.b`, `detectors[2].name`)?
+/// The error says why not (whether the key exists is checked when it is applied).
+pub fn check_key(key: &str) -> Result<(), ScenarioError> {
+    parse_key(key)
+        .map(|_| ())
+        .map_err(|reason| ScenarioError::Override {
+            arg: key.to_string(),
+            reason,
+        })
+}
+
 /// Parse a dotted key path: `a.b`, `detectors[2].name`.
 pub(crate) fn parse_key(key: &str) -> Result<Vec<Segment>, String> {
     if key.is_empty() {

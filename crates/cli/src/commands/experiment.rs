@@ -14,6 +14,7 @@ pub fn settings(grid: &GridArgs, seeds: u32, quiet: bool) -> Settings {
         seeds,
         jobs: grid.jobs.map(|n| n as usize),
         progress: progress::wanted(quiet),
+        progress_lines: progress::lines_wanted(quiet),
         reuse: !grid.fresh,
         arguments: std::env::args().collect(),
         ..Settings::default()
@@ -32,6 +33,7 @@ pub fn experiment(args: &ExperimentArgs, quiet: bool) -> Result<()> {
     s.flow_thresholds = args.flow_thresholds.clone();
     s.speed_thresholds = args.speed_thresholds.clone();
     s.tolerance_pct = args.tolerance;
+    s.format = args.format.table();
     network(&mut s, &args.network, name)?;
     let out = run_experiment(name, &s).with_context(|| format!("experiment {name} failed"))?;
     crate::stdout::print(&describe(&out))?;

@@ -6,6 +6,7 @@ pub mod reproduce;
 pub mod run;
 pub mod scenarios;
 pub mod show;
+pub mod sweep;
 pub mod time_space;
 pub mod view;
 
@@ -25,6 +26,7 @@ pub fn dispatch(cli: Cli) -> Result<ExitCode> {
         Command::Reproduce(args) => reproduce::reproduce(&args, cli.quiet),
         Command::TimeSpace(args) => time_space::time_space(&args),
         Command::View(args) => view::view(&args),
+        Command::Sweep(args) => return sweep::sweep(&args, cli.quiet),
     };
     done.map(|()| ExitCode::SUCCESS)
 }

@@ -18,7 +18,9 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
     let out = progress::run_recording_with_bar(&config, &recording, &bar)
         .with_context(|| format!("simulation of scenario '{}' failed", config.name))?;
 
-    output::write_run(&args.out, &config, &out)?;
+    let writing = std::time::Instant::now();
+    let written = output::write_run_as(&args.out, &config, &out, args.format)?;
+    let write_s = writing.elapsed().as_secs_f64();
     // The warning goes first, so that it is on stderr even if stdout is closed below.
     if let Some(first) = out.collision_events.first() {
         errln!(
@@ -30,16 +32,30 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
             args.out.join(output::COLLISIONS_FILE).display()
         );
     }
-    outln!("{}", output::paragraph(&config, &out.summary, &args.out))?;
+    let paragraph = output::paragraph(&config, &out.summary, &args.out);
+    outln!(
+        "{}",
+        paragraph.replace("detectors.csv", &format!("detectors.{}", args.format.ext()))
+    )?;
+    let ext = args.format.ext();
     let mut extra = Vec::new();
     if let Some(trips) = &out.trips {
-        extra.push(format!("trips.csv ({} rows)", trips.len()));
+        extra.push(format!("trips.{ext} ({} rows)", trips.len()));
     }
     if let Some(rows) = &out.trajectories {
-        extra.push(format!("trajectories.csv ({} rows)", rows.len()));
+        extra.push(format!("trajectories.{ext} ({} rows)", rows.len()));
     }
     if !extra.is_empty() {
-        outln!("Also written: {}.", extra.join(", "))?;
+        let bytes: u64 = written
+            .iter()
+            .filter_map(|p| std::fs::metadata(p).ok())
+            .map(|m| m.len())
+            .sum();
+        outln!(
+            "Also written: {}. Output files: {:.1} MB written in {write_s:.2} s.",
+            extra.join(", "),
+            bytes as f64 / 1e6
+        )?;
     }
     if args.view {
         let file = args.out.join(super::view::DEFAULT_FILE);

@@ -120,6 +120,9 @@ pub struct Settings {
     pub jobs: Option<usize>,
     /// Draw a progress bar (the caller decides: not with --quiet, only on a terminal).
     pub progress: bool,
+    /// Without a bar, print progress lines on stderr (the caller decides: not with --quiet,
+    /// only without a terminal, e.g. in a scheduler's log).
+    pub progress_lines: bool,
     /// Reuse existing run files (false: recompute every run and overwrite its file).
     pub reuse: bool,
     /// Simulated time of every run (paper: 3600 s).
@@ -153,6 +156,8 @@ pub struct Settings {
     /// `sr99-demand`: also write the scales found into this table file (e.g. the embedded
     /// table's source, to rebuild with them); `calibrate-flow-aware`: the chosen thresholds.
     pub write_table: Option<PathBuf>,
+    /// `runs` and `summary` as CSV or Parquet.
+    pub format: crate::columnar::Format,
     /// The command line, for the provenance.
     pub arguments: Vec<String>,
 }
@@ -164,6 +169,7 @@ impl Default for Settings {
             seeds: 10,
             jobs: None,
             progress: false,
+            progress_lines: false,
             reuse: true,
             duration_s: 3600.0,
             warmup_s: 1200.0,
@@ -179,6 +185,7 @@ impl Default for Settings {
             bottleneck_speed_kmh: sr99_demand::BOTTLENECK_SPEED_KMH,
             bottleneck_minutes: sr99_demand::BOTTLENECK_MINUTES,
             write_table: None,
+            format: crate::columnar::Format::Csv,
             arguments: Vec::new(),
         }
     }
@@ -294,6 +301,12 @@ pub fn run_experiment_with(
     let bar = runner::bar(name.total_runs(settings), settings.progress, name.as_str());
     let mut runner = Runner::new(dir.join("runs"), settings.jobs, bar.clone(), exec);
     runner.reuse = settings.reuse;
+    if settings.progress_lines && !settings.progress {
+        runner.log = Some(std::sync::Arc::new(crate::progress::Lines::stderr(
+            name.as_str(),
+            name.total_runs(settings),
+        )));
+    }
     // The SR-99 experiments share runs: sr99's baselines are sr99-demand's cells at the
     // table's scales.
     runner.reuse_from = match name {
@@ -451,17 +464,16 @@ struct Provenance<'a> {
     cells: Vec<CellProvenance<'a>>,
 }
 
-/// Write `runs.csv`, `summary.csv`, `summary.md` and `run.json`.
+/// Write `runs.csv`, `summary.csv` (or `.parquet`, [`Settings::format`]), `summary.md` and
+/// `run.json`.
 pub fn write_outputs(out: &ExperimentOutput) -> Result<(), Error> {
     let dir = &out.dir;
-    write_file(
-        &dir.join("runs.csv"),
-        &table::runs_csv(&out.cells, &out.outcomes)?,
-    )?;
-    write_file(
-        &dir.join("summary.csv"),
-        &table::summary_csv(&out.cells, &out.rows)?,
-    )?;
+    let labels = table::label_columns(&out.cells);
+    let format = out.settings.format;
+    let runs = table::runs_csv(&out.cells, &out.outcomes)?;
+    crate::columnar::write_table(dir, "runs", &runs, &labels, format)?;
+    let summary = table::summary_csv(&out.cells, &out.rows)?;
+    crate::columnar::write_table(dir, "summary", &summary, &labels, format)?;
     write_file(&dir.join("summary.md"), out.summary_md().as_bytes())?;
     let prov = Provenance {
         experiment: out.name.as_str(),

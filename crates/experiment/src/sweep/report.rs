@@ -1,0 +1,212 @@
+//! `summary.md` and the figures of a sweep: for each shown metric, the mean against the
+//! first axis with its 95 % band, one line per level of the other axes (a line chart when
+//! the first axis is numeric, grouped bars with the interval as error bars otherwise).
+
+use super::collect::{reference_text, Row};
+use super::spec::{label, number, Spec};
+use crate::design::Cell;
+use crate::experiments::{metric_label, Figure};
+use crate::runner::Outcome;
+use crate::table::{decimals, md_table, pm};
+use crate::Error;
+use platoonsim_plot::{bar_chart, line_chart, Bars, Chart, Series, Style};
+use std::path::Path;
+
+/// The metrics shown when the spec names none (those the runs have).
+pub const DEFAULT_METRICS: [&str; 8] = [
+    "discharge_flow_vphpl",
+    "max_sustained_flow_vphpl",
+    "network_discharge_vph",
+    "lane_changes_per_vehicle",
+    "avg_platoon_length",
+    "platooning_probability",
+    "conflicts",
+    "tet_s",
+];
+
+/// The metrics to show: the spec's (each must be a metric of the runs), or the defaults.
+pub fn shown(spec: &Spec, metrics: &[String]) -> Result<Vec<String>, Error> {
+    if spec.metrics.is_empty() {
+        return Ok(DEFAULT_METRICS
+            .iter()
+            .filter(|m| metrics.iter().any(|x| x == *m))
+            .map(|m| m.to_string())
+            .collect());
+    }
+    for m in &spec.metrics {
+        if !metrics.contains(m) {
+            return Err(Error::Other(format!(
+                "{}: metrics: '{m}' is not a metric of the runs; they are {}",
+                spec.origin,
+                metrics.join(", ")
+            )));
+        }
+    }
+    Ok(spec.metrics.clone())
+}
+
+fn row<'a>(rows: &'a [Row], cell: usize, metric: &str) -> Option<&'a Row> {
+    rows.iter().find(|r| r.cell == cell && r.metric == metric)
+}
+
+/// The body of `summary.md`.
+pub fn markdown(
+    spec: &Spec,
+    cells: &[Cell],
+    outcomes: &[Outcome],
+    rows: &[Row],
+    shown: &[String],
+) -> String {
+    let mut md = format!("# Sweep {}\n\n", spec.name);
+    if let Some(d) = &spec.description {
+        md.push_str(&format!("{d}\n\n"));
+    }
+    md.push_str(&format!(
+        "Scenario `{}`; {} cells x {} seeds = {} runs. Axes: {}. Mean ± half-width of the 95 % \
+         confidence interval (Student t) over the seeds.",
+        spec.scenario,
+        cells.len(),
+        spec.seeds.len(),
+        outcomes.len(),
+        if spec.axes.is_empty() {
+            "none".to_string()
+        } else {
+            spec.axes
+                .iter()
+                .map(|a| {
+                    format!(
+                        "`{}` = {}",
+                        a.key,
+                        a.levels.iter().map(label).collect::<Vec<_>>().join(", ")
+                    )
+                })
+                .collect::<Vec<_>>()
+                .join("; ")
+        }
+    ));
+    if let Some(r) = reference_text(spec) {
+        md.push_str(&format!(
+            " Δ = the paired difference with the run of the same seed at `{r}` (mean ± 95 % \
+             half-width)."
+        ));
+    }
+    md.push_str("\n\n");
+    md.push_str(&crate::safety::warning_md(cells, outcomes));
+    for m in shown {
+        md.push_str(&format!("## {}\n\n", metric_label(m)));
+        let mut header: Vec<String> = spec.axes.iter().map(|a| a.key.clone()).collect();
+        header.extend(["n".to_string(), m.to_string()]);
+        if spec.compare.is_some() {
+            header.extend(["Δ".to_string(), "Δ (%)".to_string()]);
+        }
+        let dec = decimals(m);
+        let mut trs = Vec::new();
+        for (c, cell) in cells.iter().enumerate() {
+            let mut tr: Vec<String> = cell.labels.0.iter().map(|(_, v)| v.clone()).collect();
+            let r = row(rows, c, m);
+            tr.push(r.map_or("0".into(), |r| r.stats.n.to_string()));
+            tr.push(r.map_or("–".into(), |r| pm(&r.stats, dec)));
+            if spec.compare.is_some() {
+                tr.push(
+                    r.and_then(|r| r.diff.as_ref())
+                        .map_or("–".into(), |d| pm(d, dec)),
+                );
+                tr.push(
+                    r.and_then(|r| r.pct.as_ref())
+                        .map_or("–".into(), |d| pm(d, 2)),
+                );
+            }
+            trs.push(tr);
+        }
+        md.push_str(&md_table(&header, &trs));
+        md.push('\n');
+    }
+    md
+}
+
+fn plot_error(e: platoonsim_plot::PlotError) -> Error {
+    Error::Other(e.to_string())
+}
+
+/// One figure per shown metric (none without axes); returns them.
+pub fn figures(
+    dir: &Path,
+    spec: &Spec,
+    cells: &[Cell],
+    rows: &[Row],
+    shown: &[String],
+) -> Result<Vec<Figure>, Error> {
+    let Some(first) = spec.axes.first() else {
+        return Ok(Vec::new());
+    };
+    let n_first = first.levels.len();
+    // Cells are first-axis-major: cell = level * group_count + group.
+    let groups = cells.len() / n_first;
+    let group_name = |g: usize| -> String {
+        cells[g].labels.0[1..]
+            .iter()
+            .map(|(k, v)| format!("{k} = {v}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let xs: Option<Vec<f64>> = first.levels.iter().map(number).collect();
+    let mut out = Vec::new();
+    for m in shown {
+        let stem = format!("fig_{m}");
+        let title = format!("{} against {}", metric_label(m), first.key);
+        let get = |l: usize, g: usize| row(rows, l * groups + g, m).map(|r| r.stats);
+        match &xs {
+            Some(x) => {
+                let series = (0..groups)
+                    .map(|g| {
+                        let st: Vec<_> = (0..n_first).map(|l| get(l, g)).collect();
+                        let f = |pick: fn(&crate::Stats) -> f64| -> Vec<f64> {
+                            st.iter()
+                                .map(|s| s.as_ref().map_or(f64::NAN, pick))
+                                .collect()
+                        };
+                        Series {
+                            name: group_name(g),
+                            x: x.clone(),
+                            y: f(|s| s.mean),
+                            band: Some((f(|s| s.ci_low), f(|s| s.ci_high))),
+                            style: Style::Line,
+                        }
+                    })
+                    .collect();
+                let chart = Chart {
+                    title: title.clone(),
+                    x_label: first.key.clone(),
+                    y_label: metric_label(m).to_string(),
+                    series,
+                    y_range: None,
+                };
+                line_chart(&chart, &dir.join(&stem)).map_err(plot_error)?;
+            }
+            None => {
+                let bars = Bars {
+                    title: title.clone(),
+                    y_label: metric_label(m).to_string(),
+                    groups: first.levels.iter().map(label).collect(),
+                    series: (0..groups)
+                        .map(|g| {
+                            let st: Vec<_> = (0..n_first).map(|l| get(l, g)).collect();
+                            (
+                                group_name(g),
+                                st.iter().map(|s| s.map_or(f64::NAN, |s| s.mean)).collect(),
+                                Some(
+                                    st.iter()
+                                        .map(|s| s.map_or(f64::NAN, |s| s.half_width()))
+                                        .collect(),
+                                ),
+                            )
+                        })
+                        .collect(),
+                };
+                bar_chart(&bars, &dir.join(&stem)).map_err(plot_error)?;
+            }
+        }
+        out.push(Figure { title, stem });
+    }
+    Ok(out)
+}

@@ -1,0 +1,479 @@
+//! The sweep file (`SPEC.toml`): which scenario, which seeds, fixed overrides, the axes whose
+//! cartesian product makes the cells, and an optional reference level for paired
+//! differences. Keys under `[set]`, `[axes]` and `[compare]` are the dotted keys of
+//! `platoonsim run --set`; every value is checked by the scenario crate exactly as a `--set`
+//! of it would be (see [`super::plan`]). Every error here names the spec key.
+//!
+//! ```toml
+//! name = "my-study"                    # optional: the output directory's name (default: file stem)
+//! scenario = "my_corridor.toml"        # a built-in name, or a path relative to this file
+//! seeds = 10                           # 1..=10, or a list such as [1, 2, 7]
+//! metrics = ["discharge_flow_vphpl"]   # optional: the metrics of summary.md and the figures
+//! [set]                                # fixed overrides, as --set
+//! "run.duration_s" = 3600
+//! [axes]                               # the cartesian product, first axis outermost
+//! "run.penetration" = [0.2, 0.4]
+//! "strategy.kind" = ["none", "pd", "flow-aware"]
+//! [compare]                            # paired differences against a reference level
+//! "strategy.kind" = "none"
+//! ```
+
+use std::path::{Path, PathBuf};
+use toml::{Table, Value};
+
+/// Why a sweep file cannot be used. The message names the spec key (`axes."run.penetration"`),
+/// the value and what is allowed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{origin}: {key}: {message}")]
+pub struct SpecError {
+    pub origin: String,
+    pub key: String,
+    pub message: String,
+}
+
+/// How many runs one sweep may ask for: far beyond any study, well short of exhausting
+/// memory with run specs.
+pub const MAX_RUNS: usize = 100_000;
+
+/// The largest sweep file read (as for scenario files).
+pub const MAX_FILE_BYTES: u64 = 1 << 20;
+
+/// One axis: a dotted scenario key and its levels, in the file's order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Axis {
+    pub key: String,
+    pub levels: Vec<Value>,
+}
+
+/// A validated sweep file (the scenario keys are checked later, when the cells are built).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Spec {
+    /// The output directory's name.
+    pub name: String,
+    /// Where the spec came from (for messages).
+    pub origin: String,
+    /// The file's `description`, if any (shown in `summary.md`).
+    pub description: Option<String>,
+    /// A built-in scenario name or a file path (resolved against the spec's directory).
+    pub scenario: String,
+    pub seeds: Vec<u64>,
+    /// Fixed overrides in file order.
+    pub set: Vec<(String, Value)>,
+    pub axes: Vec<Axis>,
+    /// The compared axis (an index into `axes`) and its reference level (an index into its
+    /// levels).
+    pub compare: Option<(usize, usize)>,
+    /// The metrics shown in `summary.md` and drawn; empty = the default list.
+    pub metrics: Vec<String>,
+    /// The file's text, kept in the provenance.
+    pub text: String,
+}
+
+impl Spec {
+    /// Read and validate a sweep file.
+    pub fn from_file(path: &Path) -> Result<Spec, SpecError> {
+        let origin = path.display().to_string();
+        let err = |message: String| SpecError {
+            origin: origin.clone(),
+            key: "(file)".into(),
+            message,
+        };
+        let meta = std::fs::metadata(path).map_err(|e| err(format!("cannot read it: {e}")))?;
+        if meta.len() > MAX_FILE_BYTES {
+            return Err(err(format!(
+                "{} bytes: a sweep file must be at most {MAX_FILE_BYTES} bytes",
+                meta.len()
+            )));
+        }
+        let text =
+            std::fs::read_to_string(path).map_err(|e| err(format!("cannot read it: {e}")))?;
+        let stem = path
+            .file_stem()
+            .map_or_else(|| "sweep".to_string(), |s| s.to_string_lossy().into_owned());
+        let mut spec = Spec::from_toml(&text, &origin, &stem)?;
+        // A scenario path is relative to the sweep file, so a spec and its corridor travel
+        // together.
+        if looks_like_path(&spec.scenario) || platoonsim_scenario::builtin(&spec.scenario).is_none()
+        {
+            let p = PathBuf::from(&spec.scenario);
+            if p.is_relative() {
+                let dir = path.parent().unwrap_or(Path::new(""));
+                spec.scenario = dir.join(p).display().to_string();
+            }
+        }
+        Ok(spec)
+    }
+
+    /// Validate a sweep file's text; `default_name` names the output when the file does not.
+    pub fn from_toml(text: &str, origin: &str, default_name: &str) -> Result<Spec, SpecError> {
+        let err = |key: &str, message: String| SpecError {
+            origin: origin.to_string(),
+            key: key.to_string(),
+            message,
+        };
+        let doc: Table = text
+            .parse()
+            .map_err(|e: toml::de::Error| err("(syntax)", e.to_string().trim_end().to_string()))?;
+        const KEYS: [&str; 8] = [
+            "name",
+            "description",
+            "scenario",
+            "seeds",
+            "metrics",
+            "set",
+            "axes",
+            "compare",
+        ];
+        for k in doc.keys() {
+            if !KEYS.contains(&k.as_str()) {
+                return Err(err(
+                    k,
+                    format!("unknown key; a sweep file has {}", KEYS.join(", ")),
+                ));
+            }
+        }
+        let name = match doc.get("name") {
+            None => default_name.to_string(),
+            Some(Value::String(s)) if valid_name(s) => s.clone(),
+            Some(v) => {
+                return Err(err(
+                    "name",
+                    format!(
+                        "{v} is not a name: letters, digits, '_', '-' and '.', not starting with \
+                         '.' (it names the output directory)"
+                    ),
+                ))
+            }
+        };
+        let description = match doc.get("description") {
+            None => None,
+            Some(Value::String(d)) => Some(d.clone()),
+            Some(v) => return Err(err("description", format!("{v} is not a string"))),
+        };
+        let scenario = match doc.get("scenario") {
+            Some(Value::String(s)) if !s.trim().is_empty() => s.clone(),
+            Some(v) => {
+                return Err(err(
+                    "scenario",
+                    format!("{v} is not a built-in scenario name or a file path (a string)"),
+                ))
+            }
+            None => {
+                return Err(err(
+                    "scenario",
+                    "missing; give a built-in name (\"homogeneous\", \"sr99\") or a scenario \
+                     file path"
+                        .into(),
+                ))
+            }
+        };
+        let seeds = seeds(doc.get("seeds")).map_err(|m| err("seeds", m))?;
+        let set = match doc.get("set") {
+            None => Vec::new(),
+            Some(Value::Table(t)) => {
+                let mut out = Vec::new();
+                for (k, v) in t {
+                    let key = format!("set.\"{k}\"");
+                    check_key(k).map_err(|m| err(&key, m))?;
+                    if matches!(v, Value::Table(_)) {
+                        return Err(err(
+                            &key,
+                            "is a table; write each key in full, quoted (\"run.duration_s\" = 3600)"
+                                .into(),
+                        ));
+                    }
+                    out.push((k.clone(), v.clone()));
+                }
+                out
+            }
+            Some(v) => return Err(err("set", format!("{v} is not a table of KEY = VALUE"))),
+        };
+        let axes = match doc.get("axes") {
+            None => Vec::new(),
+            Some(Value::Table(t)) => {
+                let mut out = Vec::new();
+                for (k, v) in t {
+                    let key = format!("axes.\"{k}\"");
+                    check_key(k).map_err(|m| err(&key, m))?;
+                    if set.iter().any(|(s, _)| s == k) {
+                        return Err(err(
+                            &key,
+                            "is also under [set]; a key is either fixed or an axis".into(),
+                        ));
+                    }
+                    let levels = match v {
+                        Value::Array(a) if !a.is_empty() => a.clone(),
+                        _ => {
+                            return Err(err(&key, format!("{v} is not a non-empty list of levels")))
+                        }
+                    };
+                    for (i, l) in levels.iter().enumerate() {
+                        if levels[..i].iter().any(|m| label(m) == label(l)) {
+                            return Err(err(&key, format!("the level {l} is listed twice")));
+                        }
+                        if matches!(l, Value::Table(_) | Value::Array(_)) {
+                            return Err(err(
+                                &key,
+                                format!("the level {l} is not a number, string or boolean"),
+                            ));
+                        }
+                    }
+                    out.push(Axis {
+                        key: k.clone(),
+                        levels,
+                    });
+                }
+                out
+            }
+            Some(v) => return Err(err("axes", format!("{v} is not a table of KEY = [LEVELS]"))),
+        };
+        let cells = axes
+            .iter()
+            .try_fold(1usize, |n, a| n.checked_mul(a.levels.len()));
+        match cells.and_then(|c| c.checked_mul(seeds.len())) {
+            Some(runs) if runs <= MAX_RUNS => {}
+            _ => {
+                return Err(err(
+                    "axes",
+                    format!("the sweep would have more than {MAX_RUNS} runs (cells x seeds)"),
+                ))
+            }
+        }
+        let compare = match doc.get("compare") {
+            None => None,
+            Some(Value::Table(t)) if t.len() == 1 => {
+                let (k, v) = t.iter().next().expect("one entry");
+                let key = format!("compare.\"{k}\"");
+                let Some(a) = axes.iter().position(|a| &a.key == k) else {
+                    return Err(err(
+                        &key,
+                        format!(
+                            "is not an axis; the axes are {}",
+                            axes.iter()
+                                .map(|a| a.key.as_str())
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
+                    ));
+                };
+                let Some(l) = axes[a].levels.iter().position(|x| label(x) == label(v)) else {
+                    return Err(err(
+                        &key,
+                        format!(
+                            "{v} is not one of the axis' levels ({})",
+                            axes[a]
+                                .levels
+                                .iter()
+                                .map(label)
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
+                    ));
+                };
+                Some((a, l))
+            }
+            Some(v) => {
+                return Err(err(
+                    "compare",
+                    format!("{v}: expected one entry, an axis and its reference level"),
+                ))
+            }
+        };
+        let metrics = match doc.get("metrics") {
+            None => Vec::new(),
+            Some(Value::Array(a)) if a.iter().all(Value::is_str) && !a.is_empty() => a
+                .iter()
+                .filter_map(|v| v.as_str().map(str::to_string))
+                .collect(),
+            Some(v) => {
+                return Err(err(
+                    "metrics",
+                    format!("{v} is not a non-empty list of metric names"),
+                ))
+            }
+        };
+        Ok(Spec {
+            name,
+            origin: origin.to_string(),
+            description,
+            scenario,
+            seeds,
+            set,
+            axes,
+            compare,
+            metrics,
+            text: text.to_string(),
+        })
+    }
+
+    /// The number of cells (1 without axes).
+    pub fn cell_count(&self) -> usize {
+        self.axes.iter().map(|a| a.levels.len()).product()
+    }
+}
+
+/// Whether the scenario argument is a path rather than a built-in name.
+fn looks_like_path(s: &str) -> bool {
+    s.contains(['/', '\\']) || s.ends_with(".toml")
+}
+
+fn valid_name(s: &str) -> bool {
+    !s.is_empty()
+        && !s.starts_with('.')
+        && s.len() <= 100
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.'))
+}
+
+/// A dotted scenario key, as `--set` reads it; the seed is the sweep's own.
+fn check_key(k: &str) -> Result<(), String> {
+    if let Err(platoonsim_scenario::ScenarioError::Override { reason, .. }) =
+        platoonsim_scenario::overrides::check_key(k)
+    {
+        return Err(reason);
+    }
+    if k == "run.seed" {
+        return Err("the seed is set by the sweep's `seeds`, not as a scenario key".into());
+    }
+    Ok(())
+}
+
+fn seeds(v: Option<&Value>) -> Result<Vec<u64>, String> {
+    let positive = |i: i64| -> Result<u64, String> {
+        u64::try_from(i)
+            .ok()
+            .filter(|&s| s >= 1)
+            .ok_or_else(|| format!("{i} is not a seed: seeds are integers from 1"))
+    };
+    match v {
+        None => Err("missing; give a count N (seeds 1..=N) or a list of seeds".into()),
+        Some(Value::Integer(n)) => {
+            let n = positive(*n)?;
+            if n as usize > MAX_RUNS {
+                return Err(format!("{n} seeds: at most {MAX_RUNS}"));
+            }
+            Ok((1..=n).collect())
+        }
+        Some(Value::Array(a)) if !a.is_empty() => {
+            let mut out: Vec<u64> = Vec::with_capacity(a.len());
+            for x in a {
+                let s = match x {
+                    Value::Integer(i) => positive(*i)?,
+                    other => return Err(format!("{other} is not an integer seed")),
+                };
+                if out.contains(&s) {
+                    return Err(format!("the seed {s} is listed twice"));
+                }
+                out.push(s);
+            }
+            Ok(out)
+        }
+        Some(other) => Err(format!(
+            "{other}: expected a count N (seeds 1..=N) or a non-empty list of seeds"
+        )),
+    }
+}
+
+/// A level as it appears in the tables: strings bare, numbers in their shortest form
+/// (`0.5`, `2500`), booleans as `true`/`false`.
+pub fn label(v: &Value) -> String {
+    match v {
+        Value::String(s) => s.clone(),
+        Value::Float(f) => crate::design::num(*f),
+        Value::Integer(i) => i.to_string(),
+        other => other.to_string(),
+    }
+}
+
+/// A level as the value of a `--set KEY=VALUE` argument (TOML, so the scenario crate reads
+/// back the same value).
+pub fn set_arg(key: &str, v: &Value) -> String {
+    format!("{key}={v}")
+}
+
+/// The level as a number, if it is one.
+pub fn number(v: &Value) -> Option<f64> {
+    match v {
+        Value::Float(f) => Some(*f),
+        Value::Integer(i) => Some(*i as f64),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Spec, SpecError> {
+        Spec::from_toml(text, "s.toml", "s")
+    }
+
+    #[test]
+    fn a_full_spec() {
+        let s = parse(
+            r#"
+            scenario = "homogeneous"
+            seeds = 3
+            [set]
+            "run.duration_s" = 600
+            [axes]
+            "run.penetration" = [0.2, 0.4]
+            "strategy.kind" = ["none", "pd", "flow-aware"]
+            [compare]
+            "strategy.kind" = "none"
+            "#,
+        )
+        .unwrap();
+        assert_eq!(s.name, "s");
+        assert_eq!(s.seeds, [1, 2, 3]);
+        assert_eq!(s.set, [("run.duration_s".to_string(), Value::Integer(600))]);
+        assert_eq!(s.axes.len(), 2);
+        assert_eq!(s.cell_count(), 6);
+        assert_eq!(s.compare, Some((1, 0)));
+        assert_eq!(label(&s.axes[0].levels[1]), "0.4");
+        assert_eq!(
+            set_arg("strategy.kind", &s.axes[1].levels[2]),
+            "strategy.kind=\"flow-aware\""
+        );
+    }
+
+    #[test]
+    fn errors_name_the_spec_key() {
+        let cases = [
+            ("seeds = 2", "scenario"),
+            ("scenario = \"x\"\nseeds = 0", "seeds"),
+            ("scenario = \"x\"\nseeds = [1, 1]", "seeds"),
+            ("scenario = \"x\"\nseeds = 1\nbogus = 2", "bogus"),
+            (
+                "scenario = \"x\"\nseeds = 1\n[axes]\n\"run.penetration\" = []",
+                "axes.\"run.penetration\"",
+            ),
+            (
+                "scenario = \"x\"\nseeds = 1\n[axes]\n\"a b\" = [1]",
+                "axes.\"a b\"",
+            ),
+            (
+                "scenario = \"x\"\nseeds = 1\n[set]\n\"run.seed\" = 1",
+                "set.\"run.seed\"",
+            ),
+            (
+                "scenario = \"x\"\nseeds = 1\n[axes]\n\"a\" = [1, 1.0]",
+                "axes.\"a\"",
+            ),
+            (
+                "scenario = \"x\"\nseeds = 1\n[axes]\n\"a\" = [1]\n[compare]\n\"b\" = 1",
+                "compare.\"b\"",
+            ),
+            (
+                "scenario = \"x\"\nseeds = 1\n[axes]\n\"a\" = [1]\n[compare]\n\"a\" = 2",
+                "compare.\"a\"",
+            ),
+            ("scenario = \"x\"\nseeds = 1\nname = \"../up\"", "name"),
+        ];
+        for (text, key) in cases {
+            let e = parse(text).unwrap_err();
+            assert_eq!(e.key, key, "{text}: {e}");
+            assert!(e.to_string().contains(key), "{e}");
+        }
+    }
+}
