@@ -200,7 +200,7 @@ impl Simulation {
         }
         self.watch.observers.push(observer);
         self.watch.observing = true;
-        self.measures.safety.logging = true;
+        self.measures.safety.braking.logging = true;
         Ok(())
     }
 
@@ -281,12 +281,12 @@ impl Simulation {
     /// Collisions so far: vehicle pairs that started to overlap, vehicles that reached the end
     /// of their lane.
     pub fn collisions(&self) -> u64 {
-        self.measures.safety.events.len() as u64
+        self.measures.safety.collisions.events.len() as u64
     }
 
     /// The collisions so far, in time order.
     pub fn collision_events(&self) -> &[crate::summary::CollisionEvent] {
-        &self.measures.safety.events
+        &self.measures.safety.collisions.events
     }
 
     /// Advance one step. Phases, in this order, each reading the state the previous one left:
@@ -609,21 +609,25 @@ impl Simulation {
             max_sustained_flow_vphpl: max_flow,
             network_discharge_vph: network_discharge,
             missed_exits: self.measures.missed_exits,
-            collisions: self.measures.safety.events.len() as u64,
-            max_deceleration_mps2: sf.max_decel,
-            emergency_brakings: sf.emergency_brakings.total(),
-            emergency_brakings_cav: sf.emergency_brakings.cav,
-            emergency_brakings_human: sf.emergency_brakings.human,
-            conflicts: sf.conflicts.total(),
-            conflicts_cav: sf.conflicts.cav,
-            conflicts_human: sf.conflicts.human,
-            tet_s: sf.tet_s.total(),
-            tet_s_cav: sf.tet_s.cav,
-            tet_s_human: sf.tet_s.human,
-            tit_s2: sf.tit_s2.total(),
-            tit_s2_cav: sf.tit_s2.cav,
-            tit_s2_human: sf.tit_s2.human,
-            min_ttc_s: sf.min_ttc_s.is_finite().then_some(sf.min_ttc_s),
+            collisions: self.measures.safety.collisions.events.len() as u64,
+            max_deceleration_mps2: sf.braking.max_decel,
+            emergency_brakings: sf.braking.emergency_brakings.total(),
+            emergency_brakings_cav: sf.braking.emergency_brakings.cav,
+            emergency_brakings_human: sf.braking.emergency_brakings.human,
+            conflicts: sf.exposure.conflicts.total(),
+            conflicts_cav: sf.exposure.conflicts.cav,
+            conflicts_human: sf.exposure.conflicts.human,
+            tet_s: sf.exposure.tet_s.total(),
+            tet_s_cav: sf.exposure.tet_s.cav,
+            tet_s_human: sf.exposure.tet_s.human,
+            tit_s2: sf.exposure.tit_s2.total(),
+            tit_s2_cav: sf.exposure.tit_s2.cav,
+            tit_s2_human: sf.exposure.tit_s2.human,
+            min_ttc_s: sf
+                .exposure
+                .min_ttc_s
+                .is_finite()
+                .then_some(sf.exposure.min_ttc_s),
             vehicle_updates: self.measures.vehicle_updates,
             steps: self.clock.step,
             wall_seconds,
@@ -635,7 +639,7 @@ impl Simulation {
         Output {
             summary,
             detectors,
-            collision_events: std::mem::take(&mut self.measures.safety.events),
+            collision_events: std::mem::take(&mut self.measures.safety.collisions.events),
             trips,
             trajectories,
         }
@@ -646,7 +650,7 @@ impl Simulation {
     #[inline(never)]
     fn log_brakings(&mut self) {
         let t = crate::record::step_time(self.clock.step + 1, self.clock.dt);
-        for (id, kind, decel) in self.measures.safety.brakings.drain(..) {
+        for (id, kind, decel) in self.measures.safety.braking.brakings.drain(..) {
             self.watch.events.push(Event::EmergencyBraking {
                 t_s: t,
                 id,
@@ -660,10 +664,10 @@ impl Simulation {
     #[cold]
     #[inline(never)]
     fn log_collisions(&mut self) {
-        for c in &self.measures.safety.events[self.watch.collisions_reported..] {
+        for c in &self.measures.safety.collisions.events[self.watch.collisions_reported..] {
             self.watch.events.push(Event::Collision(c.clone()));
         }
-        self.watch.collisions_reported = self.measures.safety.events.len();
+        self.watch.collisions_reported = self.measures.safety.collisions.events.len();
     }
 
     /// End of a step with observers attached: the rear-end collisions and the mode changes
@@ -771,7 +775,7 @@ fn overlap(
 ) {
     let (lead, fol) = (&vehicles[ld as usize], &vehicles[f as usize]);
     let pair = (fol.id, lead.id);
-    if !safety.overlapping.contains(&pair) {
+    if !safety.collisions.overlapping.contains(&pair) {
         let gap = lead.rear() - fol.x;
         safety.collide(
             t,
@@ -783,7 +787,7 @@ fn overlap(
             -gap,
         );
     }
-    safety.overlapping_now.push(pair);
+    safety.collisions.overlapping_now.push(pair);
 }
 
 /// A non-finite state is an engine error (phase 7).
@@ -886,10 +890,17 @@ fn check_invariants(
     } = traffic;
     // Outside the measurement window only an overlapping pair passes the test below, and
     // `on_close` ignores it there.
-    safety.in_window = in_window;
-    let mut horizon = if in_window { safety.ttc_horizon_s } else { 0.0 };
-    std::mem::swap(&mut safety.overlapping, &mut safety.overlapping_now);
-    safety.overlapping_now.clear();
+    safety.exposure.in_window = in_window;
+    let mut horizon = if in_window {
+        safety.exposure.ttc_horizon_s
+    } else {
+        0.0
+    };
+    std::mem::swap(
+        &mut safety.collisions.overlapping,
+        &mut safety.collisions.overlapping_now,
+    );
+    safety.collisions.overlapping_now.clear();
     for (l, lane) in lanes.iter_mut().enumerate() {
         let mut sorted = true;
         let Some((&first, rest)) = lane.split_first() else {
@@ -918,7 +929,7 @@ fn check_invariants(
             if gap < (fv - lead_v) * horizon {
                 let lead_id = vehicles[li as usize].id;
                 safety.on_close(&mut vehicles[s as usize], lead_id, gap, lead_v, step, dt);
-                horizon = safety.ttc_horizon_s;
+                horizon = safety.exposure.ttc_horizon_s;
             }
             (li, lead_rear, lead_x, lead_v) = (s, frear, fx, fv);
         }
