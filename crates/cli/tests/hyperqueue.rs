@@ -16,27 +16,9 @@ use std::time::Instant;
 
 const SHARDS: usize = 4;
 
-fn hyperqueue_available() -> Result<(), String> {
-    match Command::new("python3")
-        .args(["-c", "import hyperqueue.cluster"])
-        .output()
-    {
-        Ok(o) if o.status.success() => Ok(()),
-        Ok(o) => Err(format!(
-            "python3 cannot import hyperqueue ({})",
-            String::from_utf8_lossy(&o.stderr)
-                .trim()
-                .lines()
-                .last()
-                .unwrap_or("")
-        )),
-        Err(e) => Err(format!("cannot start python3: {e}")),
-    }
-}
-
 #[test]
 fn sweep_on_hyperqueue_equals_the_local_sweep() {
-    if let Err(why) = hyperqueue_available() {
+    if let Err(why) = common::python_imports("hyperqueue.cluster") {
         let ci = std::env::var("CI").is_ok_and(|v| v == "true" || v == "1");
         assert!(
             !ci,

@@ -10,24 +10,6 @@ use common::{platoonsim, s, scratch, stderr, stdout};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn pyarrow_available() -> Result<(), String> {
-    match Command::new("python3")
-        .args(["-c", "import pyarrow.parquet"])
-        .output()
-    {
-        Ok(o) if o.status.success() => Ok(()),
-        Ok(o) => Err(format!(
-            "python3 cannot import pyarrow ({})",
-            String::from_utf8_lossy(&o.stderr)
-                .trim()
-                .lines()
-                .last()
-                .unwrap_or("")
-        )),
-        Err(e) => Err(format!("cannot start python3: {e}")),
-    }
-}
-
 fn ok(args: &[&str]) -> String {
     let o = platoonsim(args);
     assert!(o.status.success(), "{args:?}: {}", stderr(&o));
@@ -49,7 +31,7 @@ fn compare(pairs: &[(PathBuf, PathBuf)]) -> String {
 
 #[test]
 fn parquet_tables_equal_the_csv_tables() {
-    if let Err(why) = pyarrow_available() {
+    if let Err(why) = common::python_imports("pyarrow.parquet") {
         let ci = std::env::var("CI").is_ok_and(|v| v == "true" || v == "1");
         assert!(
             !ci,

@@ -64,3 +64,23 @@ pub fn num(row: &std::collections::HashMap<String, String>, key: &str) -> f64 {
         .parse()
         .unwrap_or_else(|_| panic!("{key} = {:?}", row[key]))
 }
+
+/// Whether `python3` can import `module` (a package the tests drive, installed by
+/// `.ci/python-deps`); the error says why not.
+pub fn python_imports(module: &str) -> Result<(), String> {
+    match std::process::Command::new("python3")
+        .args(["-c", &format!("import {module}")])
+        .output()
+    {
+        Ok(o) if o.status.success() => Ok(()),
+        Ok(o) => Err(format!(
+            "python3 cannot import {module} ({})",
+            String::from_utf8_lossy(&o.stderr)
+                .trim()
+                .lines()
+                .last()
+                .unwrap_or("")
+        )),
+        Err(e) => Err(format!("cannot start python3: {e}")),
+    }
+}
