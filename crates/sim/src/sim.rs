@@ -358,91 +358,13 @@ impl Simulation {
     /// when the speed would turn negative. A vehicle whose front passes the end of its lane
     /// has collided with it: the event is recorded and the vehicle leaves the road.
     fn integrate(&mut self) {
-        let dt = self.clock.dt;
-        let mut sorted = true;
-        // Locals (the stores into the records cannot change them, so nothing is reloaded per
-        // vehicle), and the slot-indexed arrays as long as `vehicles`: one bounds check per
-        // vehicle for the three.
-        let Traffic {
-            lanes, vehicles, ..
-        } = &mut self.traffic;
-        let Scratch {
-            decisions,
-            sensed,
-            exit_due,
-            crashed,
-            ..
-        } = &mut self.scratch;
-        let Measures {
-            vehicle_updates,
-            safety,
-            ..
-        } = &mut self.measures;
-        let geom = &self.road.geom;
-        let step = &self.clock.step;
-        let step = *step;
-        let in_window = step >= self.clock.warmup_step;
-        let plain = geom.plain;
-        let off_ramps = &geom.off_ramps[..];
-        let vehicles = &mut vehicles[..];
-        let decisions = &decisions[..vehicles.len()];
-        let sensed = &sensed[..vehicles.len()];
-        for (l, lane) in lanes.iter().enumerate() {
-            let mut ahead = f64::INFINITY;
-            for &s in lane {
-                let d = &decisions[s as usize];
-                let veh = &mut vehicles[s as usize];
-                veh.x_prev = veh.x;
-                let a_prev = veh.a;
-                let accel = law::braking_limited(d.accel, safety.limit(veh.kind));
-                let v_new = veh.v + accel * dt;
-                if v_new >= 0.0 {
-                    veh.x += 0.5 * (veh.v + v_new) * dt;
-                    veh.v = v_new;
-                    veh.a = accel;
-                } else {
-                    // Stops within the step: travels v²/(2|a|).
-                    veh.x += 0.5 * veh.v * veh.v / (-accel);
-                    veh.a = -veh.v / dt;
-                    veh.v = 0.0;
-                }
-                safety.on_applied(veh, a_prev, veh.a, in_window);
-                if !plain {
-                    // A wall is a standing obstacle (network.rs): passing it is a collision.
-                    // (`here` is at the step-start position: x_prev, in this lane.)
-                    if let Some(w) = sensed[s as usize].here.wall {
-                        if veh.x > w {
-                            crashed.push((s, l as u32, w));
-                        }
-                    }
-                }
-                sorted &= veh.x <= ahead;
-                ahead = veh.x;
-                // As in exits: not `x < ramp.x` (a NaN position counts too).
-                if veh.exit != NO_EXIT
-                    && off_ramps
-                        .get(veh.exit as usize)
-                        .is_some_and(|r| veh.x.partial_cmp(&r.x) != Some(std::cmp::Ordering::Less))
-                {
-                    *exit_due = true;
-                }
-                veh.mode = d.mode;
-                veh.family = d.family;
-                veh.regime = d.regime;
-                veh.time_gap_s = d.time_gap;
-                if d.takeover {
-                    veh.relax = Relaxation::Since(step);
-                }
-                if let Relaxation::Since(since) = veh.relax {
-                    let elapsed = (step + 1 - since) as f64 * dt;
-                    if elapsed >= veh.lc.relax_time_s {
-                        veh.relax = Relaxation::None;
-                    }
-                }
-            }
-            *vehicle_updates += lane.len() as u64;
-        }
-        self.scratch.lanes_sorted = sorted;
+        move_vehicles(
+            &self.clock,
+            &self.road.geom,
+            &mut self.traffic,
+            &mut self.scratch,
+            &mut self.measures,
+        );
         if self.watch.observing {
             self.log_brakings();
         }
@@ -938,4 +860,101 @@ fn check_invariants(
         }
     }
     Ok(())
+}
+
+/// Phase 3 without its cold tail: every vehicle moves by its decided acceleration bounded by
+/// its emergency limit; reads the clock, the geometry (walls, off-ramps) and the decisions,
+/// writes the vehicles, the scratch flags (`exit_due`, `lanes_sorted`, `crashed`) and the
+/// safety measures.
+fn move_vehicles(
+    clock: &Clock,
+    geom: &Geometry,
+    traffic: &mut Traffic,
+    scratch: &mut Scratch,
+    measures: &mut Measures,
+) {
+    let dt = clock.dt;
+    let mut sorted = true;
+    // Locals (the stores into the records cannot change them, so nothing is reloaded per
+    // vehicle), and the slot-indexed arrays as long as `vehicles`: one bounds check per
+    // vehicle for the three.
+    let Traffic {
+        lanes, vehicles, ..
+    } = traffic;
+    let Scratch {
+        decisions,
+        sensed,
+        exit_due,
+        crashed,
+        lanes_sorted,
+        ..
+    } = scratch;
+    let Measures {
+        vehicle_updates,
+        safety,
+        ..
+    } = measures;
+    let step = clock.step;
+    let in_window = step >= clock.warmup_step;
+    let plain = geom.plain;
+    let off_ramps = &geom.off_ramps[..];
+    let vehicles = &mut vehicles[..];
+    let decisions = &decisions[..vehicles.len()];
+    let sensed = &sensed[..vehicles.len()];
+    for (l, lane) in lanes.iter().enumerate() {
+        let mut ahead = f64::INFINITY;
+        for &s in lane {
+            let d = &decisions[s as usize];
+            let veh = &mut vehicles[s as usize];
+            veh.x_prev = veh.x;
+            let a_prev = veh.a;
+            let accel = law::braking_limited(d.accel, safety.limit(veh.kind));
+            let v_new = veh.v + accel * dt;
+            if v_new >= 0.0 {
+                veh.x += 0.5 * (veh.v + v_new) * dt;
+                veh.v = v_new;
+                veh.a = accel;
+            } else {
+                // Stops within the step: travels v²/(2|a|).
+                veh.x += 0.5 * veh.v * veh.v / (-accel);
+                veh.a = -veh.v / dt;
+                veh.v = 0.0;
+            }
+            safety.on_applied(veh, a_prev, veh.a, in_window);
+            if !plain {
+                // A wall is a standing obstacle (network.rs): passing it is a collision.
+                // (`here` is at the step-start position: x_prev, in this lane.)
+                if let Some(w) = sensed[s as usize].here.wall {
+                    if veh.x > w {
+                        crashed.push((s, l as u32, w));
+                    }
+                }
+            }
+            sorted &= veh.x <= ahead;
+            ahead = veh.x;
+            // As in exits: not `x < ramp.x` (a NaN position counts too).
+            if veh.exit != NO_EXIT
+                && off_ramps
+                    .get(veh.exit as usize)
+                    .is_some_and(|r| veh.x.partial_cmp(&r.x) != Some(std::cmp::Ordering::Less))
+            {
+                *exit_due = true;
+            }
+            veh.mode = d.mode;
+            veh.family = d.family;
+            veh.regime = d.regime;
+            veh.time_gap_s = d.time_gap;
+            if d.takeover {
+                veh.relax = Relaxation::Since(step);
+            }
+            if let Relaxation::Since(since) = veh.relax {
+                let elapsed = (step + 1 - since) as f64 * dt;
+                if elapsed >= veh.lc.relax_time_s {
+                    veh.relax = Relaxation::None;
+                }
+            }
+        }
+        *vehicle_updates += lane.len() as u64;
+    }
+    *lanes_sorted = sorted;
 }
