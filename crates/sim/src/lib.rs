@@ -39,7 +39,7 @@ pub use config::{
 };
 pub use error::SimError;
 pub use events::{Departure, Event, LaneChangeReason, Observer};
-pub use organize::{Advice, LaneChoice, Organizer, StrategyKind, STRATEGIES};
+pub use organize::{Advice, LaneChoice, Organizer, StrategyKind, UnknownStrategy, STRATEGIES};
 pub use platoonsim_model::lanechange::Side;
 pub use record::{Recording, TrajectoryPoint, TrajectorySpec, Trip, TripStatus};
 pub use sim::Simulation;

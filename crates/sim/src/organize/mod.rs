@@ -144,14 +144,19 @@ impl fmt::Debug for StrategyKind {
     }
 }
 
+/// A name that no registered strategy has.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("must be one of {names} (found \"{0}\")", names = StrategyKind::names())]
+pub struct UnknownStrategy(pub String);
+
 impl FromStr for StrategyKind {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = UnknownStrategy;
+    fn from_str(s: &str) -> Result<Self, UnknownStrategy> {
         STRATEGIES
             .iter()
             .find(|e| e.name == s)
             .map(|e| StrategyKind(e.name))
-            .ok_or_else(|| format!("must be one of {} (found \"{s}\")", StrategyKind::names()))
+            .ok_or_else(|| UnknownStrategy(s.to_string()))
     }
 }
 
@@ -184,7 +189,7 @@ mod tests {
         }
         let names: Vec<_> = StrategyKind::all().map(StrategyKind::as_str).collect();
         assert_eq!(names, ["none", "pd", "flow-aware", "dedicated"]);
-        let err = "platoon".parse::<StrategyKind>().unwrap_err();
+        let err = "platoon".parse::<StrategyKind>().unwrap_err().to_string();
         assert_eq!(
             err,
             "must be one of \"none\", \"pd\", \"flow-aware\", \"dedicated\" (found \"platoon\")"
