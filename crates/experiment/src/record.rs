@@ -142,10 +142,30 @@ pub fn encode_with(
     bytes
 }
 
+/// Why a run file cannot be reused: the run is then computed again.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum StaleRunFile {
+    #[error("it is not a run file ({0})")]
+    Unreadable(String),
+    #[error("it was computed by another build ({found}, this is {this})")]
+    OtherBuild { found: String, this: String },
+    #[error("it holds the run of configuration {found} (expected {expected})")]
+    OtherConfig { found: String, expected: String },
+    #[error("it holds seed {found} (expected {expected})")]
+    OtherSeed { found: u64, expected: u64 },
+    #[error("its summary has no discharge_flow_vphpl")]
+    NoSummary,
+}
+
 /// Read a run file's metrics. `Err` says why the file cannot be used (unreadable JSON,
 /// another configuration's hash or seed, another engine when `engine` is given, a missing
 /// summary): the run is then computed again.
-pub fn decode(bytes: &[u8], key: &str, seed: u64, engine: Option<&str>) -> Result<Fields, String> {
+pub fn decode(
+    bytes: &[u8],
+    key: &str,
+    seed: u64,
+    engine: Option<&str>,
+) -> Result<Fields, StaleRunFile> {
     decode_with(bytes, key, seed, engine).map(|(fields, _)| fields)
 }
 
@@ -155,24 +175,28 @@ pub fn decode_with(
     key: &str,
     seed: u64,
     engine: Option<&str>,
-) -> Result<(Fields, Option<DetectorsRef>), String> {
-    let f: RunFileIn = serde_json::from_slice(bytes).map_err(|e| e.to_string())?;
+) -> Result<(Fields, Option<DetectorsRef>), StaleRunFile> {
+    let f: RunFileIn =
+        serde_json::from_slice(bytes).map_err(|e| StaleRunFile::Unreadable(e.to_string()))?;
     if let Some(e) = engine {
         if f.engine != e {
-            return Err(format!(
-                "it was computed by another build ({}, this is {e})",
-                f.engine
-            ));
+            return Err(StaleRunFile::OtherBuild {
+                found: f.engine,
+                this: e.to_string(),
+            });
         }
     }
     if f.config_hash != key {
-        return Err(format!(
-            "it holds the run of configuration {} (expected {key})",
-            f.config_hash
-        ));
+        return Err(StaleRunFile::OtherConfig {
+            found: f.config_hash,
+            expected: key.to_string(),
+        });
     }
     if f.seed != seed {
-        return Err(format!("it holds seed {} (expected {seed})", f.seed));
+        return Err(StaleRunFile::OtherSeed {
+            found: f.seed,
+            expected: seed,
+        });
     }
     let mut fields = Fields::default();
     for (k, v) in f.summary.0 {
@@ -186,7 +210,7 @@ pub fn decode_with(
         }
     }
     if fields.get("discharge_flow_vphpl").is_none() {
-        return Err("its summary has no discharge_flow_vphpl".into());
+        return Err(StaleRunFile::NoSummary);
     }
     Ok((fields, f.detectors))
 }

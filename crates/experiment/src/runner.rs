@@ -315,10 +315,10 @@ impl<'a> Runner<'a> {
         let path = self.file(key);
         write_atomic(&path, &bytes).map_err(|e| Error::io(&path, e))?;
         // Read back what was written, so a fresh result and a reused one are identical.
-        record::decode(&bytes, key, spec.seed, None).map_err(|message| Error::Run {
+        record::decode(&bytes, key, spec.seed, None).map_err(|e| Error::Run {
             key: key.to_string(),
             seed: spec.seed,
-            message,
+            message: e.to_string(),
         })
     }
 }
