@@ -312,8 +312,7 @@ pub fn json<T: serde::Serialize + ?Sized>(value: &T) -> Result<Vec<u8>> {
 /// empty `speed_kmh` cell.
 pub fn detectors_csv(records: &[DetectorRecord]) -> Result<Vec<u8>> {
     // One writer for the run files and the experiment runner's kept detector files.
-    let (bytes, _) = platoonsim_experiment::detectors::to_csv(records, Scope::All)
-        .map_err(anyhow::Error::msg)?;
+    let (bytes, _) = platoonsim_experiment::detectors::to_csv(records, Scope::All)?;
     Ok(bytes)
 }
 

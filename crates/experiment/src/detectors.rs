@@ -77,12 +77,20 @@ pub const COLUMNS: [&str; 11] = [
     "occupancy",
 ];
 
+/// Detector records that cannot be written or read as CSV; the message says where and why.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{0}")]
+pub struct DetectorCsvError(pub String);
+
 /// The records of `scope`, as CSV bytes, with how many rows were written.
-pub fn to_csv(records: &[DetectorRecord], scope: Scope) -> Result<(Vec<u8>, usize), String> {
+pub fn to_csv(
+    records: &[DetectorRecord],
+    scope: Scope,
+) -> Result<(Vec<u8>, usize), DetectorCsvError> {
     let mut w = csv::WriterBuilder::new()
         .has_headers(false)
         .from_writer(Vec::new());
-    let err = |e: csv::Error| format!("cannot encode detector records: {e}");
+    let err = |e: csv::Error| DetectorCsvError(format!("cannot encode detector records: {e}"));
     w.write_record(COLUMNS).map_err(err)?;
     let mut rows = 0;
     for r in records.iter().filter(|r| scope.keeps(r)) {
@@ -104,12 +112,16 @@ pub fn to_csv(records: &[DetectorRecord], scope: Scope) -> Result<(Vec<u8>, usiz
     }
     let bytes = w
         .into_inner()
-        .map_err(|e| format!("cannot encode detector records: {e}"))?;
+        .map_err(|e| DetectorCsvError(format!("cannot encode detector records: {e}")))?;
     Ok((bytes, rows))
 }
 
 /// Read records written by [`to_csv`] (or `platoonsim run`'s `detectors.csv`).
-pub fn from_csv(bytes: &[u8]) -> Result<Vec<DetectorRecord>, String> {
+pub fn from_csv(bytes: &[u8]) -> Result<Vec<DetectorRecord>, DetectorCsvError> {
+    from_csv_text(bytes).map_err(DetectorCsvError)
+}
+
+fn from_csv_text(bytes: &[u8]) -> Result<Vec<DetectorRecord>, String> {
     let mut r = csv::ReaderBuilder::new()
         .has_headers(true)
         .from_reader(bytes);

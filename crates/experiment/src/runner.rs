@@ -132,9 +132,9 @@ impl<'a> Runner<'a> {
     pub fn detectors(&self, key: &str) -> Result<Vec<DetectorRecord>, Error> {
         let path = self.detectors_file(key);
         let bytes = fs::read(&path).map_err(|e| Error::io(&path, e))?;
-        detectors::from_csv(&bytes).map_err(|message| Error::Io {
+        detectors::from_csv(&bytes).map_err(|e| Error::Io {
             path: path.display().to_string(),
-            message,
+            message: e.0,
         })
     }
 
@@ -300,7 +300,8 @@ impl<'a> Runner<'a> {
         let det = if scope == Scope::None {
             None
         } else {
-            let (csv, rows) = detectors::to_csv(&output.detectors, scope).map_err(run_error)?;
+            let (csv, rows) =
+                detectors::to_csv(&output.detectors, scope).map_err(|e| run_error(e.0))?;
             let path = self.detectors_file(key);
             write_atomic(&path, &csv).map_err(|e| Error::io(&path, e))?;
             Some(DetectorsRef::of(scope, rows, &csv))
