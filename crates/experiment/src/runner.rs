@@ -324,13 +324,29 @@ impl<'a> Runner<'a> {
     }
 }
 
-/// Temporary files left by an interrupted write are never results; remove them.
+/// A temporary file untouched for this long was left by an interrupted write. Younger ones may
+/// belong to another process writing into the same directory right now (the shards of a
+/// sweep on a cluster share it): a run file is written in milliseconds.
+const STALE_TMP: std::time::Duration = std::time::Duration::from_secs(120);
+
+/// Temporary files left by an interrupted write are never results; remove them (only stale
+/// ones: see [`STALE_TMP`]).
 fn remove_stale_tmp(dir: &Path) {
-    if let Ok(entries) = fs::read_dir(dir) {
-        for e in entries.flatten() {
-            if e.file_name().to_string_lossy().ends_with(".tmp") {
-                let _ = fs::remove_file(e.path());
-            }
+    let Ok(entries) = fs::read_dir(dir) else {
+        return;
+    };
+    let now = std::time::SystemTime::now();
+    for e in entries.flatten() {
+        if !e.file_name().to_string_lossy().ends_with(".tmp") {
+            continue;
+        }
+        let age = e
+            .metadata()
+            .and_then(|m| m.modified())
+            .ok()
+            .and_then(|t| now.duration_since(t).ok());
+        if age.is_some_and(|a| a >= STALE_TMP) {
+            let _ = fs::remove_file(e.path());
         }
     }
 }

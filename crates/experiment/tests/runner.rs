@@ -82,7 +82,19 @@ fn rerun_recomputes_only_missing_or_unusable_runs() {
     let path = dir.join(format!("{cut}.json"));
     let bytes = fs::read(&path).unwrap();
     fs::write(&path, &bytes[..bytes.len() / 2]).unwrap();
-    fs::write(dir.join(format!("{}.json.tmp", specs[0].key())), b"{\"half").unwrap();
+    let stale = dir.join(format!("{}.json.tmp", specs[0].key()));
+    fs::write(&stale, b"{\"half").unwrap();
+    let hour_ago = std::time::SystemTime::now() - std::time::Duration::from_secs(3600);
+    fs::File::options()
+        .write(true)
+        .open(&stale)
+        .unwrap()
+        .set_modified(hour_ago)
+        .unwrap();
+    // A fresh temporary file may be another process's write in progress (sweep shards share
+    // the directory): it stays.
+    let fresh = dir.join("another-shard.json.tmp");
+    fs::write(&fresh, b"{").unwrap();
     let r = runner();
     let third = r.run(&specs).unwrap();
     assert_eq!(count.swap(0, Ordering::SeqCst), 2);
@@ -94,10 +106,12 @@ fn rerun_recomputes_only_missing_or_unusable_runs() {
         .collect();
     assert_eq!(recomputed, [deleted.as_str(), cut.as_str()]);
     assert_eq!(strip(&first), strip(&third));
+    assert!(fresh.exists(), "a fresh temporary file is left alone");
+    fs::remove_file(&fresh).unwrap();
     assert_eq!(
         run_files(&dir).len(),
         6,
-        "no .tmp left: {:?}",
+        "no stale .tmp left: {:?}",
         run_files(&dir)
     );
 
