@@ -78,24 +78,24 @@ pub struct ScenarioArgs {
     pub scenario: String,
 
     /// Share of CAVs among arriving vehicles, from 0 to 1 (sets run.penetration).
-    #[arg(long, value_name = "P")]
+    #[arg(long, value_name = "P", allow_negative_numbers = true)]
     pub penetration: Option<f64>,
 
     /// Arrival rate at the entrance in vehicles per hour per lane (sets demand.vph_per_lane).
-    #[arg(long, value_name = "VEH_PER_H_PER_LANE")]
+    #[arg(long, value_name = "VEH_PER_H_PER_LANE", allow_negative_numbers = true)]
     pub demand: Option<f64>,
 
     /// Simulated time in seconds (sets run.duration_s).
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", allow_negative_numbers = true)]
     pub duration: Option<f64>,
 
     /// Warm-up in seconds; lane-change, platoon and discharge statistics are measured from
     /// then to the end (sets run.warmup_s).
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", allow_negative_numbers = true)]
     pub warmup: Option<f64>,
 
     /// Random seed; the same seed gives identical results (sets run.seed).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = crate::messages::parse_seed)]
     pub seed: Option<u64>,
 
     /// Platoon organization strategy (sets strategy.kind).
@@ -148,7 +148,12 @@ impl ScenarioArgs {
                     self.demand_scale.unwrap_or_default()
                 )
             }
-            Err(e) => Err(e.into()),
+            Err(e) => {
+                match crate::messages::warmup_hint(self.duration, self.warmup, &e.to_string()) {
+                    Some(hint) => bail!("{e}\n  {hint}"),
+                    None => Err(e.into()),
+                }
+            }
         }
     }
 }
@@ -470,11 +475,21 @@ pub struct ExperimentArgs {
     pub grid: GridArgs,
 
     /// Simulated time of every run, for a quicker look (the paper's: 3600 s).
-    #[arg(long, value_name = "S", default_value_t = 3600.0)]
+    #[arg(
+        long,
+        value_name = "S",
+        default_value_t = 3600.0,
+        allow_negative_numbers = true
+    )]
     pub duration: f64,
 
     /// Warm-up of the runs that have one; PD acts after it (the paper's: 1200 s).
-    #[arg(long, value_name = "S", default_value_t = 1200.0)]
+    #[arg(
+        long,
+        value_name = "S",
+        default_value_t = 1200.0,
+        allow_negative_numbers = true
+    )]
     pub warmup: f64,
 
     /// calibrate-flow-aware: the rho_q values to try (veh/h/lane), comma-separated.

@@ -15,6 +15,7 @@ mod stdout;
 mod args;
 mod atomic;
 mod commands;
+mod messages;
 mod output;
 mod progress;
 mod tables;

@@ -34,17 +34,70 @@ pub fn write_run(dir: &Path, config: &Config, output: &Output) -> Result<Vec<Pat
 }
 
 /// Write every output file of a run into `dir`, the tables (`detectors`, `trips`,
-/// `trajectories`) in `format`; returns the paths written. `trips` and `trajectories` are
-/// written if the output has the records, `collisions.csv` if the run had collisions. A table
-/// of an earlier run that this one does not write (in either format) is removed.
+/// `trajectories`) in `format`; returns the paths written, `summary.json` last. See
+/// [`write_run_files`] and [`write_summary`].
+#[cfg(test)]
 pub fn write_run_as(
     dir: &Path,
     config: &Config,
     output: &Output,
     format: FormatArg,
 ) -> Result<Vec<PathBuf>> {
-    let files: [(&str, Vec<u8>); 3] = [
-        ("summary.json", json(&output.summary)?),
+    let mut written = write_run_files(dir, config, output, format)?;
+    written.push(write_summary(dir, output)?);
+    Ok(written)
+}
+
+/// The file whose presence says a run finished; see [`write_summary`].
+pub const SUMMARY_FILE: &str = "summary.json";
+
+/// Write `summary.json`, after every other file of the run: a run killed while writing leaves
+/// no summary, so that a directory with one always holds a finished run.
+pub fn write_summary(dir: &Path, output: &Output) -> Result<PathBuf> {
+    let path = dir.join(SUMMARY_FILE);
+    write_atomic(&path, &json(&output.summary)?)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    Ok(path)
+}
+
+/// Every file a run may write into its directory (the tables in both formats).
+pub const RUN_FILES: [&str; 11] = [
+    SUMMARY_FILE,
+    "scenario.json",
+    "scenario.toml",
+    "detectors.csv",
+    "detectors.parquet",
+    "trips.csv",
+    "trips.parquet",
+    "trajectories.csv",
+    "trajectories.parquet",
+    COLLISIONS_FILE,
+    "view.html",
+];
+
+/// Before a run into `dir`: remove the `.tmp` files an interrupted earlier run left of its own
+/// outputs. Other files of the directory are left alone.
+pub fn remove_stale_tmp(dir: &Path) -> Result<()> {
+    for name in RUN_FILES {
+        remove_stale(&dir.join(format!("{name}.tmp")))?;
+    }
+    Ok(())
+}
+
+/// Write every output file of a run into `dir` except `summary.json`, the tables
+/// (`detectors`, `trips`, `trajectories`) in `format`; returns the paths written. `trips` and
+/// `trajectories` are written if the output has the records, `collisions.csv` if the run had
+/// collisions. A table of an earlier run that this one does not write (in either format) is
+/// removed.
+pub fn write_run_files(
+    dir: &Path,
+    config: &Config,
+    output: &Output,
+    format: FormatArg,
+) -> Result<Vec<PathBuf>> {
+    // An earlier run's summary would mark the files replaced below as finished until ours.
+    remove_stale(&dir.join(SUMMARY_FILE))?;
+    let files: [(&str, Vec<u8>); 2] = [
         ("scenario.json", json(config)?),
         (
             "scenario.toml",

@@ -33,7 +33,9 @@ pub mod sweep;
 pub mod table;
 
 pub use design::{Cell, Labels, RunSpec};
-pub use experiments::{run_experiment, Check, ExperimentName, ExperimentOutput, Settings};
+pub use experiments::{
+    run_experiment, Check, ExperimentName, ExperimentOutput, Settings, CAPACITY_FILL_S,
+};
 pub use runner::{Outcome, Runner};
 pub use stats::Stats;
 

@@ -29,6 +29,19 @@ pub enum ScenarioError {
     #[error("unknown scenario '{name}': not a built-in scenario (built-ins: {builtins}) and no such file")]
     UnknownScenario { name: String, builtins: String },
 
+    /// The argument names a directory, not a scenario file.
+    #[error("{}: is a directory, not a scenario file: give the path of a scenario TOML file \
+             (e.g. the scenario.toml that `run` writes) or a built-in name ({builtins})", path.display())]
+    Directory { path: PathBuf, builtins: String },
+
+    /// The file is JSON (or looks like it), not TOML.
+    #[error(
+        "{origin}: looks like JSON, but scenario files are TOML: use the scenario.toml \
+             that `run` writes beside scenario.json, or write one with \
+             `platoonsim show NAME --format toml > FILE.toml`"
+    )]
+    NotToml { origin: String },
+
     /// The file exists but cannot be read.
     #[error("cannot read scenario file {}: {source}", path.display())]
     Io {

@@ -118,14 +118,23 @@ pub fn resolve(name_or_path: &str) -> Result<Source, ScenarioError> {
         }
     }
     let path = Path::new(name_or_path);
+    let builtins = || {
+        BUILTINS
+            .iter()
+            .map(|b| b.name)
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    if path.is_dir() {
+        return Err(ScenarioError::Directory {
+            path: path.to_path_buf(),
+            builtins: builtins(),
+        });
+    }
     if !path.is_file() {
         return Err(ScenarioError::UnknownScenario {
             name: name_or_path.to_string(),
-            builtins: BUILTINS
-                .iter()
-                .map(|b| b.name)
-                .collect::<Vec<_>>()
-                .join(", "),
+            builtins: builtins(),
         });
     }
     let text = read_limited(path)?;
@@ -189,6 +198,19 @@ pub fn load_with(name_or_path: &str, overrides: &Overrides) -> Result<Config, Sc
         overrides,
         source.dir.as_deref(),
     )
+    .map_err(|e| match e {
+        // A JSON object is never valid TOML: say what the file is rather than where the TOML
+        // parser gave up.
+        ScenarioError::Syntax { origin, .. } if looks_like_json(name_or_path, &source.text) => {
+            ScenarioError::NotToml { origin }
+        }
+        e => e,
+    })
+}
+
+/// A `.json` name, or text that opens with a JSON object (a TOML file cannot start with `{`).
+fn looks_like_json(name: &str, text: &str) -> bool {
+    name.to_ascii_lowercase().ends_with(".json") || text.trim_start().starts_with('{')
 }
 
 /// Read scenario text: parse, apply overrides, read the raw level, validate. Relative table

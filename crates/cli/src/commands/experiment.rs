@@ -23,6 +23,8 @@ pub fn settings(grid: &GridArgs, seeds: u32, quiet: bool) -> Settings {
 
 pub fn experiment(args: &ExperimentArgs, quiet: bool) -> Result<()> {
     let name = ExperimentName::from(args.name);
+    crate::messages::check_experiment_duration(name, args.duration, args.warmup)
+        .map_err(anyhow::Error::msg)?;
     let default_seeds = match name {
         ExperimentName::CalibrateFlowAware | ExperimentName::Sr99Demand => 3,
         _ => 10,

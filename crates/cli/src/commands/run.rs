@@ -13,13 +13,20 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
     // Create the directory before simulating, so that an unwritable one fails at once.
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create the output directory {}", args.out.display()))?;
+    output::remove_stale_tmp(&args.out)?;
 
     let bar = progress::sim_bar(config.duration_s, progress::wanted(quiet), &config.name);
     let out = progress::run_recording_with_bar(&config, &recording, &bar)
         .with_context(|| format!("simulation of scenario '{}' failed", config.name))?;
 
     let writing = std::time::Instant::now();
-    let written = output::write_run_as(&args.out, &config, &out, args.format)?;
+    let mut written = output::write_run_files(&args.out, &config, &out, args.format)?;
+    let view_file = args.out.join(super::view::DEFAULT_FILE);
+    if args.view {
+        super::view::write(&args.out, &view_file)?;
+    }
+    // Last, so that a directory with a summary.json holds a finished run.
+    written.push(output::write_summary(&args.out, &out)?);
     let write_s = writing.elapsed().as_secs_f64();
     // The warning goes first, so that it is on stderr even if stdout is closed below.
     if let Some(first) = out.collision_events.first() {
@@ -58,9 +65,7 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
         )?;
     }
     if args.view {
-        let file = args.out.join(super::view::DEFAULT_FILE);
-        super::view::write(&args.out, &file)?;
-        outln!("Replay: {}", file.display())?;
+        outln!("Replay: {}", view_file.display())?;
     }
     if out.summary.collisions > 0 && !args.allow_collisions {
         return Ok(ExitCode::from(EXIT_COLLISIONS));

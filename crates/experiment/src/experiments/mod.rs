@@ -29,6 +29,7 @@ use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+pub use capacity::FILL_S as CAPACITY_FILL_S;
 pub use capacity::PENETRATIONS as CAPACITY_PENETRATIONS;
 pub use sensitivity::DEMANDS as SENSITIVITY_DEMANDS;
 

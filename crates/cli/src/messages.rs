@@ -1,0 +1,65 @@
+//! Command-line checks whose messages say which flag to change, and how: they complete the
+//! scenario's own validation, which names keys, not flags.
+
+use platoonsim_experiment::ExperimentName;
+
+/// `--seed`: a whole number of `run.seed`'s range; a negative one reaches here (the flag allows
+/// a leading '-') so that the message gives the range rather than clap's `-- -1` tip.
+pub fn parse_seed(text: &str) -> Result<u64, String> {
+    text.trim().parse().map_err(|_| {
+        format!(
+            "run.seed must be a whole number from 0 to {} (the same seed gives identical results)",
+            u64::MAX
+        )
+    })
+}
+
+/// A warm-up that `--duration` alone made too long (the scenario's own, not set by
+/// `--warmup`): the hint to add to the validation's message, naming `--warmup` and a value that
+/// works (a third of the duration).
+pub fn warmup_hint(duration: Option<f64>, warmup: Option<f64>, error: &str) -> Option<String> {
+    let d = duration.filter(|d| d.is_finite() && *d > 0.0)?;
+    if warmup.is_some() || !error.contains("run.warmup_s =") {
+        return None;
+    }
+    Some(format!(
+        "--duration {d} is not longer than the scenario's warm-up (run.warmup_s); shorten the \
+         warm-up too, e.g. --duration {d} --warmup {}",
+        (d / 3.0).floor()
+    ))
+}
+
+/// `experiment`: the homogeneous-road experiments measure from a warm-up, which must end before
+/// the runs do; checked before anything is created. `capacity`'s baseline stage also measures
+/// from [`platoonsim_experiment::CAPACITY_FILL_S`].
+pub fn check_experiment_duration(
+    name: ExperimentName,
+    duration: f64,
+    warmup: f64,
+) -> Result<(), String> {
+    if matches!(name, ExperimentName::Sr99 | ExperimentName::Sr99Demand) {
+        return Ok(());
+    }
+    if !(duration.is_finite() && duration > 0.0) {
+        return Err(format!(
+            "invalid --duration {duration}: the simulated time of every run must be a positive \
+             number of seconds"
+        ));
+    }
+    if !(warmup.is_finite() && warmup >= 0.0 && warmup < duration) {
+        return Err(format!(
+            "invalid --duration {duration} with --warmup {warmup}: the warm-up must be >= 0 and \
+             shorter than the duration (the default --warmup is the paper's 1200 s); e.g. \
+             --duration {duration} --warmup {}",
+            (duration / 3.0).floor()
+        ));
+    }
+    let fill = platoonsim_experiment::CAPACITY_FILL_S;
+    if name == ExperimentName::Capacity && duration <= fill {
+        return Err(format!(
+            "invalid --duration {duration}: capacity's baseline stage measures after a fixed \
+             {fill} s warm-up (the road fills), so --duration must be longer than {fill} s"
+        ));
+    }
+    Ok(())
+}

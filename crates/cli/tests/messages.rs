@@ -1,0 +1,174 @@
+//! The messages of common mistakes: each names the flag or file, the value and what to do, and
+//! a failed command leaves nothing behind.
+
+mod common;
+use common::{platoonsim, s, scratch, stderr};
+
+/// A negative number reaches the range check instead of clap's "use '-- -1'" tip.
+#[test]
+fn negative_seed_and_demand_get_the_range() {
+    let o = platoonsim(&["run", "homogeneous", "--seed", "-1"]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(!e.contains("tip:"), "{e}");
+    assert!(e.contains("'-1' for '--seed <N>'"), "{e}");
+    assert!(e.contains("from 0 to 18446744073709551615"), "{e}");
+
+    let o = platoonsim(&["run", "homogeneous", "--demand", "-5"]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(!e.contains("tip:"), "{e}");
+    assert!(
+        e.contains("demand.vph_per_lane = -5: must be in [0, 10000] veh/h/lane"),
+        "{e}"
+    );
+}
+
+/// `--duration` shorter than the scenario's 1,200 s warm-up: the message says to add
+/// `--warmup`, with a value that works.
+#[test]
+fn short_duration_suggests_warmup() {
+    let o = platoonsim(&["run", "homogeneous", "--duration", "600"]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(e.contains("run.warmup_s = 1200"), "{e}");
+    assert!(e.contains("--duration 600 --warmup 200"), "{e}");
+    // With --warmup set by the user, the scenario's check speaks alone.
+    let o = platoonsim(&["run", "homogeneous", "--duration", "600", "--warmup", "700"]);
+    let e = stderr(&o);
+    assert!(e.contains("run.warmup_s = 700"), "{e}");
+    assert!(!e.contains("shorten the warm-up"), "{e}");
+}
+
+/// The suggested flags do give a valid run (and one that is not empty).
+#[test]
+fn the_suggested_warmup_runs() {
+    let dir = scratch("suggested");
+    let o = platoonsim(&[
+        "run",
+        "homogeneous",
+        "--duration",
+        "600",
+        "--warmup",
+        "200",
+        "--out",
+        s(&dir),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(v["collisions"], 0);
+    assert!(v["vehicle_updates"].as_u64().unwrap() > 0, "{v}");
+}
+
+#[test]
+fn a_directory_is_named_as_one() {
+    let dir = scratch("directory");
+    let o = platoonsim(&["run", s(&dir)]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(e.contains("is a directory, not a scenario file"), "{e}");
+    assert!(!e.contains("no such file"), "{e}");
+}
+
+/// A JSON scenario (e.g. the scenario.json a run writes) is named as JSON, with the way to a
+/// TOML one, rather than a TOML parser's complaint at line 1.
+#[test]
+fn a_json_scenario_points_to_toml() {
+    let dir = scratch("json");
+    let file = dir.join("scenario.json");
+    std::fs::write(&file, "{\"run\": {\"seed\": 1}}\n").unwrap();
+    let o = platoonsim(&["run", s(&file)]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(e.contains("scenario files are TOML"), "{e}");
+    assert!(e.contains("show NAME --format toml"), "{e}");
+    assert!(!e.contains("TOML parse error"), "{e}");
+    // The same text under another name is recognised by its opening brace.
+    let other = dir.join("s.toml");
+    std::fs::write(&other, "{\"run\": {\"seed\": 1}}\n").unwrap();
+    assert!(stderr(&platoonsim(&["run", s(&other)])).contains("scenario files are TOML"));
+}
+
+/// `experiment capacity --duration 300`: refused before the output folder exists, naming the
+/// warm-up.
+#[test]
+fn experiment_checks_the_warmup_before_creating_anything() {
+    let dir = scratch("experiment");
+    let out = dir.join("out");
+    let o = platoonsim(&[
+        "experiment",
+        "capacity",
+        "--duration",
+        "300",
+        "--out",
+        s(&out),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(e.contains("--warmup 1200"), "{e}");
+    assert!(e.contains("--duration 300 --warmup 100"), "{e}");
+    assert!(!out.exists(), "{} was created", out.display());
+    // The suggested warm-up still meets capacity's fixed 300 s fill time: named too.
+    let o = platoonsim(&[
+        "experiment",
+        "capacity",
+        "--duration",
+        "300",
+        "--warmup",
+        "100",
+        "--out",
+        s(&out),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("longer than 300 s"), "{}", stderr(&o));
+    assert!(!out.exists());
+}
+
+/// An interrupted run's `.tmp` files of the run's outputs are removed by the next run into the
+/// directory (others are left), and `summary.json` is written after every other file.
+#[test]
+fn a_run_cleans_stale_tmp_files_and_writes_the_summary_last() {
+    let dir = scratch("tmp");
+    std::fs::write(dir.join("trajectories.csv.tmp"), "time_s,id\n0,").unwrap();
+    std::fs::write(dir.join("summary.json.tmp"), "{").unwrap();
+    std::fs::write(dir.join("notes.txt.tmp"), "mine").unwrap();
+    let o = platoonsim(&[
+        "run",
+        "homogeneous",
+        "--duration",
+        "300",
+        "--warmup",
+        "100",
+        "--trips",
+        "--trajectories",
+        "10",
+        "--view",
+        "--out",
+        s(&dir),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!dir.join("trajectories.csv.tmp").exists());
+    assert!(!dir.join("summary.json.tmp").exists());
+    assert!(dir.join("notes.txt.tmp").exists(), "not a file of the run");
+    let modified = |name: &str| {
+        std::fs::metadata(dir.join(name))
+            .unwrap()
+            .modified()
+            .unwrap()
+    };
+    let summary = modified("summary.json");
+    for name in [
+        "scenario.json",
+        "scenario.toml",
+        "detectors.csv",
+        "trips.csv",
+        "trajectories.csv",
+        "view.html",
+    ] {
+        assert!(
+            modified(name) <= summary,
+            "{name} written after summary.json"
+        );
+    }
+}
