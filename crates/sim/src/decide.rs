@@ -838,24 +838,11 @@ impl Simulation {
         if self.road.lane_caps_mps.is_empty() {
             return v_des_of(v); // no lookup of the vehicle's geometry on the hot path
         }
-        self.lane_capped(
+        self.road.lane_capped(
             v_des_of(v),
             lane,
             self.scratch.sensed[s as usize].here.right,
         )
-    }
-
-    /// `v_f` capped by the desired-speed cap of `lane` (spec 2.7), the caps counted from the
-    /// rightmost through lane `right` (`NO_LANE`: none there; the first cap). Requires caps.
-    #[inline]
-    pub(crate) fn lane_capped(&self, v_f: f64, lane: usize, right: u8) -> f64 {
-        let caps = &self.road.lane_caps_mps;
-        let rank = if right == NO_LANE {
-            0
-        } else {
-            lane.saturating_sub(right as usize)
-        };
-        bounded::min(v_f, caps[rank.min(caps.len() - 1)])
     }
 }
 

@@ -4,120 +4,140 @@
 
 use crate::events::Event;
 use crate::sense::NONE;
-use crate::sim::Simulation;
-use crate::state::{Scratch, Traffic};
+use crate::state::{Clock, RoadState, Scratch, Traffic, Watch};
 use crate::vehicle::{Mode, Relaxation};
 use platoonsim_model::human;
 use platoonsim_model::lanechange::{self as lcm, Side};
 use platoonsim_model::Leader;
 
-impl Simulation {
-    /// Phase 4.
-    pub(crate) fn apply_lane_changes(&mut self) {
-        // Locals: a push does not make the loop reload the lane lists and the decisions.
-        let Traffic { lanes, .. } = &self.traffic;
-        let Scratch {
-            decisions,
-            change_list,
-            ..
-        } = &mut self.scratch;
-        let decisions = &decisions[..];
-        change_list.clear();
-        for lane in lanes.iter() {
-            for &s in lane {
-                if let Some(side) = decisions[s as usize].change {
-                    change_list.push((s, side));
-                }
+/// Phase 4: reads the clock, the road and the decisions; writes the vehicles and lanes, the
+/// lane-change bookkeeping and, with an observer, the step's events.
+pub(crate) fn apply_lane_changes(
+    clock: &Clock,
+    origin_m: f64,
+    road: &RoadState,
+    traffic: &mut Traffic,
+    scratch: &mut Scratch,
+    watch: &mut Watch,
+) {
+    // Locals: a push does not make the loop reload the lane lists and the decisions.
+    let Traffic { lanes, .. } = &*traffic;
+    let Scratch {
+        decisions,
+        change_list,
+        ..
+    } = &mut *scratch;
+    let decisions = &decisions[..];
+    change_list.clear();
+    for lane in lanes.iter() {
+        for &s in lane {
+            if let Some(side) = decisions[s as usize].change {
+                change_list.push((s, side));
             }
-        }
-        for i in 0..self.scratch.change_list.len() {
-            let (s, side) = self.scratch.change_list[i];
-            self.try_change(s, side);
         }
     }
+    for i in 0..scratch.change_list.len() {
+        let (s, side) = scratch.change_list[i];
+        try_change(clock, origin_m, road, traffic, scratch, watch, s, side);
+    }
+}
 
-    fn try_change(&mut self, s: u32, side: Side) {
-        let step = self.clock.step;
-        let v = &self.traffic.vehicles[s as usize];
-        let from = v.lane as usize;
-        let to = match side {
-            Side::Left => from + 1,
-            Side::Right => from.wrapping_sub(1),
-        };
-        if to >= self.traffic.lanes.len() || !self.road.geom.can_enter(to as u32, v.x) {
+/// One accepted change, re-checked on the current positions.
+#[allow(clippy::too_many_arguments)]
+fn try_change(
+    clock: &Clock,
+    origin_m: f64,
+    road: &RoadState,
+    traffic: &mut Traffic,
+    scratch: &mut Scratch,
+    watch: &mut Watch,
+    s: u32,
+    side: Side,
+) {
+    let step = clock.step;
+    let v = &traffic.vehicles[s as usize];
+    let from = v.lane as usize;
+    let to = match side {
+        Side::Left => from + 1,
+        Side::Right => from.wrapping_sub(1),
+    };
+    if to >= traffic.lanes.len() || !road.geom.can_enter(to as u32, v.x) {
+        return;
+    }
+    // Position in the target lane: first vehicle not strictly ahead.
+    let target = &traffic.lanes[to];
+    let j = target.partition_point(|&o| traffic.vehicles[o as usize].x > v.x);
+    let tl = if j > 0 { target[j - 1] } else { NONE };
+    let tf = target.get(j).copied().unwrap_or(NONE);
+    // No change next to a vehicle that has just changed lanes (spec 4.2).
+    for o in [tl, tf] {
+        if o != NONE && scratch.changed_this_step[o as usize] == step {
             return;
         }
-        // Position in the target lane: first vehicle not strictly ahead.
-        let target = &self.traffic.lanes[to];
-        let j = target.partition_point(|&o| self.traffic.vehicles[o as usize].x > v.x);
-        let tl = if j > 0 { target[j - 1] } else { NONE };
-        let tf = target.get(j).copied().unwrap_or(NONE);
-        // No change next to a vehicle that has just changed lanes (spec 4.2).
-        for o in [tl, tf] {
-            if o != NONE && self.scratch.changed_this_step[o as usize] == step {
-                return;
-            }
+    }
+    let lead = (tl != NONE).then(|| {
+        let l = &traffic.vehicles[tl as usize];
+        Leader {
+            gap_m: l.rear() - v.x,
+            v_mps: l.v,
         }
-        let lead = (tl != NONE).then(|| {
-            let l = &self.traffic.vehicles[tl as usize];
-            Leader {
-                gap_m: l.rear() - v.x,
-                v_mps: l.v,
-            }
+    });
+    if let Some(l) = lead {
+        if !lcm::accept_lead_gap(&v.human, &v.lc, l.gap_m, v.v, l.v_mps) {
+            return;
+        }
+    }
+    if tf != NONE {
+        let f = &traffic.vehicles[tf as usize];
+        let a_ant = human::target_accel(
+            &v.human,
+            v.v,
+            road.desired_speed_in(
+                v.human.desired_speed,
+                to,
+                scratch.sensed[s as usize].here.right,
+            ),
+            lead,
+            lcm::gap_relax(&v.lc),
+        );
+        if !lcm::accept_lag_gap(&v.human, &v.lc, v.rear() - f.x, v.v, f.v, a_ant) {
+            return;
+        }
+    }
+    // Execute.
+    let k = traffic.lanes[from]
+        .iter()
+        .position(|&o| o == s)
+        .expect("vehicle is in its lane");
+    traffic.lanes[from].remove(k);
+    traffic.lanes[to].insert(j, s);
+    scratch.changed_this_step[s as usize] = step;
+    let v = &mut traffic.vehicles[s as usize];
+    v.lane = to as u32;
+    v.mode = Mode::Cf;
+    v.relax = Relaxation::Since(step + 1);
+    v.last_lc_step = step;
+    v.last_lc_side = Some(side);
+    v.lane_changes += 1;
+    if watch.observing {
+        let (id, kind, x) = (v.id, v.kind, v.x);
+        watch.events.push(Event::LaneChange {
+            t_s: crate::record::step_time(step + 1, clock.dt),
+            id,
+            kind,
+            from: from as u32,
+            to: to as u32,
+            x_m: x + origin_m,
+            reason: scratch.decisions[s as usize].why,
         });
-        if let Some(l) = lead {
-            if !lcm::accept_lead_gap(&v.human, &v.lc, l.gap_m, v.v, l.v_mps) {
-                return;
-            }
-        }
-        if tf != NONE {
-            let f = &self.traffic.vehicles[tf as usize];
-            let a_ant = human::target_accel(
-                &v.human,
-                v.v,
-                self.v_des_in(s, v, to),
-                lead,
-                lcm::gap_relax(&v.lc),
-            );
-            if !lcm::accept_lag_gap(&v.human, &v.lc, v.rear() - f.x, v.v, f.v, a_ant) {
-                return;
-            }
-        }
-        // Execute.
-        let k = self.traffic.lanes[from]
-            .iter()
-            .position(|&o| o == s)
-            .expect("vehicle is in its lane");
-        self.traffic.lanes[from].remove(k);
-        self.traffic.lanes[to].insert(j, s);
-        self.scratch.changed_this_step[s as usize] = step;
-        let v = &mut self.traffic.vehicles[s as usize];
-        v.lane = to as u32;
-        v.mode = Mode::Cf;
-        v.relax = Relaxation::Since(step + 1);
-        v.last_lc_step = step;
-        v.last_lc_side = Some(side);
-        v.lane_changes += 1;
-        if self.watch.observing {
-            let (id, kind, x) = (v.id, v.kind, v.x);
-            self.watch.events.push(Event::LaneChange {
-                t_s: crate::record::step_time(step + 1, self.clock.dt),
-                id,
-                kind,
-                from: from as u32,
-                to: to as u32,
-                x_m: x + self.cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m),
-                reason: self.scratch.decisions[s as usize].why,
-            });
-        }
-        // The new follower relaxes (RCF), unless it is an automated CAV (spec 4.6).
-        if tf != NONE {
-            let f = &mut self.traffic.vehicles[tf as usize];
-            if !f.automated() {
-                f.relax = Relaxation::Since(step + 1);
-                if matches!(f.mode, Mode::Ycf { .. }) {
-                    f.mode = Mode::Cf;
-                }
+    }
+    // The new follower relaxes (RCF), unless it is an automated CAV (spec 4.6).
+    if tf != NONE {
+        let f = &mut traffic.vehicles[tf as usize];
+        if !f.automated() {
+            f.relax = Relaxation::Since(step + 1);
+            if matches!(f.mode, Mode::Ycf { .. }) {
+                f.mode = Mode::Cf;
             }
         }
     }

@@ -402,7 +402,7 @@ impl Simulation {
             .geom
             .rightmost_through(0.0)
             .map_or(NO_LANE, |r| r as u8);
-        self.lane_capped(v_f, lane, right)
+        self.road.lane_capped(v_f, lane, right)
     }
 
     /// The speed (at most `v_max`) at which `veh` may enter at `x` behind slot `ld` (and a wall

@@ -312,7 +312,15 @@ impl Simulation {
         );
         self.decide();
         self.integrate();
-        self.apply_lane_changes();
+        let origin = self.origin_m();
+        crate::execute::apply_lane_changes(
+            &self.clock,
+            origin,
+            &self.road,
+            &mut self.traffic,
+            &mut self.scratch,
+            &mut self.watch,
+        );
         self.exits();
         self.insert();
         observe_detectors(

@@ -6,12 +6,13 @@ use crate::detector::Detector;
 use crate::events::{Event, Observer};
 use crate::here::HereTables;
 use crate::metrics::Metrics;
-use crate::network::Geometry;
+use crate::network::{Geometry, NO_LANE};
 use crate::organize::Organizer;
 use crate::safety::Safety;
 use crate::sense::Sensed;
 use crate::sim::Decision;
 use crate::vehicle::Vehicle;
+use platoonsim_model::bounded;
 use platoonsim_model::lanechange::Side;
 
 /// Simulated time, counted in steps.
@@ -53,6 +54,32 @@ pub(crate) struct RoadState {
     pub lane_caps_mps: Vec<f64>,
     /// Cross-lane friction c_fr (spec 2.7), `None` when off (not given, or 1).
     pub friction: Option<f64>,
+}
+
+impl RoadState {
+    /// The desired speed of a driver whose own is `v_f` in `lane` (spec 2.7): capped by the
+    /// lane's speed limit when the network has lane-based caps, counted from the rightmost
+    /// through lane `right` at its position (`NO_LANE`: none there; the first cap). Without
+    /// caps exactly `v_f`.
+    #[inline]
+    pub fn desired_speed_in(&self, v_f: f64, lane: usize, right: u8) -> f64 {
+        if self.lane_caps_mps.is_empty() {
+            return v_f;
+        }
+        self.lane_capped(v_f, lane, right)
+    }
+
+    /// `v_f` capped by the desired-speed cap of `lane`. Requires caps.
+    #[inline]
+    pub fn lane_capped(&self, v_f: f64, lane: usize, right: u8) -> f64 {
+        let caps = &self.lane_caps_mps;
+        let rank = if right == NO_LANE {
+            0
+        } else {
+            lane.saturating_sub(right as usize)
+        };
+        bounded::min(v_f, caps[rank.min(caps.len() - 1)])
+    }
 }
 
 /// Per-step scratch, rebuilt every step (no allocation once warmed up).
