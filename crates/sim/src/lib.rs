@@ -13,12 +13,16 @@
 pub mod command;
 pub mod config;
 mod decide;
+mod desire;
+mod detect;
 pub mod detector;
 mod error;
 pub mod events;
 mod execute;
 mod here;
 mod insert;
+mod integrate;
+mod invariants;
 pub mod metrics;
 pub mod network;
 pub mod organize;

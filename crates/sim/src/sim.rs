@@ -1,7 +1,7 @@
 //! The simulation state and the step.
 
 use crate::config::{Config, DetectorKind};
-use crate::detector::{Detector, Passage};
+use crate::detector::Detector;
 use crate::error::SimError;
 use crate::events::{Departure, Event, Observer};
 use crate::here::HereTables;
@@ -13,11 +13,9 @@ use crate::record::{Recorder, Recording, TrajectoryRecorder};
 use crate::safety::Safety;
 use crate::sense::NONE;
 use crate::state::{Clock, Control, Detectors, Measures, RoadState, Scratch, Traffic, Watch};
-use crate::summary::CollisionKind;
 use crate::summary::{Output, Summary};
-use crate::vehicle::{Kind, Relaxation, Vehicle, NO_EXIT};
+use crate::vehicle::{Kind, Vehicle, NO_EXIT};
 use platoonsim_model::lanechange::Side;
-use platoonsim_model::safety as law;
 
 /// Steps between two renumberings of the vehicle slots (`Simulation::compact`).
 const COMPACT_EVERY_STEPS: u64 = 600;
@@ -213,14 +211,14 @@ impl Simulation {
     }
 
     /// Output coordinate of engine x = 0 (the network origin; 0 on a plain road).
-    fn origin_m(&self) -> f64 {
+    pub(crate) fn origin_m(&self) -> f64 {
         self.cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m)
     }
 
     /// Slot `s` leaves the road as `how` in this step (or is still on it at the end): the
     /// statistics, the trip record and the user's observers see it, in that order.
     #[inline(never)]
-    fn leave(&mut self, s: u32, how: Departure) {
+    pub(crate) fn leave(&mut self, s: u32, how: Departure) {
         let t = crate::record::step_time(self.clock.step + 1, self.clock.dt);
         let v = &self.traffic.vehicles[s as usize];
         self.measures.metrics.on_exit(v, how, t);
@@ -323,7 +321,7 @@ impl Simulation {
         );
         self.exits();
         self.insert();
-        observe_detectors(
+        crate::detect::observe_detectors(
             self.clock.dt,
             &self.traffic,
             self.scratch.lanes_sorted,
@@ -349,7 +347,7 @@ impl Simulation {
             rec.on_step(self, &[]);
             self.rec = rec;
         }
-        let checked = check_invariants(
+        let checked = crate::invariants::check_invariants(
             &self.clock,
             self.origin_m(),
             &mut self.traffic,
@@ -359,54 +357,6 @@ impl Simulation {
             self.notify();
         }
         checked
-    }
-
-    /// Phase 3: the decided acceleration bounded by the vehicle's emergency limit
-    /// (`safety.rs`), then v' = max(0, v + aΔt); x' = x + ½(v + v')Δt, or the stopping point
-    /// when the speed would turn negative. A vehicle whose front passes the end of its lane
-    /// has collided with it: the event is recorded and the vehicle leaves the road.
-    fn integrate(&mut self) {
-        move_vehicles(
-            &self.clock,
-            &self.road.geom,
-            &mut self.traffic,
-            &mut self.scratch,
-            &mut self.measures,
-        );
-        if self.watch.observing {
-            self.log_brakings();
-        }
-        if !self.scratch.crashed.is_empty() {
-            self.remove_crashed();
-        }
-    }
-
-    /// The vehicles that ran past the end of their lane in this step: one collision each, and
-    /// they leave the road (their trip ends as `collided`). Removing them keeps every lane
-    /// sorted.
-    #[cold]
-    #[inline(never)]
-    fn remove_crashed(&mut self) {
-        let t = crate::record::step_time(self.clock.step + 1, self.clock.dt);
-        let origin = self.origin_m();
-        for (s, l, w) in std::mem::take(&mut self.scratch.crashed) {
-            let v = &self.traffic.vehicles[s as usize];
-            self.measures.safety.collide(
-                t,
-                CollisionKind::LaneEnd,
-                l as usize,
-                v.x + origin,
-                v,
-                None,
-                v.x - w,
-            );
-            if self.watch.observing {
-                self.log_collisions();
-            }
-            self.traffic.lanes[l as usize].retain(|&o| o != s);
-            self.leave(s, Departure::Collided);
-            self.traffic.free.push(s);
-        }
     }
 
     /// Phase 5a: vehicles whose front passed the road end leave; on a network, vehicles that
@@ -578,7 +528,7 @@ impl Simulation {
     /// The emergency brakings that started in this step's integrate phase, as events.
     #[cold]
     #[inline(never)]
-    fn log_brakings(&mut self) {
+    pub(crate) fn log_brakings(&mut self) {
         let t = crate::record::step_time(self.clock.step + 1, self.clock.dt);
         for (id, kind, decel) in self.measures.safety.braking.brakings.drain(..) {
             self.watch.events.push(Event::EmergencyBraking {
@@ -593,7 +543,7 @@ impl Simulation {
     /// The collisions recorded since the last call, as events.
     #[cold]
     #[inline(never)]
-    fn log_collisions(&mut self) {
+    pub(crate) fn log_collisions(&mut self) {
         for c in &self.measures.safety.collisions.events[self.watch.collisions_reported..] {
             self.watch.events.push(Event::Collision(c.clone()));
         }
@@ -688,281 +638,4 @@ impl Simulation {
     pub(crate) fn is_cav(&self, s: u32) -> bool {
         s != NONE && self.traffic.vehicles[s as usize].kind == Kind::Cav
     }
-}
-
-/// A rear-end collision starts when the pair (follower in slot `f`, leader in slot `ld`)
-/// overlaps and did not at the end of the previous step (phase 7).
-#[cold]
-#[inline(never)]
-fn overlap(
-    safety: &mut Safety,
-    vehicles: &[Vehicle],
-    ld: u32,
-    f: u32,
-    lane: usize,
-    t: f64,
-    origin: f64,
-) {
-    let (lead, fol) = (&vehicles[ld as usize], &vehicles[f as usize]);
-    let pair = (fol.id, lead.id);
-    if !safety.collisions.overlapping.contains(&pair) {
-        let gap = lead.rear() - fol.x;
-        safety.collide(
-            t,
-            CollisionKind::RearEnd,
-            lane,
-            fol.x + origin,
-            fol,
-            Some(lead),
-            -gap,
-        );
-    }
-    safety.collisions.overlapping_now.push(pair);
-}
-
-/// A non-finite state is an engine error (phase 7).
-#[inline(always)]
-fn check_finite(v: &Vehicle, lane: usize, t: f64) -> Result<(), SimError> {
-    // The sum is finite exactly when the three are: they are bounded far below overflow (a
-    // road of at most 200 km, speeds and accelerations of vehicles), and ∞ − ∞ is NaN.
-    if (v.x + v.v + v.a).is_finite() {
-        return Ok(());
-    }
-    Err(non_finite(v, lane, t))
-}
-
-#[cold]
-#[inline(never)]
-fn non_finite(v: &Vehicle, lane: usize, t: f64) -> SimError {
-    SimError::NonFinite {
-        vehicle: v.id,
-        lane: lane + 1,
-        t_s: t,
-        x_m: v.x,
-        v_mps: v.v,
-        a_mps2: v.a,
-    }
-}
-
-/// Phase 6: detectors, per lane by a search on the sorted lane list; reads the vehicles and
-/// lanes, writes the detectors (and their search hints).
-///
-/// The search starts from where it ended in the previous step (`hint`): the lanes change
-/// little between steps. The walk finds the same index as a binary search when the lane is
-/// sorted (descending x); integrate is the only phase that can unsort a lane (lane changes and
-/// insertions insert at their sorted position), and if it did (`lanes_sorted` false), this
-/// step searches as before.
-fn observe_detectors(dt: f64, traffic: &Traffic, lanes_sorted: bool, detectors: &mut Detectors) {
-    let n_lanes = traffic.lanes.len();
-    detectors.hint.resize(detectors.list.len() * n_lanes, 0);
-    for (i, det) in detectors.list.iter_mut().enumerate() {
-        let p = det.position_m;
-        if det.kind == "off-ramp" {
-            continue;
-        }
-        for (l, lane) in traffic.lanes.iter().enumerate() {
-            if det.mask & (1 << l) == 0 {
-                continue;
-            }
-            // Candidates: front now in [p, p + L + travel]; lane is sorted descending.
-            let hi = p + 60.0;
-            let ahead = |s: u32| traffic.vehicles[s as usize].x > hi;
-            let start = if lanes_sorted {
-                let hint = &mut detectors.hint[i * n_lanes + l];
-                let mut k = (*hint as usize).min(lane.len());
-                while k > 0 && !ahead(lane[k - 1]) {
-                    k -= 1;
-                }
-                while k < lane.len() && ahead(lane[k]) {
-                    k += 1;
-                }
-                *hint = k as u32;
-                k
-            } else {
-                lane.partition_point(|&s| ahead(s))
-            };
-            for &s in &lane[start..] {
-                let v = &traffic.vehicles[s as usize];
-                if v.x < p {
-                    break;
-                }
-                let v0 = (v.v - v.a * dt).max(0.0);
-                let m = Passage {
-                    x0: v.x_prev,
-                    x1: v.x,
-                    v0,
-                    v1: v.v,
-                    len: v.human.length_m,
-                    cav: v.is_cav(),
-                };
-                det.observe(l, m, dt);
-            }
-        }
-    }
-}
-
-/// Phase 7: finiteness, collisions and the surrogate safety measures (`safety.rs`), over
-/// each lane's (leader, follower) pairs at the end of the step. A pair whose follower's
-/// front is past its leader's rear is a collision when it starts (it was not overlapping at
-/// the end of the previous step). Keeps each lane sorted even after a collision.
-fn check_invariants(
-    clock: &Clock,
-    origin: f64,
-    traffic: &mut Traffic,
-    safety: &mut Safety,
-) -> Result<(), SimError> {
-    let step = clock.step;
-    let t = crate::record::step_time(step, clock.dt);
-    let dt = clock.dt;
-    let in_window = step > clock.warmup_step;
-    let Traffic {
-        lanes, vehicles, ..
-    } = traffic;
-    // Outside the measurement window only an overlapping pair passes the test below, and
-    // `on_close` ignores it there.
-    safety.exposure.in_window = in_window;
-    let mut horizon = if in_window {
-        safety.exposure.ttc_horizon_s
-    } else {
-        0.0
-    };
-    std::mem::swap(
-        &mut safety.collisions.overlapping,
-        &mut safety.collisions.overlapping_now,
-    );
-    safety.collisions.overlapping_now.clear();
-    for (l, lane) in lanes.iter_mut().enumerate() {
-        let mut sorted = true;
-        let Some((&first, rest)) = lane.split_first() else {
-            continue;
-        };
-        // Each record is looked up once: what the next pair needs of the follower (then its
-        // leader) is kept in locals.
-        let v0 = &vehicles[first as usize];
-        check_finite(v0, l, t)?;
-        let (mut li, mut lead_rear, mut lead_x, mut lead_v) = (first, v0.rear(), v0.x, v0.v);
-        for &s in rest.iter() {
-            let fol = &vehicles[s as usize];
-            check_finite(fol, l, t)?;
-            let (fx, fv, frear) = (fol.x, fol.v, fol.rear());
-            let gap = lead_rear - fx;
-            if gap < 0.0 {
-                overlap(safety, vehicles, li, s, l, t, origin);
-                if fx > lead_x {
-                    sorted = false;
-                }
-            }
-            // TTC = g / closing, divided out only when it is below the threshold or the
-            // smallest so far (`ttc_horizon_s`, the larger of the two).
-            // One comparison per pair: a pair that is not closing in gives a bound ≤ 0,
-            // which only an overlap passes (`on_close` then finds no TTC).
-            if gap < (fv - lead_v) * horizon {
-                let lead_id = vehicles[li as usize].id;
-                safety.on_close(&mut vehicles[s as usize], lead_id, gap, lead_v, step, dt);
-                horizon = safety.exposure.ttc_horizon_s;
-            }
-            (li, lead_rear, lead_x, lead_v) = (s, frear, fx, fv);
-        }
-        if !sorted {
-            lane.sort_by(|&a, &b| vehicles[b as usize].x.total_cmp(&vehicles[a as usize].x));
-        }
-    }
-    Ok(())
-}
-
-/// Phase 3 without its cold tail: every vehicle moves by its decided acceleration bounded by
-/// its emergency limit; reads the clock, the geometry (walls, off-ramps) and the decisions,
-/// writes the vehicles, the scratch flags (`exit_due`, `lanes_sorted`, `crashed`) and the
-/// safety measures.
-fn move_vehicles(
-    clock: &Clock,
-    geom: &Geometry,
-    traffic: &mut Traffic,
-    scratch: &mut Scratch,
-    measures: &mut Measures,
-) {
-    let dt = clock.dt;
-    let mut sorted = true;
-    // Locals (the stores into the records cannot change them, so nothing is reloaded per
-    // vehicle), and the slot-indexed arrays as long as `vehicles`: one bounds check per
-    // vehicle for the three.
-    let Traffic {
-        lanes, vehicles, ..
-    } = traffic;
-    let Scratch {
-        decisions,
-        sensed,
-        exit_due,
-        crashed,
-        lanes_sorted,
-        ..
-    } = scratch;
-    let Measures {
-        vehicle_updates,
-        safety,
-        ..
-    } = measures;
-    let step = clock.step;
-    let in_window = step >= clock.warmup_step;
-    let plain = geom.plain;
-    let off_ramps = &geom.off_ramps[..];
-    let vehicles = &mut vehicles[..];
-    let decisions = &decisions[..vehicles.len()];
-    let sensed = &sensed[..vehicles.len()];
-    for (l, lane) in lanes.iter().enumerate() {
-        let mut ahead = f64::INFINITY;
-        for &s in lane {
-            let d = &decisions[s as usize];
-            let veh = &mut vehicles[s as usize];
-            veh.x_prev = veh.x;
-            let a_prev = veh.a;
-            let accel = law::braking_limited(d.accel, safety.limit(veh.kind));
-            let v_new = veh.v + accel * dt;
-            if v_new >= 0.0 {
-                veh.x += 0.5 * (veh.v + v_new) * dt;
-                veh.v = v_new;
-                veh.a = accel;
-            } else {
-                // Stops within the step: travels v²/(2|a|).
-                veh.x += 0.5 * veh.v * veh.v / (-accel);
-                veh.a = -veh.v / dt;
-                veh.v = 0.0;
-            }
-            safety.on_applied(veh, a_prev, veh.a, in_window);
-            if !plain {
-                // A wall is a standing obstacle (network.rs): passing it is a collision.
-                // (`here` is at the step-start position: x_prev, in this lane.)
-                if let Some(w) = sensed[s as usize].here.wall {
-                    if veh.x > w {
-                        crashed.push((s, l as u32, w));
-                    }
-                }
-            }
-            sorted &= veh.x <= ahead;
-            ahead = veh.x;
-            // As in exits: not `x < ramp.x` (a NaN position counts too).
-            if veh.exit != NO_EXIT
-                && off_ramps
-                    .get(veh.exit as usize)
-                    .is_some_and(|r| veh.x.partial_cmp(&r.x) != Some(std::cmp::Ordering::Less))
-            {
-                *exit_due = true;
-            }
-            veh.mode = d.mode;
-            veh.family = d.family;
-            veh.regime = d.regime;
-            veh.time_gap_s = d.time_gap;
-            if d.takeover {
-                veh.relax = Relaxation::Since(step);
-            }
-            if let Relaxation::Since(since) = veh.relax {
-                let elapsed = (step + 1 - since) as f64 * dt;
-                if elapsed >= veh.lc.relax_time_s {
-                    veh.relax = Relaxation::None;
-                }
-            }
-        }
-        *vehicle_updates += lane.len() as u64;
-    }
-    *lanes_sorted = sorted;
 }

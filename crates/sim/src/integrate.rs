@@ -1,0 +1,159 @@
+//! Phase 3 (integrate): every vehicle moves by its decided acceleration, bounded by its
+//! emergency limit (`safety.rs`); a vehicle past the end of its lane is a lane-end collision
+//! and leaves the road.
+
+use crate::events::Departure;
+use crate::network::Geometry;
+use crate::sim::Simulation;
+use crate::state::{Clock, Measures, Scratch, Traffic};
+use crate::summary::CollisionKind;
+use crate::vehicle::{Relaxation, NO_EXIT};
+use platoonsim_model::safety as law;
+
+impl Simulation {
+    /// Phase 3: the decided acceleration bounded by the vehicle's emergency limit
+    /// (`safety.rs`), then v' = max(0, v + aΔt); x' = x + ½(v + v')Δt, or the stopping point
+    /// when the speed would turn negative. A vehicle whose front passes the end of its lane
+    /// has collided with it: the event is recorded and the vehicle leaves the road.
+    pub(crate) fn integrate(&mut self) {
+        move_vehicles(
+            &self.clock,
+            &self.road.geom,
+            &mut self.traffic,
+            &mut self.scratch,
+            &mut self.measures,
+        );
+        if self.watch.observing {
+            self.log_brakings();
+        }
+        if !self.scratch.crashed.is_empty() {
+            self.remove_crashed();
+        }
+    }
+
+    /// The vehicles that ran past the end of their lane in this step: one collision each, and
+    /// they leave the road (their trip ends as `collided`). Removing them keeps every lane
+    /// sorted.
+    #[cold]
+    #[inline(never)]
+    fn remove_crashed(&mut self) {
+        let t = crate::record::step_time(self.clock.step + 1, self.clock.dt);
+        let origin = self.origin_m();
+        for (s, l, w) in std::mem::take(&mut self.scratch.crashed) {
+            let v = &self.traffic.vehicles[s as usize];
+            self.measures.safety.collide(
+                t,
+                CollisionKind::LaneEnd,
+                l as usize,
+                v.x + origin,
+                v,
+                None,
+                v.x - w,
+            );
+            if self.watch.observing {
+                self.log_collisions();
+            }
+            self.traffic.lanes[l as usize].retain(|&o| o != s);
+            self.leave(s, Departure::Collided);
+            self.traffic.free.push(s);
+        }
+    }
+}
+
+/// Phase 3 without its cold tail: every vehicle moves by its decided acceleration bounded by
+/// its emergency limit; reads the clock, the geometry (walls, off-ramps) and the decisions,
+/// writes the vehicles, the scratch flags (`exit_due`, `lanes_sorted`, `crashed`) and the
+/// safety measures.
+#[inline]
+fn move_vehicles(
+    clock: &Clock,
+    geom: &Geometry,
+    traffic: &mut Traffic,
+    scratch: &mut Scratch,
+    measures: &mut Measures,
+) {
+    let dt = clock.dt;
+    let mut sorted = true;
+    // Locals (the stores into the records cannot change them, so nothing is reloaded per
+    // vehicle), and the slot-indexed arrays as long as `vehicles`: one bounds check per
+    // vehicle for the three.
+    let Traffic {
+        lanes, vehicles, ..
+    } = traffic;
+    let Scratch {
+        decisions,
+        sensed,
+        exit_due,
+        crashed,
+        lanes_sorted,
+        ..
+    } = scratch;
+    let Measures {
+        vehicle_updates,
+        safety,
+        ..
+    } = measures;
+    let step = clock.step;
+    let in_window = step >= clock.warmup_step;
+    let plain = geom.plain;
+    let off_ramps = &geom.off_ramps[..];
+    let vehicles = &mut vehicles[..];
+    let decisions = &decisions[..vehicles.len()];
+    let sensed = &sensed[..vehicles.len()];
+    for (l, lane) in lanes.iter().enumerate() {
+        let mut ahead = f64::INFINITY;
+        for &s in lane {
+            let d = &decisions[s as usize];
+            let veh = &mut vehicles[s as usize];
+            veh.x_prev = veh.x;
+            let a_prev = veh.a;
+            let accel = law::braking_limited(d.accel, safety.limit(veh.kind));
+            let v_new = veh.v + accel * dt;
+            if v_new >= 0.0 {
+                veh.x += 0.5 * (veh.v + v_new) * dt;
+                veh.v = v_new;
+                veh.a = accel;
+            } else {
+                // Stops within the step: travels v²/(2|a|).
+                veh.x += 0.5 * veh.v * veh.v / (-accel);
+                veh.a = -veh.v / dt;
+                veh.v = 0.0;
+            }
+            safety.on_applied(veh, a_prev, veh.a, in_window);
+            if !plain {
+                // A wall is a standing obstacle (network.rs): passing it is a collision.
+                // (`here` is at the step-start position: x_prev, in this lane.)
+                if let Some(w) = sensed[s as usize].here.wall {
+                    if veh.x > w {
+                        crashed.push((s, l as u32, w));
+                    }
+                }
+            }
+            sorted &= veh.x <= ahead;
+            ahead = veh.x;
+            // As in exits: not `x < ramp.x` (a NaN position counts too).
+            if veh.exit != NO_EXIT
+                && off_ramps
+                    .get(veh.exit as usize)
+                    .is_some_and(|r| veh.x.partial_cmp(&r.x) != Some(std::cmp::Ordering::Less))
+            {
+                *exit_due = true;
+            }
+            veh.mode = d.mode;
+            veh.family = d.family;
+            veh.regime = d.regime;
+            veh.time_gap_s = d.time_gap;
+            if d.takeover {
+                veh.relax = Relaxation::Since(step);
+            }
+            if let Relaxation::Since(since) = veh.relax {
+                let elapsed = (step + 1 - since) as f64 * dt;
+                if elapsed >= veh.lc.relax_time_s {
+                    veh.relax = Relaxation::None;
+                }
+            }
+        }
+        *vehicle_updates += lane.len() as u64;
+    }
+    *lanes_sorted = sorted;
+}
