@@ -219,7 +219,13 @@ impl Simulation {
     /// statistics, the trip record and the user's observers see it, in that order.
     #[inline(never)]
     pub(crate) fn leave(&mut self, s: u32, how: Departure) {
-        let t = crate::record::step_time(self.clock.step + 1, self.clock.dt);
+        // A departure happens in the step under way; a vehicle still on the road is reported
+        // at the end of the run (after the last step).
+        let step = match how {
+            Departure::OnRoad => self.clock.step,
+            _ => self.clock.step + 1,
+        };
+        let t = crate::record::step_time(step, self.clock.dt);
         let v = &self.traffic.vehicles[s as usize];
         self.measures.metrics.on_exit(v, how, t);
         if self.rec.trips.is_some() {
@@ -416,11 +422,9 @@ impl Simulation {
         // order of their trip records).
         let mut on_road: Vec<u32> = self.traffic.lanes.iter().flatten().copied().collect();
         on_road.sort_unstable_by_key(|&s| self.traffic.vehicles[s as usize].id);
-        self.clock.step = self.clock.step.saturating_sub(1); // `leave` stamps the end of the current step
         for s in on_road {
             self.leave(s, Departure::OnRoad);
         }
-        self.clock.step += 1;
         let trips = self.rec.trips.take();
         let trajectories = self.rec.trajectories.take().map(|t| t.rows);
         let cfg = &self.cfg;
