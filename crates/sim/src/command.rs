@@ -61,7 +61,7 @@ impl Simulation {
             id,
             command,
             left: 0,
-            own_speed: v.human.desired_speed,
+            own_speed: v.driver.human.desired_speed,
         };
         match command {
             Command::Accelerate { accel_mps2, steps } => {
@@ -94,7 +94,7 @@ impl Simulation {
                     active.own_speed = a.own_speed;
                 }
                 self.release_kind(id, |c| matches!(c, Command::DesiredSpeed { .. }));
-                self.traffic.vehicles[s as usize].human.desired_speed = speed_mps;
+                self.traffic.vehicles[s as usize].driver.human.desired_speed = speed_mps;
             }
             Command::ChangeLane { side } => {
                 let to = match side {
@@ -132,7 +132,7 @@ impl Simulation {
             let a = &self.control.commands[k];
             if a.id == id && which(&a.command) {
                 if let (Command::DesiredSpeed { .. }, Some(s)) = (a.command, slot) {
-                    self.traffic.vehicles[s as usize].human.desired_speed = a.own_speed;
+                    self.traffic.vehicles[s as usize].driver.human.desired_speed = a.own_speed;
                 }
                 self.control.commands.remove(k);
             } else {

@@ -139,11 +139,12 @@ impl Simulation {
     /// Current relaxation factors of a vehicle (spec 4.6).
     #[inline]
     fn relax_now(&self, v: &Vehicle) -> Relax {
-        match v.relax {
+        match v.lcs.relax {
             Relaxation::None => Relax::NONE,
-            Relaxation::Since(since) => {
-                lcm::relax_at(&v.lc, (self.clock.step - since) as f64 * self.clock.dt)
-            }
+            Relaxation::Since(since) => lcm::relax_at(
+                &v.driver.lc,
+                (self.clock.step - since) as f64 * self.clock.dt,
+            ),
         }
     }
 
@@ -163,7 +164,10 @@ impl Simulation {
             // discretionary synchronization would (no acceleration beyond what the target-lane
             // leader allows; it never brakes for it). A driver who took over and lost the gap
             // hands back once the relaxation has ended.
-            if d.organize && self.cfg.cav.organize_while_automated && v.relax == Relaxation::None {
+            if d.organize
+                && self.cfg.cav.organize_while_automated
+                && v.lcs.relax == Relaxation::None
+            {
                 let (blc, g) = self.before_lane_change(s, v, nb, leader, d);
                 if g.lead_ok && g.lag_ok {
                     return blc;
@@ -191,22 +195,29 @@ impl Simulation {
         // 3. Human model (humans and CAVs driving manually), possibly yielding.
         let v_des = self.manual_v_des(s, v, v_des);
         let relax = self.relax_now(v);
-        let mut target = human::target_accel(&v.human, v.v, v_des, leader, relax);
+        let mut target = human::target_accel(&v.driver.human, v.v, v_des, leader, relax);
         let mut mode = Mode::Cf;
         if let Some(req) = yield_to {
             let r = &self.traffic.vehicles[req as usize];
-            target = lcm::yield_accel(&v.human, &v.lc, v.v, v_des, target, self.yield_gap(v, r));
+            target = lcm::yield_accel(
+                &v.driver.human,
+                &v.driver.lc,
+                v.v,
+                v_des,
+                target,
+                self.yield_gap(v, r),
+            );
             mode = Mode::Ycf {
                 to: r.id,
                 auto: false,
             };
         }
         Decision {
-            accel: human::smooth_accel(v.a, target, v.human.smoothing),
+            accel: human::smooth_accel(v.a, target, v.driver.human.smoothing),
             mode,
-            family: v.family,
+            family: v.cacc.family,
             regime: None,
-            time_gap: v.time_gap_s,
+            time_gap: v.cacc.time_gap_s,
             change: None,
             why: LaneChangeReason::Discretionary,
             takeover: false,
@@ -230,8 +241,8 @@ impl Simulation {
             if let Some(req) = self.agreed_request(v, nb, true) {
                 let r = &self.traffic.vehicles[req as usize];
                 d.accel = lcm::yield_accel(
-                    &v.human,
-                    &v.lc,
+                    &v.driver.human,
+                    &v.driver.lc,
                     v.v,
                     self.v_des_in(s, v, v.lane as usize),
                     d.accel,
@@ -252,7 +263,7 @@ impl Simulation {
         let v_des = self.v_des_in(s, v, v.lane as usize);
         let ld = self.scratch.sensed[s as usize].nb.leader;
         let leader = leader.filter(|l| l.gap_m <= p.sensor_range_m);
-        let mut time_gap = v.time_gap_s;
+        let mut time_gap = v.cacc.time_gap_s;
         let cmd = match leader {
             None => cav::Command {
                 accel: cav::speed_regulation(p, v.v, v_des),
@@ -263,14 +274,14 @@ impl Simulation {
                 let target = if !self.scratch.sensed[s as usize].linked {
                     p.inter_platoon_gap_s
                 } else {
-                    v.cacc_gap_s
+                    v.cacc.gap_s
                 };
                 time_gap = cav::ramp_time_gap(p, time_gap, target, self.clock.dt);
-                cav::cacc(p, v.v, v.a, v_des, l, time_gap, v.family)
+                cav::cacc(p, v.v, v.a, v_des, l, time_gap, v.cacc.family)
             }
             Some(l) => {
                 time_gap = cav::ramp_time_gap(p, time_gap, p.acc_time_gap_s, self.clock.dt);
-                cav::acc(p, v.v, v_des, Some(l), time_gap, v.family)
+                cav::acc(p, v.v, v_des, Some(l), time_gap, v.cacc.family)
             }
         };
         Decision {
@@ -321,20 +332,26 @@ impl Simulation {
             Side::Right => (v.lane as usize).saturating_sub(1),
         };
         let v_des_target = self.v_des_in(s, v, target);
-        let h = &v.human;
+        let h = &v.driver.human;
         // An automated CAV hands over to its driver now ("manual mode from a lane-change desire
         // on", spec 3.1). At a CACC gap of 0.6 s the human model alone would brake hard; the
         // driver takes over with relaxed car following that recovers over t_s, as after a cut-in
         // (spec 4.6) [D].
         let takeover = v.automated();
         let relax = if takeover {
-            lcm::gap_relax(&v.lc)
+            lcm::gap_relax(&v.driver.lc)
         } else {
             self.relax_now(v)
         };
         let a_cur = human::target_accel(h, v.v, v_des, leader, relax);
         let lead_view = self.view(v, tl);
-        let a_ant = human::target_accel(h, v.v, v_des_target, lead_view, lcm::gap_relax(&v.lc));
+        let a_ant = human::target_accel(
+            h,
+            v.v,
+            v_des_target,
+            lead_view,
+            lcm::gap_relax(&v.driver.lc),
+        );
         let lead_ok = match lead_view {
             None => true,
             Some(l) => {
@@ -342,7 +359,7 @@ impl Simulation {
                 // 4.3); a mandatory change, and a move toward the PD lane "regardless of the
                 // speed difference" (`cav.organize_regardless_of_speed` [D] 6.22), need not.
                 driver::lead_acceptable(
-                    lcm::accept_lead_gap(h, &v.lc, l.gap_m, v.v, l.v_mps),
+                    lcm::accept_lead_gap(h, &v.driver.lc, l.gap_m, v.v, l.v_mps),
                     d.mandatory,
                     d.organize && self.cfg.cav.organize_regardless_of_speed,
                     a_ant,
@@ -353,15 +370,17 @@ impl Simulation {
             true
         } else {
             let f = &self.traffic.vehicles[tf as usize];
-            lcm::accept_lag_gap(h, &v.lc, v.rear() - f.x, v.v, f.v, a_ant)
+            lcm::accept_lag_gap(h, &v.driver.lc, v.rear() - f.x, v.v, f.v, a_ant)
         };
         // Only a platoon leader changes lanes: a follower splits first (spec 3.6.4).
         let must_split = self.scratch.sensed[s as usize].linked;
         let change = driver::change_now(lead_ok, lag_ok, must_split);
         // BLC-Slow only for a mandatory change with the lag gap closed (evaluated lazily:
         // `keeps_pace` reads the follower).
-        let slow =
-            d.mandatory && !lag_ok && d.gamma > v.lc.slow_down_desire && !self.keeps_pace(s, v, tf);
+        let slow = d.mandatory
+            && !lag_ok
+            && d.gamma > v.driver.lc.slow_down_desire
+            && !self.keeps_pace(s, v, tf);
         let target = driver::blc_target(
             a_cur,
             a_ant,
@@ -382,7 +401,7 @@ impl Simulation {
                 },
                 family: Family::Speed,
                 regime: None,
-                time_gap: v.time_gap_s,
+                time_gap: v.cacc.time_gap_s,
                 change: change.then_some(d.side),
                 why: if d.mandatory {
                     LaneChangeReason::Mandatory
@@ -428,7 +447,7 @@ const RHO_JAM_PER_KM: f64 = 1000.0 / 6.0;
 /// The driver's own desired speed v_F, in no particular lane.
 #[inline]
 pub(crate) fn v_des_of(v: &Vehicle) -> f64 {
-    v.human.desired_speed
+    v.driver.human.desired_speed
 }
 
 impl Simulation {

@@ -22,9 +22,9 @@ impl Simulation {
         }
         // Anti-oscillation (spec 4.2), first part: no desire at all so soon after a change
         // (checked before the scans below; `desire` has no side effects).
-        let since = if v.last_lc_step != NEVER {
-            let since = (self.clock.step - v.last_lc_step) as f64 * self.clock.dt;
-            if driver::too_soon_after_change(&v.lc, since) {
+        let since = if v.lcs.last_step != NEVER {
+            let since = (self.clock.step - v.lcs.last_step) as f64 * self.clock.dt;
+            if driver::too_soon_after_change(&v.driver.lc, since) {
                 return None;
             }
             Some(since)
@@ -46,7 +46,7 @@ impl Simulation {
             self.mandatory(s, v, None)
         };
         let [left, right] = self.discretionary(s, v, nb, self.is_follower(s, v));
-        let (side, gamma) = driver::combine(mandatory, left, right, v.lc.mandatory_weight)?;
+        let (side, gamma) = driver::combine(mandatory, left, right, v.driver.lc.mandatory_weight)?;
         settle(v, since, side, gamma, mandatory.is_some(), false)
     }
 
@@ -89,7 +89,8 @@ impl Simulation {
             let [mut left, mut right] = self.discretionary(s, v, nb, self.is_follower(s, v));
             if let Some((lane, from_m)) = avoid {
                 let closed = |target: u32| {
-                    target == lane && lcm::mandatory_desire(&v.lc, from_m - v.x, v.v, 1) > 0.0
+                    target == lane
+                        && lcm::mandatory_desire(&v.driver.lc, from_m - v.x, v.v, 1) > 0.0
                 };
                 if closed(v.lane + 1) {
                     left = None;
@@ -98,7 +99,7 @@ impl Simulation {
                     right = None;
                 }
             }
-            driver::combine(mandatory, left, right, v.lc.mandatory_weight)?
+            driver::combine(mandatory, left, right, v.driver.lc.mandatory_weight)?
         };
         settle(v, since, side, gamma, mandatory.is_some(), join.is_some())
     }
@@ -137,7 +138,7 @@ impl Simulation {
 
     /// Is the vehicle's off-ramp within `range` ahead?
     pub(crate) fn exit_within(&self, v: &Vehicle, range: f64) -> bool {
-        v.exit != NO_EXIT && self.road.geom.off_ramps[v.exit as usize].x - v.x < range
+        v.route.exit != NO_EXIT && self.road.geom.off_ramps[v.route.exit as usize].x - v.x < range
     }
 
     /// Mandatory desire (spec 4.2), if any is positive: leaving a lane that ends (an
@@ -151,7 +152,7 @@ impl Simulation {
         // that ends at `from_m`, toward the right unless it is the rightmost lane.
         if let Some((lane, from_m)) = avoid {
             if v.lane == lane {
-                let g = lcm::mandatory_desire(&v.lc, from_m - v.x, v.v, 1);
+                let g = lcm::mandatory_desire(&v.driver.lc, from_m - v.x, v.v, 1);
                 if g > 0.0 {
                     let side = if lane == 0 { Side::Left } else { Side::Right };
                     best = Some((side, g));
@@ -168,15 +169,15 @@ impl Simulation {
             } else {
                 Side::Right
             };
-            let g = lcm::mandatory_desire(&v.lc, w - v.x, v.v, 1);
+            let g = lcm::mandatory_desire(&v.driver.lc, w - v.x, v.v, 1);
             if g > 0.0 && best.is_none_or(|(_, b)| g > b) {
                 best = Some((side, g));
             }
         }
-        if v.exit != NO_EXIT {
-            let r = &self.road.geom.off_ramps[v.exit as usize];
+        if v.route.exit != NO_EXIT {
+            let r = &self.road.geom.off_ramps[v.route.exit as usize];
             if v.x < r.x && v.lane > r.lane {
-                let g = lcm::mandatory_desire(&v.lc, r.x - v.x, v.v, v.lane - r.lane);
+                let g = lcm::mandatory_desire(&v.driver.lc, r.x - v.x, v.v, v.lane - r.lane);
                 if g > 0.0 && best.is_none_or(|(_, b)| g > b) {
                     best = Some((Side::Right, g));
                 }
@@ -227,8 +228,8 @@ impl Simulation {
         // η_e: no discretionary change within E_exit of the exit; a penalty on moving away from
         // the exit lane within the anticipation range (spec 4.2, 4.9).
         let mut eta_left = 1.0;
-        if v.exit != NO_EXIT {
-            let d = self.road.geom.off_ramps[v.exit as usize].x - v.x;
+        if v.route.exit != NO_EXIT {
+            let d = self.road.geom.off_ramps[v.route.exit as usize].x - v.x;
             if d < lcd.exit_no_change_m {
                 return [None, None];
             }
@@ -252,7 +253,7 @@ impl Simulation {
         }
         // v_ant ≤ the driver's desired speed in the target lane ≤ its own desired speed, so no
         // side can beat the absolute gain gate: nothing to scan.
-        if v_des_of(v) - v_cur < v.lc.min_speed_gain_mps {
+        if v_des_of(v) - v_cur < v.driver.lc.min_speed_gain_mps {
             return [None, None];
         }
         let here = &self.scratch.sensed[s as usize].here;
@@ -286,7 +287,7 @@ impl Simulation {
             }
 
             let v_ant = self.anticipated_speed(s, v, target, j as usize, v_cur);
-            out[i] = Some(w * eta * lcm::discretionary_desire(&v.lc, v_ant, v_cur, side));
+            out[i] = Some(w * eta * lcm::discretionary_desire(&v.driver.lc, v_ant, v_cur, side));
         }
         out
     }
@@ -299,7 +300,7 @@ impl Simulation {
         self.road
             .geom
             .wall_ahead(target as u32, v.x)
-            .is_some_and(|w| lcm::mandatory_desire(&v.lc, w - v.x, v.v, 1) > 0.0)
+            .is_some_and(|w| lcm::mandatory_desire(&v.driver.lc, w - v.x, v.v, 1) > 0.0)
     }
 
     /// Spec 4.2 "Anticipatory": in the two rightmost through lanes within the anticipation
@@ -375,7 +376,7 @@ impl Simulation {
             return v_des;
         }
         let bound = bounded::min(tl_v, v_des);
-        if bound - v_cur < v.lc.min_speed_gain_mps {
+        if bound - v_cur < v.driver.lc.min_speed_gain_mps {
             return bound;
         }
         let avg = self.avg_speed_ahead(target, j, v.x, v_des);
@@ -395,11 +396,11 @@ fn settle(
     organize: bool,
 ) -> Option<Desire> {
     if let Some(since) = since {
-        if driver::quick_return(&v.lc, since, gamma, side, v.last_lc_side) {
+        if driver::quick_return(&v.driver.lc, since, gamma, side, v.lcs.last_side) {
             return None;
         }
     }
-    driver::wants_change(&v.lc, gamma).then_some(Desire {
+    driver::wants_change(&v.driver.lc, gamma).then_some(Desire {
         side,
         gamma,
         mandatory,

@@ -390,22 +390,22 @@ impl Simulation {
             while k < self.traffic.lanes[l].len() {
                 let s = self.traffic.lanes[l][k];
                 let v = &mut self.traffic.vehicles[s as usize];
-                if v.exit == NO_EXIT {
+                if v.route.exit == NO_EXIT {
                     k += 1;
                     continue;
                 }
-                let ramp = &self.road.geom.off_ramps[v.exit as usize];
+                let ramp = &self.road.geom.off_ramps[v.route.exit as usize];
                 if v.x < ramp.x {
                     k += 1;
                     continue;
                 }
                 if v.lane != ramp.lane {
-                    v.exit = NO_EXIT;
+                    v.route.exit = NO_EXIT;
                     self.measures.missed_exits += 1;
                     k += 1;
                     continue;
                 }
-                let (exit, speed, cav) = (v.exit as usize, v.v, v.is_cav());
+                let (exit, speed, cav) = (v.route.exit as usize, v.v, v.is_cav());
                 self.traffic.lanes[l].remove(k);
                 if let Some(d) = self.detectors.exit_of_ramp[exit] {
                     self.detectors.list[d].count_exit(speed, cav);
@@ -568,18 +568,18 @@ impl Simulation {
         for lane in lanes.iter() {
             for &s in lane {
                 let v = &mut vehicles[s as usize];
-                let now = (v.mode_label(), v.regime);
-                if v.reported != now {
+                let now = (v.mode_label(), v.cacc.regime);
+                if v.stats.reported != now {
                     events.push(Event::ModeChange {
                         t_s: t,
                         id: v.id,
                         kind: v.kind,
-                        from: v.reported.0,
+                        from: v.stats.reported.0,
                         to: now.0,
-                        regime_from: v.reported.1,
+                        regime_from: v.stats.reported.1,
                         regime_to: now.1,
                     });
-                    v.reported = now;
+                    v.stats.reported = now;
                 }
             }
         }

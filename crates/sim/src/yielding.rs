@@ -17,7 +17,7 @@ impl Simulation {
     #[inline]
     pub(crate) fn yield_gap(&self, v: &Vehicle, r: &Vehicle) -> Leader {
         Leader {
-            gap_m: r.rear() - v.x - r.lc.relax_jam * r.human.jam_gap_m,
+            gap_m: r.rear() - v.x - r.driver.lc.relax_jam * r.driver.human.jam_gap_m,
             v_mps: r.v,
         }
     }
@@ -64,8 +64,12 @@ impl Simulation {
             if automated && !mandatory && !joining() {
                 return None;
             }
-            lcm::agrees_to_yield(&v.lc, mandatory, pair_uniform(self.cfg.seed, v.id, r.id))
-                .then_some(req)
+            lcm::agrees_to_yield(
+                &v.driver.lc,
+                mandatory,
+                pair_uniform(self.cfg.seed, v.id, r.id),
+            )
+            .then_some(req)
         })
     }
 
@@ -94,7 +98,7 @@ impl Simulation {
             // (spec 4.3 g0 > d_jam'); two standing vehicles side by side would wait for each
             // other at the end of an acceleration lane. The driver drives on instead and the
             // next follower receives the request [D].
-            if dist < r.lc.relax_jam * r.human.jam_gap_m {
+            if dist < r.driver.lc.relax_jam * r.driver.human.jam_gap_m {
                 continue;
             }
             // The adjacent-lane leader may be far ahead (an empty stretch, or a lane that is
@@ -103,7 +107,7 @@ impl Simulation {
                 continue;
             }
             // Ignore a request from the lane the driver has just left.
-            if let (Relaxation::Since(_), Some(last)) = (v.relax, v.last_lc_side) {
+            if let (Relaxation::Since(_), Some(last)) = (v.lcs.relax, v.lcs.last_side) {
                 if opposite(last) == opposite(toward) {
                     continue;
                 }
