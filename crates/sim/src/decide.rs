@@ -5,8 +5,12 @@
 
 use crate::events::LaneChangeReason;
 
-use crate::sense::{Neighbours, NONE};
-use crate::sim::{Decision, Simulation};
+use crate::config::Config;
+use crate::insert::Entrance;
+use crate::organize::Organizer;
+use crate::sense::{Neighbours, Sensed, NONE};
+use crate::sim::Decision;
+use crate::state::{Clock, Control, RoadState, Scratch, Traffic};
 use crate::vehicle::{Mode, Relaxation, Vehicle};
 use platoonsim_model::cav::{self, Family};
 use platoonsim_model::driver;
@@ -33,44 +37,113 @@ pub(crate) struct Desire {
     pub organize: bool,
 }
 
-impl Simulation {
-    /// Phase 2.
-    pub(crate) fn decide(&mut self) {
-        let n = self.traffic.vehicles.len();
-        if self.scratch.decisions.len() < n {
-            self.scratch.decisions.resize(
-                n,
-                Decision {
-                    accel: 0.0,
-                    mode: Mode::Cf,
-                    family: Family::Speed,
-                    regime: None,
-                    time_gap: 0.0,
-                    change: None,
-                    why: LaneChangeReason::Discretionary,
-                    takeover: false,
-                },
-            );
+/// What the decide phase reads: the step-start state, part by part. Every rule of the phase
+/// is a method of this view (here, in `desire.rs` and in `yielding.rs`), so none can write
+/// the state: the phase's only output is the decision per vehicle.
+pub(crate) struct View<'a> {
+    pub cfg: &'a Config,
+    pub clock: &'a Clock,
+    pub traffic: &'a Traffic,
+    pub road: &'a RoadState,
+    /// What the sense phase found, per slot.
+    pub sensed: &'a [Sensed],
+    /// Per lane, (x, v) at the step start (sense phase).
+    pub lane_xv: &'a [Vec<(f64, f64)>],
+    /// Per on-ramp, the anticipation factors of this step ([`ramp_factors`]).
+    pub ramp_factor: &'a [[f64; 2]],
+    pub organizer: &'a dyn Organizer,
+    /// Whether the organizer advises human drivers (index 0) and CAVs (1).
+    pub advise: [bool; 2],
+}
+
+/// Phase 2: every vehicle's decision from the step-start state, into `scratch.decisions`;
+/// then the commands in force override the decisions of their vehicles (`command.rs`).
+pub(crate) fn decide(
+    cfg: &Config,
+    clock: &Clock,
+    traffic: &Traffic,
+    road: &RoadState,
+    entrances: &[Entrance],
+    control: &mut Control,
+    scratch: &mut Scratch,
+) {
+    let n = traffic.vehicles.len();
+    if scratch.decisions.len() < n {
+        scratch.decisions.resize(
+            n,
+            Decision {
+                accel: 0.0,
+                mode: Mode::Cf,
+                family: Family::Speed,
+                regime: None,
+                time_gap: 0.0,
+                change: None,
+                why: LaneChangeReason::Discretionary,
+                takeover: false,
+            },
+        );
+    }
+    ramp_factors(cfg, traffic, road, entrances, &mut scratch.ramp_factor);
+    let view = View {
+        cfg,
+        clock,
+        traffic,
+        road,
+        sensed: &scratch.sensed,
+        lane_xv: &scratch.lane_xv,
+        ramp_factor: &scratch.ramp_factor,
+        organizer: control.organizer.as_ref(),
+        advise: control.advise,
+    };
+    // The lanes are walked by iterator (no bounds checks on the lane lists).
+    let decisions = &mut scratch.decisions;
+    for lane in &traffic.lanes {
+        for &s in lane {
+            decisions[s as usize] = view.decide_one(s);
         }
-        self.update_ramp_density();
-        // Taken out for the loop, so that the lanes are walked by iterator (no bounds checks
-        // on the lane lists) while the decisions are written.
-        let mut decisions = std::mem::take(&mut self.scratch.decisions);
-        for lane in &self.traffic.lanes {
-            for &s in lane {
-                decisions[s as usize] = self.decide_one(s);
-            }
-        }
-        if !self.control.commands.is_empty() {
-            self.apply_commands(&mut decisions);
-        }
-        self.scratch.decisions = decisions;
+    }
+    if !control.commands.is_empty() {
+        crate::command::apply_commands(&view, &mut control.commands, decisions);
+    }
+}
+
+/// Density on each on-ramp (its queue plus its acceleration lane) (veh/km), for the
+/// anticipation rule (spec 4.2), and from it the rule's factor for j = 1, 2.
+fn ramp_factors(
+    cfg: &Config,
+    traffic: &Traffic,
+    road: &RoadState,
+    entrances: &[Entrance],
+    factors: &mut [[f64; 2]],
+) {
+    for (i, r) in road.geom.on_ramps.iter().enumerate() {
+        let queued = entrances[i + 1].waiting();
+        let lane = &traffic.lanes[r.lane as usize];
+        let on_accel = if r.adds_lane {
+            0
+        } else {
+            let hi = lane.partition_point(|&o| traffic.vehicles[o as usize].x >= r.accel_end);
+            let lo = lane.partition_point(|&o| traffic.vehicles[o as usize].x >= r.x);
+            lo.saturating_sub(hi)
+        };
+        let density = (queued + on_accel) as f64 / (r.density_length_m / 1000.0);
+        let c = cfg.lane_change.anticipation_strength;
+        // The same expression as per vehicle before, so the same bits.
+        factors[i] = [1, 2].map(|j: u32| 1.0 + c * (density / RHO_JAM_PER_KM) / f64::from(j));
+    }
+}
+
+impl View<'_> {
+    /// Is the vehicle in slot `s` a CAV?
+    #[inline]
+    pub(crate) fn is_cav(&self, s: u32) -> bool {
+        s != NONE && self.traffic.vehicles[s as usize].is_cav()
     }
 
     /// The decision of a vehicle that must change toward `side` (a commanded change): a
     /// mandatory desire of 1 with the model's gap acceptance and BLC behaviour (spec 4.3).
     pub(crate) fn forced_change(&self, s: u32, v: &Vehicle, side: Side) -> Decision {
-        let nb = &self.scratch.sensed[s as usize].nb;
+        let nb = &self.sensed[s as usize].nb;
         let (leader, _) = self.leader_or_wall(s, v, nb.leader);
         let d = Desire {
             side,
@@ -102,7 +175,7 @@ impl Simulation {
         if self.road.geom.plain {
             return (leader, false);
         }
-        match self.scratch.sensed[s as usize].here.wall {
+        match self.sensed[s as usize].here.wall {
             Some(w) if leader.is_none_or(|l| w - v.x < l.gap_m) => (
                 Some(Leader {
                     gap_m: w - v.x,
@@ -111,28 +184,6 @@ impl Simulation {
                 true,
             ),
             _ => (leader, false),
-        }
-    }
-
-    /// Density on each on-ramp (its queue plus its acceleration lane) (veh/km), for the
-    /// anticipation rule (spec 4.2), and from it the rule's factor for j = 1, 2.
-    fn update_ramp_density(&mut self) {
-        for (i, r) in self.road.geom.on_ramps.iter().enumerate() {
-            let queued = self.entrances[i + 1].waiting();
-            let lane = &self.traffic.lanes[r.lane as usize];
-            let on_accel = if r.adds_lane {
-                0
-            } else {
-                let hi =
-                    lane.partition_point(|&o| self.traffic.vehicles[o as usize].x >= r.accel_end);
-                let lo = lane.partition_point(|&o| self.traffic.vehicles[o as usize].x >= r.x);
-                lo.saturating_sub(hi)
-            };
-            let density = (queued + on_accel) as f64 / (r.density_length_m / 1000.0);
-            let c = self.cfg.lane_change.anticipation_strength;
-            // The same expression as per vehicle before, so the same bits.
-            self.scratch.ramp_factor[i] =
-                [1, 2].map(|j: u32| 1.0 + c * (density / RHO_JAM_PER_KM) / f64::from(j));
         }
     }
 
@@ -150,7 +201,7 @@ impl Simulation {
 
     fn decide_one(&self, s: u32) -> Decision {
         let v = &self.traffic.vehicles[s as usize];
-        let nb = &self.scratch.sensed[s as usize].nb;
+        let nb = &self.sensed[s as usize].nb;
         let v_des = self.v_des_in(s, v, v.lane as usize);
         let (leader, wall) = self.leader_or_wall(s, v, nb.leader);
 
@@ -261,7 +312,7 @@ impl Simulation {
     fn cav_control(&self, s: u32, v: &Vehicle, leader: Option<Leader>, wall: bool) -> Decision {
         let p = &self.cfg.cav;
         let v_des = self.v_des_in(s, v, v.lane as usize);
-        let ld = self.scratch.sensed[s as usize].nb.leader;
+        let ld = self.sensed[s as usize].nb.leader;
         let leader = leader.filter(|l| l.gap_m <= p.sensor_range_m);
         let mut time_gap = v.cacc.time_gap_s;
         let cmd = match leader {
@@ -271,7 +322,7 @@ impl Simulation {
                 family: Family::Speed,
             },
             Some(l) if !wall && self.is_cav(ld) => {
-                let target = if !self.scratch.sensed[s as usize].linked {
+                let target = if !self.sensed[s as usize].linked {
                     p.inter_platoon_gap_s
                 } else {
                     v.cacc.gap_s
@@ -373,7 +424,7 @@ impl Simulation {
             lcm::accept_lag_gap(h, &v.driver.lc, v.rear() - f.x, v.v, f.v, a_ant)
         };
         // Only a platoon leader changes lanes: a follower splits first (spec 3.6.4).
-        let must_split = self.scratch.sensed[s as usize].linked;
+        let must_split = self.sensed[s as usize].linked;
         let change = driver::change_now(lead_ok, lag_ok, must_split);
         // BLC-Slow only for a mandatory change with the lag gap closed (evaluated lazily:
         // `keeps_pace` reads the follower).
@@ -436,7 +487,7 @@ impl Simulation {
             matches!(f.mode, Mode::Ycf { to, .. } if to == v.id),
             f.v,
             v.v,
-            !self.road.geom.plain && self.scratch.sensed[s as usize].here.accel,
+            !self.road.geom.plain && self.sensed[s as usize].here.accel,
         )
     }
 }
@@ -450,7 +501,7 @@ pub(crate) fn v_des_of(v: &Vehicle) -> f64 {
     v.driver.human.desired_speed
 }
 
-impl Simulation {
+impl View<'_> {
     /// The desired speed of a driver in manual control (a human, or a CAV's driver) in its own
     /// lane, from `v_des`, that lane's `v_des_in`: with cross-lane friction on (spec 2.7), the
     /// pull of the slower adjacent lane. The automation keeps its set speed: friction is a
@@ -467,10 +518,10 @@ impl Simulation {
     /// adjacent lanes (the same scan, n_scan vehicles within d_scan, as the lane-change
     /// motivation; a lane with no vehicle in range counts as `v_des`, so it adds nothing).
     fn with_friction(&self, s: u32, v: &Vehicle, v_des: f64, c_fr: f64) -> f64 {
-        let nb = &self.scratch.sensed[s as usize].nb;
+        let nb = &self.sensed[s as usize].nb;
         let lane = v.lane as usize;
         let mut v_adj = v_des;
-        if lane + 1 < self.scratch.lane_xv.len() {
+        if lane + 1 < self.lane_xv.len() {
             v_adj = v_adj.min(self.avg_speed_ahead(lane + 1, nb.left_j as usize, v.x, v_des));
         }
         if lane > 0 {
@@ -488,11 +539,8 @@ impl Simulation {
         if self.road.lane_caps_mps.is_empty() {
             return v_des_of(v); // no lookup of the vehicle's geometry on the hot path
         }
-        self.road.lane_capped(
-            v_des_of(v),
-            lane,
-            self.scratch.sensed[s as usize].here.right,
-        )
+        self.road
+            .lane_capped(v_des_of(v), lane, self.sensed[s as usize].here.right)
     }
 }
 

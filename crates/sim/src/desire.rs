@@ -2,17 +2,17 @@
 //! strategy's advice, the anticipation of on-ramps and the speeds ahead. The rules themselves
 //! are pure functions in `platoonsim_model::driver`; this module gathers their inputs.
 
+use crate::decide::View;
 use crate::decide::{v_des_of, Desire};
 use crate::network::NO_LANE;
 use crate::organize::Advice;
 use crate::sense::Neighbours;
-use crate::sim::Simulation;
 use crate::vehicle::{Kind, Vehicle, NEVER, NO_EXIT};
 use platoonsim_model::bounded;
 use platoonsim_model::driver;
 use platoonsim_model::lanechange::{self as lcm, Side};
 
-impl Simulation {
+impl View<'_> {
     /// Spec 4.2: the lane-change desire, if it exceeds the driver's threshold.
     #[inline]
     pub(crate) fn desire(&self, s: u32, v: &Vehicle, nb: &Neighbours) -> Option<Desire> {
@@ -34,8 +34,8 @@ impl Simulation {
         // A vehicle its strategy advises (`organize`) takes the longer way; the others (every
         // vehicle without a strategy) pay nothing for strategies.
         let advised = match v.kind {
-            Kind::Human => self.control.advise[0],
-            Kind::Cav => self.control.advise[1],
+            Kind::Human => self.advise[0],
+            Kind::Cav => self.advise[1],
         };
         if advised {
             return self.advised_desire(s, v, nb, since);
@@ -62,11 +62,9 @@ impl Simulation {
         nb: &Neighbours,
         since: Option<f64>,
     ) -> Option<Desire> {
-        let advice = self.control.organizer.advise(
-            v,
-            self.clock.step as f64 * self.clock.dt,
-            &self.road.geom,
-        );
+        let advice =
+            self.organizer
+                .advise(v, self.clock.step as f64 * self.clock.dt, &self.road.geom);
         let avoid = match advice {
             Advice::Avoid { lane, from_m } => Some((lane, from_m)),
             _ => None,
@@ -109,22 +107,20 @@ impl Simulation {
     /// discretionary desire (w_CAV follower, spec 4.7).
     #[inline]
     pub(crate) fn is_follower(&self, s: u32, v: &Vehicle) -> bool {
-        self.scratch.sensed[s as usize].linked
-            || (v.is_cav() && self.scratch.sensed[s as usize].cav_ahead)
+        self.sensed[s as usize].linked || (v.is_cav() && self.sensed[s as usize].cav_ahead)
     }
 
     /// The side toward which vehicle `v` organizes now (its strategy's `Join` advice, no
     /// mandatory need aside: it is not near its exit), if it is not in the organized lane.
     /// Used for yielding to organizing vehicles.
     pub(crate) fn organizing_side(&self, v: &Vehicle) -> Option<Side> {
-        if !self.control.advise[v.kind as usize] || self.exit_near(v) {
+        if !self.advise[v.kind as usize] || self.exit_near(v) {
             return None;
         }
-        match self.control.organizer.advise(
-            v,
-            self.clock.step as f64 * self.clock.dt,
-            &self.road.geom,
-        ) {
+        match self
+            .organizer
+            .advise(v, self.clock.step as f64 * self.clock.dt, &self.road.geom)
+        {
             Advice::Join { lane, .. } => driver::toward(v.lane, lane),
             _ => None,
         }
@@ -162,7 +158,7 @@ impl Simulation {
         if self.road.geom.plain {
             return best;
         }
-        if let Some(w) = self.scratch.sensed[s as usize].here.wall {
+        if let Some(w) = self.sensed[s as usize].here.wall {
             let probe = (w - 1.0).max(v.x);
             let side = if self.road.geom.through(v.lane + 1, probe) || v.lane == 0 {
                 Side::Left
@@ -256,7 +252,7 @@ impl Simulation {
         if v_des_of(v) - v_cur < v.driver.lc.min_speed_gain_mps {
             return [None, None];
         }
-        let here = &self.scratch.sensed[s as usize].here;
+        let here = &self.sensed[s as usize].here;
         let mut out = [None, None];
         let lane = v.lane as usize;
         for (i, side, target, j, w, eta, open) in [
@@ -308,7 +304,7 @@ impl Simulation {
     #[inline]
     fn anticipation_factor(&self, s: u32, v: &Vehicle) -> f64 {
         let lcd = &self.cfg.lane_change;
-        let here = &self.scratch.sensed[s as usize].here;
+        let here = &self.sensed[s as usize].here;
         let k = here.ramps_upto as usize;
         let Some((ramp, _)) =
             self.road
@@ -330,7 +326,7 @@ impl Simulation {
             return 1.0;
         }
         // 1 + c_inc (ρ_ramp/ρ_jam)/j, computed once per step (`update_ramp_density`).
-        self.scratch.ramp_factor[ramp][(j - 1) as usize]
+        self.ramp_factor[ramp][(j - 1) as usize]
     }
 
     /// Average speed of the next `n_scan` vehicles within `d_scan` ahead of `x` in `lane`,
@@ -339,7 +335,7 @@ impl Simulation {
     pub(crate) fn avg_speed_ahead(&self, lane: usize, from: usize, x: f64, v_empty: f64) -> f64 {
         let lcd = &self.cfg.lane_change;
         // The vehicles ahead, nearest first (one bounds check for the scan).
-        let ahead = &self.scratch.lane_xv[lane][..from];
+        let ahead = &self.lane_xv[lane][..from];
         let mut sum = 0.0;
         let mut n = 0u32;
         for &(ox, ov) in ahead.iter().rev().take(lcd.scan_vehicles as usize) {
@@ -371,7 +367,7 @@ impl Simulation {
         if j == 0 {
             return v_des; // no target leader
         }
-        let (tl_x, tl_v) = self.scratch.lane_xv[target][j - 1];
+        let (tl_x, tl_v) = self.lane_xv[target][j - 1];
         if tl_x - v.x > self.cfg.lane_change.scan_distance_m {
             return v_des;
         }

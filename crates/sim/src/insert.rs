@@ -17,7 +17,8 @@ use crate::config::Config;
 use crate::events::Event;
 use crate::network::NO_LANE;
 use crate::rng::{Purpose, Stream};
-use crate::sim::Simulation;
+use crate::sense::Sensed;
+use crate::state::{Clock, RoadState, Traffic, Watch};
 use crate::vehicle::{
     CaccState, Driver, Kind, LaneChangeState, Mode, ModeLabel, Relaxation, Route, Stats, Vehicle,
     NEVER, NO_EXIT,
@@ -211,7 +212,22 @@ fn create(cfg: &Config, id: u64, x: f64, t: f64, origin: u32) -> Vehicle {
     }
 }
 
-impl Simulation {
+/// What the insertion phase reads and writes.
+pub(crate) struct Inserting<'a> {
+    pub cfg: &'a Config,
+    pub clock: &'a Clock,
+    pub road: &'a RoadState,
+    /// Platoon positions from this step's sense phase (a CAV entering behind a full platoon
+    /// keeps the inter-platoon gap).
+    pub sensed: &'a [Sensed],
+    pub entrances: &'a mut [Entrance],
+    pub traffic: &'a mut Traffic,
+    /// The statistics' count of vehicles entered.
+    pub entered: &'a mut u64,
+    pub watch: &'a mut Watch,
+}
+
+impl Inserting<'_> {
     /// Phase 5b: arrivals at every entrance, then insertion from each virtual queue.
     pub(crate) fn insert(&mut self) {
         let t_end = (self.clock.step + 1) as f64 * self.clock.dt;
@@ -222,7 +238,7 @@ impl Simulation {
                     None => 0.0,
                     Some(r) => self.road.geom.on_ramps[r].x,
                 };
-                let v = create(&self.cfg, self.traffic.next_id, x, t, e as u32);
+                let v = create(self.cfg, self.traffic.next_id, x, t, e as u32);
                 self.traffic.next_id += 1;
                 let ent = &mut self.entrances[e];
                 ent.queue.push_back(v);
@@ -370,7 +386,7 @@ impl Simulation {
                 }
             }
         }
-        self.measures.metrics.entered += 1;
+        *self.entered += 1;
         veh.stats.reported = (veh.mode_label(), veh.cacc.regime);
         if self.watch.observing {
             self.watch.events.push(Event::Entered {
@@ -383,7 +399,7 @@ impl Simulation {
                 v_mps: speed,
             });
         }
-        let s = self.alloc(veh);
+        let s = self.traffic.alloc(veh);
         self.traffic.lanes[lane].insert(at, s);
     }
 
@@ -393,13 +409,7 @@ impl Simulation {
         let p = &self.cfg.cav;
         if !self.traffic.vehicles[ld as usize].is_cav() {
             p.acc_time_gap_s
-        } else if self
-            .scratch
-            .sensed
-            .get(ld as usize)
-            .map_or(1, |t| t.platoon_pos)
-            >= p.max_platoon
-        {
+        } else if self.sensed.get(ld as usize).map_or(1, |t| t.platoon_pos) >= p.max_platoon {
             p.inter_platoon_gap_s
         } else {
             veh.cacc.gap_s

@@ -3,14 +3,14 @@
 //! Part of the decide phase; the yielding car-following law itself is
 //! `platoonsim_model::lanechange::yield_accel`.
 
+use crate::decide::View;
 use crate::decide::{opposite, pair_uniform};
 use crate::sense::{Neighbours, NONE};
-use crate::sim::Simulation;
 use crate::vehicle::{Mode, Relaxation, Vehicle};
 use platoonsim_model::lanechange::{self as lcm, Side};
 use platoonsim_model::Leader;
 
-impl Simulation {
+impl View<'_> {
     /// The virtual leader of a yielder: the requester `r`, standing its own (relaxed) jam gap
     /// further back, so that the yielder leaves the room the requester's gap acceptance needs
     /// (spec 4.3: g0 > d_jam'); otherwise two standing vehicles wait for each other.
