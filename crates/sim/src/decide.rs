@@ -383,7 +383,6 @@ impl View<'_> {
             Side::Right => (v.lane as usize).saturating_sub(1),
         };
         let v_des_target = self.v_des_in(s, v, target);
-        let h = &v.driver.human;
         // An automated CAV hands over to its driver now ("manual mode from a lane-change desire
         // on", spec 3.1). At a CACC gap of 0.6 s the human model alone would brake hard; the
         // driver takes over with relaxed car following that recovers over t_s, as after a cut-in
@@ -394,57 +393,35 @@ impl View<'_> {
         } else {
             self.relax_now(v)
         };
-        let a_cur = human::target_accel(h, v.v, v_des, leader, relax);
-        let lead_view = self.view(v, tl);
-        let a_ant = human::target_accel(
-            h,
-            v.v,
-            v_des_target,
-            lead_view,
-            lcm::gap_relax(&v.driver.lc),
-        );
-        let lead_ok = match lead_view {
-            None => true,
-            Some(l) => {
-                // Discretionary changes must not have to brake behind the new leader (spec
-                // 4.3); a mandatory change, and a move toward the PD lane "regardless of the
-                // speed difference" (`cav.organize_regardless_of_speed` [D] 6.22), need not.
-                driver::lead_acceptable(
-                    lcm::accept_lead_gap(h, &v.driver.lc, l.gap_m, v.v, l.v_mps),
-                    d.mandatory,
-                    d.organize && self.cfg.cav.organize_regardless_of_speed,
-                    a_ant,
-                )
-            }
-        };
-        let lag_ok = if tf == NONE {
-            true
-        } else {
+        let target_follower = (tf != NONE).then(|| {
             let f = &self.traffic.vehicles[tf as usize];
-            lcm::accept_lag_gap(h, &v.driver.lc, v.rear() - f.x, v.v, f.v, a_ant)
+            driver::TargetFollower {
+                gap_m: v.rear() - f.x,
+                v_mps: f.v,
+                yields: matches!(f.mode, Mode::Ycf { to, .. } if to == v.id),
+            }
+        });
+        let view = driver::BlcView {
+            v: v.v,
+            a: v.a,
+            v_des,
+            v_des_target,
+            leader,
+            relax,
+            target_leader: self.view(v, tl),
+            target_follower,
+            mandatory: d.mandatory,
+            gamma: d.gamma,
+            // A move toward the PD lane accepts the lead gap "regardless of the speed
+            // difference" (`cav.organize_regardless_of_speed` [D] 6.22).
+            organize_regardless: d.organize && self.cfg.cav.organize_regardless_of_speed,
+            must_split: self.sensed[s as usize].linked,
+            in_accel_lane: !self.road.geom.plain && self.sensed[s as usize].here.accel,
         };
-        // Only a platoon leader changes lanes: a follower splits first (spec 3.6.4).
-        let must_split = self.sensed[s as usize].linked;
-        let change = driver::change_now(lead_ok, lag_ok, must_split);
-        // BLC-Slow only for a mandatory change with the lag gap closed (evaluated lazily:
-        // `keeps_pace` reads the follower).
-        let slow = d.mandatory
-            && !lag_ok
-            && d.gamma > v.driver.lc.slow_down_desire
-            && !self.keeps_pace(s, v, tf);
-        let target = driver::blc_target(
-            a_cur,
-            a_ant,
-            h.comfort_decel,
-            change,
-            d.mandatory,
-            lead_ok,
-            lag_ok,
-            slow,
-        );
+        let blc = driver::before_lane_change(&v.driver.human, &v.driver.lc, &view);
         (
             Decision {
-                accel: human::smooth_accel(v.a, target, h.smoothing),
+                accel: blc.accel,
                 mode: Mode::Blc {
                     side: d.side,
                     mandatory: d.mandatory,
@@ -453,7 +430,7 @@ impl View<'_> {
                 family: Family::Speed,
                 regime: None,
                 time_gap: v.cacc.time_gap_s,
-                change: change.then_some(d.side),
+                change: blc.change.then_some(d.side),
                 why: if d.mandatory {
                     LaneChangeReason::Mandatory
                 } else if d.organize {
@@ -464,30 +441,10 @@ impl View<'_> {
                 takeover,
             },
             Gaps {
-                lead_ok,
-                lag_ok,
-                a_ant,
+                lead_ok: blc.lead_ok,
+                lag_ok: blc.lag_ok,
+                a_ant: blc.a_ant,
             },
-        )
-    }
-
-    /// Exceptions to BLC-Slow [D]: the target-lane follower is yielding to this vehicle (it is
-    /// dropping back to make room; slowing down as well would leave both waiting for the other,
-    /// a deadlock seen at standstill), or the follower is faster (it passes by itself) and
-    /// either this vehicle is in an acceleration lane (slowing would only widen the speed
-    /// difference the next gap must absorb) or it is already below the creep speed (spec 4.3's
-    /// 5 mph): beside a slow gapless string, BLC-Slow would stop it in an open lane and stop
-    /// the whole lane behind it.
-    fn keeps_pace(&self, s: u32, v: &Vehicle, tf: u32) -> bool {
-        if tf == NONE {
-            return false;
-        }
-        let f = &self.traffic.vehicles[tf as usize];
-        driver::keeps_pace(
-            matches!(f.mode, Mode::Ycf { to, .. } if to == v.id),
-            f.v,
-            v.v,
-            !self.road.geom.plain && self.sensed[s as usize].here.accel,
         )
     }
 }
