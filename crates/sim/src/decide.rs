@@ -190,9 +190,9 @@ impl View<'_> {
     /// Current relaxation factors of a vehicle (spec 4.6).
     #[inline]
     fn relax_now(&self, v: &Vehicle) -> Relax {
-        match v.lcs.relax {
-            Relaxation::None => Relax::NONE,
-            Relaxation::Since(since) => lcm::relax_at(
+        match v.lcs.relax.started() {
+            None => Relax::NONE,
+            Some(since) => lcm::relax_at(
                 &v.driver.lc,
                 (self.clock.step - since) as f64 * self.clock.dt,
             ),
@@ -217,7 +217,7 @@ impl View<'_> {
             // hands back once the relaxation has ended.
             if d.organize
                 && self.cfg.cav.organize_while_automated
-                && v.lcs.relax == Relaxation::None
+                && v.lcs.relax == Relaxation::NONE
             {
                 let (blc, g) = self.before_lane_change(s, v, nb, leader, d);
                 if g.lead_ok && g.lag_ok {

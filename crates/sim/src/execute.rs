@@ -122,7 +122,7 @@ fn try_change(
     let v = &mut traffic.vehicles[s as usize];
     v.lane = to as u32;
     v.mode = Mode::Cf;
-    v.lcs.relax = Relaxation::Since(step + 1);
+    v.lcs.relax = Relaxation::since(step + 1);
     v.lcs.last_step = step;
     v.lcs.last_side = Some(side);
     v.lcs.count += 1;
@@ -142,7 +142,7 @@ fn try_change(
     if tf != NONE {
         let f = &mut traffic.vehicles[tf as usize];
         if !f.automated() {
-            f.lcs.relax = Relaxation::Since(step + 1);
+            f.lcs.relax = Relaxation::since(step + 1);
             if matches!(f.mode, Mode::Ycf { .. }) {
                 f.mode = Mode::Cf;
             }

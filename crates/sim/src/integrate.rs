@@ -144,12 +144,12 @@ fn move_vehicles(
             veh.cacc.regime = d.regime;
             veh.cacc.time_gap_s = d.time_gap;
             if d.takeover {
-                veh.lcs.relax = Relaxation::Since(step);
+                veh.lcs.relax = Relaxation::since(step);
             }
-            if let Relaxation::Since(since) = veh.lcs.relax {
+            if let Some(since) = veh.lcs.relax.started() {
                 let elapsed = (step + 1 - since) as f64 * dt;
                 if elapsed >= veh.driver.lc.relax_time_s {
-                    veh.lcs.relax = Relaxation::None;
+                    veh.lcs.relax = Relaxation::NONE;
                 }
             }
         }

@@ -29,12 +29,12 @@ impl Metrics {
         if v.is_cav() {
             self.lane_changes_cav += v.lcs.count as u64;
             self.cavs_counted += 1;
-            self.platoon_length_sum += v.stats.max_platoon as u64;
-            if v.stats.max_platoon > 1 {
+            self.platoon_length_sum += v.cacc.max_platoon as u64;
+            if v.cacc.max_platoon > 1 {
                 self.cavs_platooned += 1;
             }
-            self.platoon_length_sum_tg2 += v.stats.max_platoon_tg2 as u64;
-            if v.stats.max_platoon_tg2 > 1 {
+            self.platoon_length_sum_tg2 += v.cacc.max_platoon_tg2 as u64;
+            if v.cacc.max_platoon_tg2 > 1 {
                 self.cavs_platooned_tg2 += 1;
             }
         }

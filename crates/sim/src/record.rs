@@ -346,8 +346,8 @@ pub(crate) fn trip_of(
         entry_x_m: entry_x + origin_m,
         last_x_m: v.x + origin_m,
         lane_changes: v.lcs.count,
-        max_platoon: v.stats.max_platoon,
-        max_platoon_tg2: v.stats.max_platoon_tg2,
+        max_platoon: v.cacc.max_platoon,
+        max_platoon_tg2: v.cacc.max_platoon_tg2,
         measured: v.stats.measured,
     }
 }

@@ -313,9 +313,9 @@ fn close_run(vehicles: &mut [Vehicle], lane: &[u32], start: usize, end: usize, s
     for &s in run {
         let v = &mut vehicles[s as usize];
         let m = if strict {
-            &mut v.stats.max_platoon_tg2
+            &mut v.cacc.max_platoon_tg2
         } else {
-            &mut v.stats.max_platoon
+            &mut v.cacc.max_platoon
         };
         if *m < size {
             *m = size;

@@ -40,12 +40,26 @@ pub enum Mode {
     Ycf { to: u64, auto: bool },
 }
 
-/// Which relaxation is running (spec 4.6), and since which step.
+/// Which relaxation is running (spec 4.6): none, or one that started at a step, after one's
+/// own change (ALC) or after being cut in (RCF). Eight bytes (the step, `NEVER` for none), so
+/// that the lane-change state fits the vehicle's second cache line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Relaxation {
-    None,
-    /// After one's own change (ALC) or after being cut in (RCF), started at `since` (step).
-    Since(u64),
+pub struct Relaxation(u64);
+
+impl Relaxation {
+    /// No relaxation running.
+    pub const NONE: Relaxation = Relaxation(NEVER);
+
+    /// A relaxation that starts at `step`.
+    pub fn since(step: u64) -> Relaxation {
+        debug_assert!(step != NEVER);
+        Relaxation(step)
+    }
+
+    /// The step it started at, if one is running.
+    pub fn started(self) -> Option<u64> {
+        (self.0 != NEVER).then_some(self.0)
+    }
 }
 
 /// Step index meaning "never".
@@ -61,7 +75,7 @@ pub const NO_EXIT: u32 = u32::MAX;
 /// first cache line holds what every phase reads (position, speed, acceleration, id, lane,
 /// type, mode), the second the CAV controller's and the lane-change state, then the route
 /// (its exit is read every step) and the driver's drawn parameters (body length first:
-/// `rear()`), then the bookkeeping, cold, in a line of its own.
+/// `rear()`), then the bookkeeping, cold, in the padding of the last line.
 #[derive(Clone, Debug)]
 #[repr(C, align(64))]
 pub struct Vehicle {
@@ -92,7 +106,8 @@ pub struct Vehicle {
     pub stats: Stats,
 }
 
-/// The CAV controller's state.
+/// The CAV controller's state, and the largest platoon the CAV has been in (updated by the
+/// sense phase every step, so kept in this hot line rather than with the bookkeeping).
 #[derive(Clone, Copy, Debug)]
 #[repr(C)]
 pub struct CaccState {
@@ -109,6 +124,11 @@ pub struct CaccState {
     /// The CAV controller's regime in the last step while automated (spec 3.9); `None` for a
     /// human driver or a CAV driven manually.
     pub regime: Option<CavMode>,
+    /// Largest platoon this CAV has been in (1 = never), paper definition: a chain of CAVs each
+    /// directly following the previous one under CACC within sensor range (`sense.rs`).
+    pub max_platoon: u32,
+    /// The same with the spec 6.15 link criterion (follower not in speed regulation, tg ≤ 2 s).
+    pub max_platoon_tg2: u32,
 }
 
 /// Lane-change history.
@@ -158,11 +178,6 @@ pub struct Stats {
     /// with which leader: a conflict continues while both stay the same from step to step.
     pub conflict_step: u64,
     pub conflict_leader: u64,
-    /// Largest platoon this CAV has been in (1 = never), paper definition: a chain of CAVs each
-    /// directly following the previous one under CACC within sensor range (`sense.rs`).
-    pub max_platoon: u32,
-    /// The same with the spec 6.15 link criterion (follower not in speed regulation, tg ≤ 2 s).
-    pub max_platoon_tg2: u32,
     /// Entered during the measurement window: counts in the statistics (read when it leaves).
     pub measured: bool,
     /// The driving mode and regime last reported to observers (`events.rs`).
@@ -177,7 +192,7 @@ impl Vehicle {
                 self.mode,
                 Mode::Cf | Mode::Ycf { auto: true, .. } | Mode::Blc { auto: true, .. }
             )
-            && self.lcs.relax == Relaxation::None
+            && self.lcs.relax == Relaxation::NONE
     }
 
     pub fn is_cav(&self) -> bool {
@@ -254,10 +269,11 @@ mod tests {
         assert_eq!(offset_of!(Vehicle, route), 128);
         assert_eq!(offset_of!(Vehicle, driver.human.length_m), 144);
         assert_eq!(offset_of!(HumanParams, length_m), 0);
-        // The bookkeeping is cold: last, in the line after the random stream.
+        // The bookkeeping is cold: last, after the random stream, in the padding of the last
+        // line (seven lines in all, as before the fields were grouped).
         assert!(
             offset_of!(Vehicle, stats) >= offset_of!(Vehicle, driver.rng) + size_of::<Stream>()
         );
-        assert_eq!(size_of::<Vehicle>(), 512);
+        assert_eq!(size_of::<Vehicle>(), 448);
     }
 }

@@ -6,7 +6,7 @@
 use crate::decide::View;
 use crate::decide::{opposite, pair_uniform};
 use crate::sense::{Neighbours, NONE};
-use crate::vehicle::{Mode, Relaxation, Vehicle};
+use crate::vehicle::{Mode, Vehicle};
 use platoonsim_model::lanechange::{self as lcm, Side};
 use platoonsim_model::Leader;
 
@@ -107,7 +107,7 @@ impl View<'_> {
                 continue;
             }
             // Ignore a request from the lane the driver has just left.
-            if let (Relaxation::Since(_), Some(last)) = (v.lcs.relax, v.lcs.last_side) {
+            if let (Some(_), Some(last)) = (v.lcs.relax.started(), v.lcs.last_side) {
                 if opposite(last) == opposite(toward) {
                     continue;
                 }
