@@ -291,10 +291,10 @@ impl Observer for EnergyMeter {
     fn on_exit(&mut self, v: &Vehicle, how: Departure, _t_s: f64) {
         if how != Departure::OnRoad {
             // The step in which it left: it moved, then left before the sweep.
-            let f =
-                self.acc
-                    .get(v.id as usize)
-                    .map_or(1.0, |a| if a.seen { a.factor } else { 1.0 });
+            let f = self
+                .acc
+                .get(v.id as usize)
+                .map_or(1.0, |a| if a.seen { a.factor } else { 1.0 });
             self.add_step(v, f);
         }
         if !v.measured {

@@ -67,7 +67,11 @@ fn run_energy_is_the_sum_over_vehicles() {
     assert!(measured.len() > 500);
     let fuel: f64 = measured.iter().filter_map(|t| t.energy?.fuel_l).sum();
     let kwh: f64 = measured.iter().filter_map(|t| t.energy?.energy_kwh).sum();
-    assert!((fuel - s.fuel_l).abs() <= 1e-9 * s.fuel_l, "{fuel} vs {}", s.fuel_l);
+    assert!(
+        (fuel - s.fuel_l).abs() <= 1e-9 * s.fuel_l,
+        "{fuel} vs {}",
+        s.fuel_l
+    );
     assert!((kwh - s.energy_kwh).abs() <= 1e-9 * s.energy_kwh, "{kwh}");
     let km: f64 = measured
         .iter()

@@ -229,7 +229,11 @@ pub(super) fn markdown(
                 r.push(value(rows, i, metric, 3));
             }
             for (_, ch, _) in FUEL {
-                r.push(if j == 0 { "–".into() } else { change(rows, i, ch) });
+                r.push(if j == 0 {
+                    "–".into()
+                } else {
+                    change(rows, i, ch)
+                });
             }
             trs.push(r);
         }
@@ -335,9 +339,8 @@ fn answer(cells: &[Cell], rows: &[SummaryRow]) -> (String, Vec<Check>) {
             "the CAVs' air drag is reduced by drafting in every cell with CAVs ({} cells)",
             cells.len()
         ),
-        passed: (0..cells.len()).all(|i| {
-            row(rows, i, "cav_drag_reduction_pct").is_some_and(|r| r.stats.mean > 0.0)
-        }),
+        passed: (0..cells.len())
+            .all(|i| row(rows, i, "cav_drag_reduction_pct").is_some_and(|r| r.stats.mean > 0.0)),
     }];
     (md, checks)
 }
@@ -415,7 +418,10 @@ pub(super) fn figure(
     use platoonsim_plot::{panels, Chart, Style};
     let mut charts = Vec::new();
     for (road, x_label) in [
-        ("homogeneous", "Demand (veh/h/lane), homogeneous road, 50 % CAV"),
+        (
+            "homogeneous",
+            "Demand (veh/h/lane), homogeneous road, 50 % CAV",
+        ),
         ("sr99", "CAV penetration (%), SR-99"),
     ] {
         let (x, base) = figure_points(cells, road);
@@ -450,7 +456,11 @@ pub(super) fn figure(
             charts.push(Chart {
                 title: format!(
                     "{group}: fuel change vs baseline, {}",
-                    if road == "sr99" { "SR-99" } else { "homogeneous" }
+                    if road == "sr99" {
+                        "SR-99"
+                    } else {
+                        "homogeneous"
+                    }
                 ),
                 x_label: x_label.into(),
                 y_label: "Change of L/100 km (%)".into(),

@@ -101,8 +101,7 @@ impl ExperimentName {
     pub fn total_runs(self, s: &Settings) -> usize {
         if self == ExperimentName::Energy {
             let (road, network) = energy::cell_count(s);
-            return road * s.seeds as usize
-                + network * s.network_seeds.unwrap_or(s.seeds) as usize;
+            return road * s.seeds as usize + network * s.network_seeds.unwrap_or(s.seeds) as usize;
         }
         s.seeds as usize
             * match self {
