@@ -284,6 +284,8 @@ pub(super) fn markdown(
     let (answer, checks) = answer(cells, rows);
     md.push_str("\n## The paper's question\n\n");
     md.push_str(&answer);
+    md.push_str("\n## Checks\n\n");
+    md.push_str(&super::checks_md(&checks));
     (md, checks)
 }
 
