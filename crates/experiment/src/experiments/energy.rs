@@ -377,37 +377,6 @@ pub fn cell_of(cells: &[Cell], road: &str, strategy: &str) -> Option<usize> {
     find(cells, &[("road", road), ("strategy", strategy)])
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn cells_cover_both_roads_with_energy_on() {
-        let s = Settings {
-            network_duration_s: Some(600.0),
-            network_penetrations: vec![0.0, 0.4, 1.0],
-            energy_demands: vec![1500.0, 2500.0],
-            ..Settings::default()
-        };
-        let (c, road) = cells(&s).unwrap();
-        assert_eq!(road, 8);
-        assert_eq!(c.len(), 12);
-        assert_eq!(cell_count(&s), (8, 4));
-        assert!(c.iter().all(|c| c.config.energy.enabled));
-        assert_eq!(c[0].labels.get("strategy"), Some("none"));
-        assert_eq!(c[7].labels.get("strategy"), Some("dedicated"));
-        assert_eq!(c[8].labels.get("road"), Some("sr99"));
-        assert_eq!(c[8].labels.get("penetration"), Some("0.4"));
-        assert_eq!(c[8].labels.get("demand"), Some("1.1"));
-        assert_eq!(c[9].config.strategy.kind, StrategyKind::PD);
-        assert_eq!(cell_of(&c, "sr99", "flow-aware"), Some(10));
-        let (x, base) = figure_points(&c, "homogeneous");
-        assert_eq!((x, base), (vec![1500.0, 2500.0], vec![0, 4]));
-        let (x, base) = figure_points(&c, "sr99");
-        assert_eq!((x, base), (vec![40.0], vec![8]));
-    }
-}
-
 /// `energy.png` / `.svg`: the paired fuel changes of the CAVs and of all vehicles against the
 /// demand (homogeneous road) and the penetration (SR-99), one series per strategy with its
 /// 95 % band.
@@ -485,4 +454,35 @@ pub(super) fn figure(
         title: "Change of fuel per 100 km against the baseline (per seed pair), CAVs and all vehicles, by strategy: homogeneous road vs demand, SR-99 vs penetration; mean and 95 % confidence band".into(),
         stem: "energy".into(),
     }])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cells_cover_both_roads_with_energy_on() {
+        let s = Settings {
+            network_duration_s: Some(600.0),
+            network_penetrations: vec![0.0, 0.4, 1.0],
+            energy_demands: vec![1500.0, 2500.0],
+            ..Settings::default()
+        };
+        let (c, road) = cells(&s).unwrap();
+        assert_eq!(road, 8);
+        assert_eq!(c.len(), 12);
+        assert_eq!(cell_count(&s), (8, 4));
+        assert!(c.iter().all(|c| c.config.energy.enabled));
+        assert_eq!(c[0].labels.get("strategy"), Some("none"));
+        assert_eq!(c[7].labels.get("strategy"), Some("dedicated"));
+        assert_eq!(c[8].labels.get("road"), Some("sr99"));
+        assert_eq!(c[8].labels.get("penetration"), Some("0.4"));
+        assert_eq!(c[8].labels.get("demand"), Some("1.1"));
+        assert_eq!(c[9].config.strategy.kind, StrategyKind::PD);
+        assert_eq!(cell_of(&c, "sr99", "flow-aware"), Some(10));
+        let (x, base) = figure_points(&c, "homogeneous");
+        assert_eq!((x, base), (vec![1500.0, 2500.0], vec![0, 4]));
+        let (x, base) = figure_points(&c, "sr99");
+        assert_eq!((x, base), (vec![40.0], vec![8]));
+    }
 }

@@ -84,7 +84,7 @@ impl Drag {
     /// net gap `gap_m` to the vehicle ahead.
     #[inline]
     pub fn wake(&self, k: u32, gap_m: f64) -> f64 {
-        if k < 2 || !(gap_m <= self.cutoff_m) {
+        if k < 2 || !self.linked(gap_m) {
             return 0.0;
         }
         let len = self.wake_length_m[(k as usize - 2).min(2)];
@@ -94,7 +94,7 @@ impl Drag {
     /// The reduction a follower at net gap `gap_m` behind gives.
     #[inline]
     pub fn push(&self, gap_m: f64) -> f64 {
-        if !(gap_m <= self.cutoff_m) {
+        if !self.linked(gap_m) {
             return 0.0;
         }
         self.push * (-(gap_m.max(self.g0_m) - self.g0_m) / self.push_length_m).exp()
@@ -107,10 +107,14 @@ impl Drag {
         1.0 - self.wake(k, ahead_m) - self.push(behind_m)
     }
 
-    /// Is a vehicle at net gap `gap_m` behind another part of its chain?
+    /// Is a vehicle at net gap `gap_m` behind another part of its chain? (Not for a NaN or
+    /// infinite gap: nobody there.)
     #[inline]
     pub fn linked(&self, gap_m: f64) -> bool {
-        gap_m <= self.cutoff_m
+        matches!(
+            gap_m.partial_cmp(&self.cutoff_m),
+            Some(std::cmp::Ordering::Less | std::cmp::Ordering::Equal)
+        )
     }
 }
 
