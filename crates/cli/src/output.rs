@@ -216,6 +216,11 @@ pub const TRIP_COLUMNS: [&str; 14] = [
     "measured",
 ];
 
+/// The columns `trips.csv` gains with `energy.enabled` (docs/energy.md): fuel (L) of a
+/// combustion-engine vehicle, battery energy (kWh) of an electric one (the other empty), and
+/// the share of its energy without drag reduction that drafting saved (%).
+pub const TRIP_ENERGY_COLUMNS: [&str; 3] = ["fuel_l", "energy_kwh", "drag_saving_pct"];
+
 /// `trips.csv`: the header, then one row per trip. `destination` is the off-ramp's id, `end`
 /// (the road end) or empty (still on the road); `status` is `exited`, `missed_exit_then_end`
 /// (it chose an off-ramp, was not in its lane there and drove on to the end), `in_network` or
@@ -225,7 +230,13 @@ pub fn trips_csv(config: &Config, trips: &[Trip]) -> Result<Vec<u8>> {
     let mut w = csv::WriterBuilder::new()
         .has_headers(false)
         .from_writer(Vec::new());
-    w.write_record(TRIP_COLUMNS)?;
+    let energy = config.energy.enabled;
+    let header = TRIP_COLUMNS.iter();
+    if energy {
+        w.write_record(header.chain(TRIP_ENERGY_COLUMNS.iter()))?;
+    } else {
+        w.write_record(header)?;
+    }
     let num = |v: Option<f64>| v.map(|v| format!("{v}")).unwrap_or_default();
     for t in trips {
         let (destination, status) = match t.status {
@@ -235,7 +246,7 @@ pub fn trips_csv(config: &Config, trips: &[Trip]) -> Result<Vec<u8>> {
             TripStatus::InNetwork => (String::new(), "in_network"),
             TripStatus::Collided => (String::new(), "collided"),
         };
-        w.write_record([
+        let mut row = vec![
             t.id.to_string(),
             t.kind.as_str().to_string(),
             entrance_name(config, t.origin),
@@ -250,7 +261,16 @@ pub fn trips_csv(config: &Config, trips: &[Trip]) -> Result<Vec<u8>> {
             t.max_platoon.to_string(),
             t.max_platoon_tg2.to_string(),
             t.measured.to_string(),
-        ])?;
+        ];
+        if energy {
+            let e = t.energy;
+            row.extend([
+                num(e.and_then(|e| e.fuel_l)),
+                num(e.and_then(|e| e.energy_kwh)),
+                num(e.and_then(|e| e.drag_saving_pct)),
+            ]);
+        }
+        w.write_record(&row)?;
     }
     w.into_inner().context("cannot encode trips.csv")
 }
@@ -595,6 +615,7 @@ mod tests {
             lane_changes: 2,
             max_platoon: 3,
             max_platoon_tg2: 1,
+            energy: None,
             measured: false,
         };
         let trips = [

@@ -252,6 +252,8 @@ fn reproduce_writes_the_report() {
         "## 2. Platoon organization at various demands (paper Table 3)",
         "## 3. Flow-Aware",
         "## 4. SR-99 corridor (paper Table 4, Figs. 6-8)",
+        "## 5. Energy with platoon organization: fuel per vehicle-km (beyond the paper)",
+        "**Beyond the paper**",
         "**Quick mode**",
         "#### Table 4: ours vs the paper",
         "#### Demand scale by penetration",
@@ -268,8 +270,9 @@ fn reproduce_writes_the_report() {
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     assert!(html.starts_with("<!DOCTYPE html>"));
     assert!(html.contains("<table>") && html.contains("Notes on differences"));
-    // capacity, sensitivity; sr99: contours, lanes, bars; sr99-demand: scales, contours.
-    assert_eq!(html.matches("src=\"data:image/png;base64,").count(), 7);
+    // capacity, sensitivity; sr99: contours, lanes, bars; sr99-demand: scales, contours;
+    // energy.
+    assert_eq!(html.matches("src=\"data:image/png;base64,").count(), 8);
     assert!(out.join("capacity/capacity.svg").is_file());
     for exp in [
         "capacity",
@@ -277,7 +280,72 @@ fn reproduce_writes_the_report() {
         "flow-aware",
         "sr99",
         "sr99-demand",
+        "energy",
     ] {
         assert!(out.join(exp).join("summary.csv").is_file(), "{exp}");
+    }
+}
+
+/// `experiment energy` on short runs: both roads, every strategy, the fuel and drag columns,
+/// the answer, the figure.
+#[test]
+fn energy_experiment_runs_both_roads() {
+    let out = scratch("energy-experiment");
+    let o = platoonsim(&[
+        "experiment",
+        "energy",
+        "--seeds",
+        "2",
+        "--duration",
+        "600",
+        "--warmup",
+        "300",
+        "--penetrations",
+        "0,0.4",
+        "--network-duration",
+        "300",
+        "--out",
+        s(&out),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let dir = out.join("energy");
+    let md = std::fs::read_to_string(dir.join("summary.md")).unwrap();
+    for part in [
+        "**Beyond the paper**",
+        "## Fuel per 100 km",
+        "homogeneous, 2500 veh/h/lane",
+        "SR-99, 40 % CAV",
+        "dedicated lane (ours)",
+        "## Where the CAVs' energy goes: drag vs dynamics",
+        "## The paper's question",
+        "## Checks",
+        "## Safety",
+    ] {
+        assert!(md.contains(part), "{part} missing from summary.md:\n{md}");
+    }
+    assert!(dir.join("energy.png").is_file() && dir.join("energy.svg").is_file());
+    // 4 demands × 4 strategies + 1 penetration × 4 strategies, 2 seeds each.
+    let runs = std::fs::read_to_string(dir.join("runs.csv")).unwrap();
+    let mut lines = runs.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 40);
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (fuel, cav, drag) = (
+        col("fuel_l_per_100km"),
+        col("cav_fuel_change_pct"),
+        col("cav_drag_reduction_pct"),
+    );
+    for r in &rows {
+        let f: f64 = r[fuel].parse().unwrap();
+        assert!((4.0..12.0).contains(&f), "{r:?}");
+        let d: f64 = r[drag].parse().unwrap();
+        assert!(d > 0.0 && d < 30.0, "{r:?}");
+    }
+    // The changes exist on the organized cells and not on the baselines.
+    let strategy = col("strategy");
+    for r in &rows {
+        assert_eq!(r[strategy] == "none", r[cav].is_empty(), "{r:?}");
     }
 }

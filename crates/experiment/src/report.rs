@@ -132,7 +132,12 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
 
     let (notes, network_notes) = split_notes(input.notes);
     let mut n = 0;
-    for o in input.outputs.iter().filter(|o| !is_network(o)) {
+    let beyond = |o: &&ExperimentOutput| ExperimentName::BEYOND.contains(&o.name);
+    for o in input
+        .outputs
+        .iter()
+        .filter(|o| !is_network(o) && !beyond(o))
+    {
         n += 1;
         md.push_str(&format!("## {n}. {}\n\n", o.name.title()));
         md.push_str(&section(o, 1));
@@ -153,6 +158,12 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
             md.push_str(&demote(&network_notes));
             md.push('\n');
         }
+    }
+    // Beyond the paper (issue 23's energy), after the paper's experiments.
+    for o in input.outputs.iter().filter(beyond) {
+        n += 1;
+        md.push_str(&format!("## {n}. {}\n\n", o.name.title()));
+        md.push_str(&section(o, 1));
     }
 
     md.push_str("## Run time\n\n");

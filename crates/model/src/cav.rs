@@ -134,6 +134,10 @@ pub struct CavParams {
     /// brakes to synchronize or drops back for a gap. Default true \[D\] (docs/model-choices.md
     /// 6.22). False = the discretionary rules of spec 4.3 as written.
     pub organize_regardless_of_speed: bool,
+    /// The powertrain of the CAVs (`combustion` or `electric`; energy.rs). Not written when
+    /// it is the default, so that older configurations keep their identity.
+    #[serde(skip_serializing_if = "crate::energy::Powertrain::is_default")]
+    pub powertrain: crate::energy::Powertrain,
 }
 
 impl Default for CavParams {
@@ -167,6 +171,7 @@ impl Default for CavParams {
             organize_while_automated: true,
             cacc_closing_only_approaching: true,
             organize_regardless_of_speed: true,
+            powertrain: crate::energy::Powertrain::Combustion,
         }
     }
 }

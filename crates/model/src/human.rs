@@ -103,6 +103,10 @@ pub struct HumanDists {
     pub comfort_factor: f64,
     /// b_e (m/s², positive): the hardest braking the vehicle can apply (docs/safety.md).
     pub emergency_decel_mps2: f64,
+    /// The powertrain of human-driven vehicles (`combustion` or `electric`; energy.rs). Not
+    /// written when it is the default, so that older configurations keep their identity.
+    #[serde(skip_serializing_if = "crate::energy::Powertrain::is_default")]
+    pub powertrain: crate::energy::Powertrain,
 }
 
 impl Default for HumanDists {
@@ -122,6 +126,7 @@ impl Default for HumanDists {
             smoothing: 2.0,
             comfort_factor: 0.5,
             emergency_decel_mps2: crate::safety::DEFAULT_EMERGENCY_DECEL_MPS2,
+            powertrain: crate::energy::Powertrain::Combustion,
         }
     }
 }

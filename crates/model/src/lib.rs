@@ -13,6 +13,7 @@
 //! | [`lanechange`] | lane-change desire, anticipated-minimum-gap acceptance, relaxation | 4 |
 //! | [`driver`] | the lane-change decision procedure, rule by rule | 4.2, 4.3, 4.7 |
 //! | [`safety`] | emergency braking limit, time to collision, TET/TIT exposure | docs/safety.md |
+//! | [`energy`] | fuel (VT-CPFM-1), battery-electric energy, platoon drag reduction | docs/energy.md |
 //!
 //! Conventions: SI units inside (m, s, m/s, m/s²); decelerations are negative
 //! numbers (`max_decel = -4.0`); gaps are *net* gaps (leader's rear bumper to the
@@ -21,6 +22,7 @@
 pub mod cav;
 pub mod dist;
 pub mod driver;
+pub mod energy;
 pub mod human;
 pub mod lanechange;
 pub mod safety;

@@ -89,6 +89,7 @@ pub fn to_raw(config: &Config, description: Option<String>) -> RawScenario {
         cav: config.cav.clone(),
         lane_change: config.lane_change,
         safety: config.safety,
+        energy: config.energy,
     }
 }
 

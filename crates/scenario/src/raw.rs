@@ -10,6 +10,7 @@
 
 use crate::error::ScenarioError;
 use platoonsim_model::cav::CavParams;
+use platoonsim_model::energy::EnergyParams;
 use platoonsim_model::human::HumanDists;
 use platoonsim_model::lanechange::LaneChangeDists;
 use platoonsim_model::safety::SafetyParams;
@@ -42,6 +43,9 @@ pub struct RawScenario {
     pub cav: CavParams,
     pub lane_change: LaneChangeDists,
     pub safety: SafetyParams,
+    /// Fuel and electricity per vehicle (docs/energy.md); written only when not the default.
+    #[serde(skip_serializing_if = "EnergyParams::is_default")]
+    pub energy: EnergyParams,
 }
 
 /// `[run]`: seed, step, duration, warm-up, CAV share. All optional.
@@ -319,6 +323,7 @@ fn diagnose(doc: &Table) -> (String, String) {
             "cav" => narrow::<CavParams>("cav", value),
             "lane_change" => narrow::<LaneChangeDists>("lane_change", value),
             "safety" => narrow::<SafetyParams>("safety", value),
+            "energy" => narrow::<EnergyParams>("energy", value),
             "detectors" => narrow_array::<RawDetector>("detectors", value)
                 .unwrap_or_else(|| ("detectors".into(), single_message(key, value))),
             _ => (key.clone(), rewrite(&single_message(key, value), None)),

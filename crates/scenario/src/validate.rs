@@ -325,6 +325,7 @@ pub fn validate_in(
         cav: raw.cav.clone(),
         lane_change: raw.lane_change,
         safety: raw.safety,
+        energy: raw.energy,
     };
     if c.problems.is_empty() {
         // The engine's own invariants; the checks above are stricter, so this is a safety net.

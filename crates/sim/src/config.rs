@@ -5,6 +5,7 @@
 use crate::error::SimError;
 use crate::organize::{LaneChoice, StrategyKind};
 use platoonsim_model::cav::CavParams;
+use platoonsim_model::energy::EnergyParams;
 use platoonsim_model::human::HumanDists;
 use platoonsim_model::lanechange::LaneChangeDists;
 use platoonsim_model::safety::SafetyParams;
@@ -353,6 +354,10 @@ pub struct Config {
     pub lane_change: LaneChangeDists,
     /// Surrogate safety measures' settings (`[safety]`, docs/safety.md).
     pub safety: SafetyParams,
+    /// Energy per vehicle (`[energy]`, docs/energy.md); off by default, and then not written,
+    /// so that configurations without it keep their identity.
+    #[serde(skip_serializing_if = "EnergyParams::is_default")]
+    pub energy: EnergyParams,
 }
 
 /// Input limits shared by the engine's [`Config::check`] and the scenario crate's validation
@@ -584,6 +589,7 @@ impl Config {
             cav: CavParams::default(),
             lane_change: LaneChangeDists::default(),
             safety: SafetyParams::default(),
+            energy: EnergyParams::default(),
         }
     }
 

@@ -3,14 +3,15 @@
 //! and the observers.
 
 use crate::detector::Detector;
+use crate::energy::EnergyMeter;
 use crate::events::{Departure, Event, Observer};
 use crate::metrics::Metrics;
 use crate::record::Recorder;
 use crate::state::{Clock, RoadState, Traffic, Watch};
 use crate::vehicle::{Vehicle, NO_EXIT};
 
-/// Who hears of a departure: the paper's statistics, the trip record, the user's observers
-/// (and the step's event list), in that order.
+/// Who hears of a departure: the paper's statistics, the trip record, the energy meter, the
+/// user's observers (and the step's event list), in that order.
 pub(crate) struct Departures<'a> {
     pub clock: &'a Clock,
     /// Output coordinate of engine x = 0.
@@ -18,6 +19,8 @@ pub(crate) struct Departures<'a> {
     pub metrics: &'a mut Metrics,
     pub rec: &'a mut Recorder,
     pub watch: &'a mut Watch,
+    /// The energy meter, when `energy.enabled`.
+    pub energy: &'a mut Option<Box<EnergyMeter>>,
 }
 
 impl Departures<'_> {
@@ -34,6 +37,9 @@ impl Departures<'_> {
         self.metrics.on_exit(v, how, t);
         if self.rec.trips.is_some() {
             self.rec.on_exit(v, how, t);
+        }
+        if let Some(e) = self.energy.as_mut() {
+            e.on_exit(v, how, t);
         }
         if self.watch.observing {
             for o in &mut self.watch.observers {

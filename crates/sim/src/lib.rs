@@ -16,6 +16,7 @@ mod decide;
 mod desire;
 mod detect;
 pub mod detector;
+pub mod energy;
 mod error;
 pub mod events;
 mod execute;
@@ -42,6 +43,7 @@ pub use config::{
     Config, Demand, DetectorKind, DetectorSpec, FlowAwareConfig, LaneExtent, Network, OffRamp,
     OnRamp, PdConfig, Road, Strategy,
 };
+pub use energy::{EnergyMeter, EnergySummary, TripEnergy};
 pub use error::SimError;
 pub use events::{Departure, Event, LaneChangeReason, Observer};
 pub use organize::{Advice, LaneChoice, Organizer, StrategyKind, UnknownStrategy, STRATEGIES};

@@ -154,6 +154,8 @@ pub struct Trip {
     pub max_platoon_tg2: u32,
     /// Entered in the measurement window: counts in the summary's statistics.
     pub measured: bool,
+    /// Fuel or electricity and the drag saving (with `energy.enabled`; docs/energy.md).
+    pub energy: Option<crate::energy::TripEnergy>,
 }
 
 /// One vehicle at one sample time (48 bytes: a long recording is held in memory until the end
@@ -349,6 +351,7 @@ pub(crate) fn trip_of(
         max_platoon: v.cacc.max_platoon,
         max_platoon_tg2: v.cacc.max_platoon_tg2,
         measured: v.stats.measured,
+        energy: None,
     }
 }
 

@@ -51,6 +51,8 @@ pub struct Simulation {
     /// Optional trip and trajectory records (`record.rs`); off unless [`Simulation::record`].
     pub(crate) rec: Recorder,
     pub(crate) watch: Watch,
+    /// Fuel and electricity per vehicle (`energy.rs`); only with `energy.enabled`.
+    pub(crate) energy: Option<Box<crate::energy::EnergyMeter>>,
 }
 
 impl Simulation {
@@ -141,6 +143,10 @@ impl Simulation {
             },
             rec: Recorder::default(),
             watch: Watch::default(),
+            energy: cfg
+                .energy
+                .enabled
+                .then(|| Box::new(crate::energy::EnergyMeter::new(&cfg))),
             cfg,
         };
         let organizer = organize::build(&sim.cfg);
@@ -224,6 +230,7 @@ impl Simulation {
             metrics: &mut self.measures.metrics,
             rec: &mut self.rec,
             watch: &mut self.watch,
+            energy: &mut self.energy,
         }
         .leave(&self.traffic.vehicles[s as usize], how);
     }
@@ -327,6 +334,7 @@ impl Simulation {
                 metrics: &mut self.measures.metrics,
                 rec: &mut self.rec,
                 watch: &mut self.watch,
+                energy: &mut self.energy,
             },
         );
         crate::insert::Inserting {
@@ -366,6 +374,10 @@ impl Simulation {
             rec.on_step(self, &[]);
             self.rec = rec;
         }
+        if let Some(mut e) = self.energy.take() {
+            e.on_step(self, &[]);
+            self.energy = Some(e);
+        }
         let checked = crate::invariants::check_invariants(
             &self.clock,
             self.origin_m(),
@@ -387,7 +399,12 @@ impl Simulation {
         for s in on_road {
             self.leave(s, Departure::OnRoad);
         }
-        let trips = self.rec.trips.take();
+        let mut trips = self.rec.trips.take();
+        if let (Some(trips), Some(e)) = (trips.as_mut(), self.energy.as_ref()) {
+            for t in trips {
+                t.energy = e.trip(t.id, t.kind);
+            }
+        }
         let trajectories = self.rec.trajectories.take().map(|t| t.rows);
         let cfg = &self.cfg;
         let det = &self.detectors.list[cfg.measurement_detector];
@@ -474,6 +491,7 @@ impl Simulation {
                 .min_ttc_s
                 .is_finite()
                 .then_some(sf.exposure.min_ttc_s),
+            energy: self.energy.as_ref().map(|e| e.summary()),
             vehicle_updates: self.measures.vehicle_updates,
             steps: self.clock.step,
             wall_seconds,

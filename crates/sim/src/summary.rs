@@ -75,6 +75,9 @@ pub struct Summary {
     /// Smallest TTC seen in the window (s); `None` (null) if no follower ever closed in on its
     /// leader.
     pub min_ttc_s: Option<f64>,
+    /// Fuel and electricity (docs/energy.md), with `energy.enabled` only.
+    #[serde(flatten)]
+    pub energy: Option<crate::energy::EnergySummary>,
     pub vehicle_updates: u64,
     pub steps: u64,
     pub wall_seconds: f64,

@@ -26,6 +26,10 @@ pub enum ExperimentArg {
     /// the baseline shows both recurrent bottlenecks (see --bottleneck-speed); writes
     /// demand_scales.toml (and the embedded table with --write-table).
     Sr99Demand,
+    /// Beyond the paper: fuel per 100 km of CAVs, humans and all with baseline, PD,
+    /// Flow-Aware PD and the dedicated lane, on the homogeneous road at the Table 3 demands
+    /// (50 % CAV) and on SR-99 at --penetrations strictly between 0 and 1 (docs/energy.md).
+    Energy,
 }
 
 impl From<ExperimentArg> for ExperimentName {
@@ -37,6 +41,7 @@ impl From<ExperimentArg> for ExperimentName {
             ExperimentArg::CalibrateFlowAware => ExperimentName::CalibrateFlowAware,
             ExperimentArg::Sr99 => ExperimentName::Sr99,
             ExperimentArg::Sr99Demand => ExperimentName::Sr99Demand,
+            ExperimentArg::Energy => ExperimentName::Energy,
         }
     }
 }

@@ -23,6 +23,26 @@ pub const QUICK_NETWORK_SEEDS: u32 = 1;
 /// the 0 % baseline.
 pub const QUICK_SR99_PENETRATIONS: [f64; 2] = [0.0, 0.4];
 
+/// The homogeneous-road demands of `energy` with --quick (the full run: Table 3's four).
+pub const QUICK_ENERGY_DEMANDS: [f64; 2] = [1500.0, 2500.0];
+
+/// The `energy` settings: the homogeneous road's seeds and duration, SR-99's seeds and
+/// penetrations (quick: the homogeneous road only, at two demands; a 4-hour SR-99 run with
+/// energy takes 1-3 min of one core).
+fn energy_settings(args: &ReproduceArgs, base: &Settings, sr99: &Settings) -> Settings {
+    let mut s = Settings {
+        network_seeds: Some(sr99.seeds),
+        network_penetrations: sr99.network_penetrations.clone(),
+        network_duration_s: sr99.network_duration_s,
+        ..base.clone()
+    };
+    if args.quick {
+        s.energy_demands = QUICK_ENERGY_DEMANDS.to_vec();
+        s.network_penetrations = Vec::new();
+    }
+    s
+}
+
 /// The SR-99 settings: `sr99` and `sr99-demand` (quick: 0 % and 40 % only, and no demand
 /// search, only the criterion at the table's scales, on the runs `sr99` made: no extra run).
 fn network_settings(args: &ReproduceArgs, base: &Settings) -> (Settings, Settings) {
@@ -89,6 +109,13 @@ pub fn reproduce(args: &ReproduceArgs, quiet: bool) -> Result<()> {
     for (name, settings) in ExperimentName::NETWORK.into_iter().zip([&sr99, &demand]) {
         let out =
             run_experiment(name, settings).with_context(|| format!("experiment {name} failed"))?;
+        crate::stdout::print(&describe(&out))?;
+        outputs.push(out);
+    }
+    let energy = energy_settings(args, &s, &sr99);
+    for name in ExperimentName::BEYOND {
+        let out =
+            run_experiment(name, &energy).with_context(|| format!("experiment {name} failed"))?;
         crate::stdout::print(&describe(&out))?;
         outputs.push(out);
     }

@@ -11,7 +11,7 @@ use platoonsim_plot::{line_chart, panels, Chart, Series, Style};
 use std::path::Path;
 
 /// A series' mean, low and high over the given cells (NaN where a cell is missing).
-fn curve(
+pub(super) fn curve(
     rows: &[SummaryRow],
     cells: &[Option<usize>],
     metric: &str,
@@ -40,7 +40,7 @@ fn paper(rows: &[SummaryRow], cells: &[Option<usize>], metric: &str) -> Vec<f64>
         .collect()
 }
 
-fn series(
+pub(super) fn series(
     name: &str,
     x: &[f64],
     (y, lo, hi): (Vec<f64>, Vec<f64>, Vec<f64>),
@@ -68,7 +68,7 @@ fn markers(name: &str, x: &[f64], y: Vec<f64>) -> Option<Series> {
     })
 }
 
-fn plot_error(e: platoonsim_plot::PlotError) -> Error {
+pub(super) fn plot_error(e: platoonsim_plot::PlotError) -> Error {
     Error::Other(e.to_string())
 }
 

@@ -1,8 +1,9 @@
 //! The experiments: `capacity` (paper Fig. 4), `sensitivity` (paper Table 3),
 //! `flow-aware` (issue 3's acceptance test of the Flow-Aware strategy),
 //! `calibrate-flow-aware` (a grid search for the Flow-Aware thresholds), `sr99` (the SR-99
-//! corridor: paper Table 4 and Figs. 6-8) and `sr99-demand` (the search for the SR-99 demand
-//! scale at which the recurrent bottlenecks show).
+//! corridor: paper Table 4 and Figs. 6-8), `sr99-demand` (the search for the SR-99 demand
+//! scale at which the recurrent bottlenecks show) and, beyond the paper, `energy` (fuel with
+//! and without organization, docs/energy.md).
 //!
 //! [`run_experiment`] runs one into `<out>/<name>/`: the run files in `runs/`, then
 //! `runs.csv`, `summary.csv`, `summary.md`, `run.json` and the figures (`capacity.png`/`.svg`,
@@ -10,6 +11,7 @@
 
 pub mod calibrate;
 mod capacity;
+pub mod energy;
 mod figures;
 mod flow_aware;
 mod sensitivity;
@@ -42,6 +44,8 @@ pub enum ExperimentName {
     CalibrateFlowAware,
     Sr99,
     Sr99Demand,
+    /// Beyond the paper: fuel with and without organization (issue 23).
+    Energy,
 }
 
 impl ExperimentName {
@@ -56,6 +60,9 @@ impl ExperimentName {
     /// The SR-99 experiments that `reproduce` runs after them.
     pub const NETWORK: [ExperimentName; 2] = [ExperimentName::Sr99, ExperimentName::Sr99Demand];
 
+    /// The experiments beyond the paper that `reproduce` runs last.
+    pub const BEYOND: [ExperimentName; 1] = [ExperimentName::Energy];
+
     /// The name on the command line and of the output directory.
     pub fn as_str(self) -> &'static str {
         match self {
@@ -65,6 +72,7 @@ impl ExperimentName {
             ExperimentName::CalibrateFlowAware => "calibrate-flow-aware",
             ExperimentName::Sr99 => "sr99",
             ExperimentName::Sr99Demand => "sr99-demand",
+            ExperimentName::Energy => "energy",
         }
     }
 
@@ -83,11 +91,18 @@ impl ExperimentName {
             ExperimentName::Sr99Demand => {
                 "SR-99 demand scale by penetration: the search for the recurrent bottlenecks"
             }
+            ExperimentName::Energy => {
+                "Energy with platoon organization: fuel per vehicle-km (beyond the paper)"
+            }
         }
     }
 
     /// How many runs it makes with these settings.
     pub fn total_runs(self, s: &Settings) -> usize {
+        if self == ExperimentName::Energy {
+            let (road, network) = energy::cell_count(s);
+            return road * s.seeds as usize + network * s.network_seeds.unwrap_or(s.seeds) as usize;
+        }
         s.seeds as usize
             * match self {
                 ExperimentName::Capacity => 3 * capacity::PENETRATIONS.len() - 2,
@@ -100,6 +115,7 @@ impl ExperimentName {
                 }
                 ExperimentName::Sr99 => sr99::cell_count(s),
                 ExperimentName::Sr99Demand => sr99_demand::max_cells(s),
+                ExperimentName::Energy => 0,
             }
     }
 }
@@ -157,6 +173,10 @@ pub struct Settings {
     /// `sr99-demand`: also write the scales found into this table file (e.g. the embedded
     /// table's source, to rebuild with them); `calibrate-flow-aware`: the chosen thresholds.
     pub write_table: Option<PathBuf>,
+    /// `energy`: the homogeneous road's demands (veh/h/lane; default: the paper's Table 3).
+    pub energy_demands: Vec<f64>,
+    /// Seeds per cell on SR-99 in `energy` (`None`: `seeds`).
+    pub network_seeds: Option<u32>,
     /// `runs` and `summary` as CSV or Parquet.
     pub format: crate::columnar::Format,
     /// The command line, for the provenance.
@@ -186,6 +206,8 @@ impl Default for Settings {
             bottleneck_speed_kmh: sr99_demand::BOTTLENECK_SPEED_KMH,
             bottleneck_minutes: sr99_demand::BOTTLENECK_MINUTES,
             write_table: None,
+            energy_demands: sensitivity::DEMANDS.to_vec(),
+            network_seeds: None,
             format: crate::columnar::Format::Csv,
             arguments: Vec::new(),
         }
@@ -322,6 +344,7 @@ pub fn run_experiment_with(
         ExperimentName::CalibrateFlowAware => calibrate::run(settings, &runner, &seeds),
         ExperimentName::Sr99 => sr99::run(settings, &runner, &seeds),
         ExperimentName::Sr99Demand => sr99_demand::run(settings, &runner, &seeds),
+        ExperimentName::Energy => energy::run(settings, &runner, &seeds),
     };
     bar.finish_and_clear();
     let Done {
@@ -339,6 +362,7 @@ pub fn run_experiment_with(
         }
         ExperimentName::Sr99 => sr99::markdown(settings, &cells, &rows),
         ExperimentName::Sr99Demand => sr99_demand::markdown(settings, &cells, &rows, &extra),
+        ExperimentName::Energy => energy::markdown(settings, &cells, &outcomes, &rows),
     };
     let (body, checks) = with_safety(name, &cells, &outcomes, body, checks);
     let figures = match name {
@@ -348,6 +372,7 @@ pub fn run_experiment_with(
         ExperimentName::CalibrateFlowAware => calibrate::figure(settings, &dir, &cells, &rows)?,
         ExperimentName::Sr99 => sr99_figures::all(&dir, &cells, &rows, &extra)?,
         ExperimentName::Sr99Demand => sr99_demand::figures(&dir, &extra)?,
+        ExperimentName::Energy => energy::figure(&dir, &cells, &rows)?,
     };
     if name == ExperimentName::CalibrateFlowAware {
         for (file, bytes) in calibrate::files(settings, &cells, &rows)? {
@@ -411,6 +436,7 @@ pub(crate) fn with_safety(
         ExperimentName::FlowAware => Some(&[]),
         ExperimentName::Sr99 => Some(&["penetration"]),
         ExperimentName::Sr99Demand => Some(&["penetration", "demand_scale"]),
+        ExperimentName::Energy => Some(&["road", "penetration", "demand"]),
         ExperimentName::CalibrateFlowAware => None,
     };
     let mut md = safety::warning_md(cells, outcomes);
