@@ -1,6 +1,6 @@
 //! # platoonsim-py: the Python package's extension module
 //!
-//! `platoonsim._platoonsim.Core` holds one [`Simulation`] and exchanges whole arrays with
+//! `platoonsim._platoonsim.Core` holds one `platoonsim_sim::Simulation` and exchanges whole arrays with
 //! Python: the vehicles as numpy columns, the lane advice of a Python organizer as one table
 //! per call, commands vectorized over vehicle ids. The pure-Python package (`python/platoonsim`)
 //! wraps it in the documented API (docs/python.md). Stepping releases the GIL.
