@@ -27,7 +27,6 @@ fi
 # The package is rebuilt every time (cargo's cache makes an unchanged one quick), so that the
 # tests never run an old extension.
 start=$(date +%s)
-"$VENV/bin/python" -m pip install --quiet --upgrade pip >/dev/null 2>&1 || true
 "$VENV/bin/python" -m pip install --quiet ./python "${PY_PACKAGES[@]}"
 echo "pip install ./python: $(( $(date +%s) - start )) s"
 cargo build --release -p platoonsim --quiet
