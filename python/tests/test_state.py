@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import sys
+import time
+
 import numpy as np
 
 import platoonsim
@@ -108,3 +111,33 @@ def test_events_off_raises_a_clear_error():
         assert "events=True" in str(e)
     else:
         raise AssertionError("events() without events=True must raise")
+
+
+def test_stepping_releases_the_gil():
+    import threading
+
+    sim = platoonsim.Simulation("homogeneous", seed=1, overrides={"run.duration_s": 900, "run.warmup_s": 0}, events=False)
+    ticks = 0
+    done = threading.Event()
+
+    def count():
+        nonlocal ticks
+        while not done.is_set():
+            ticks += 1
+
+    counter = threading.Thread(target=count)
+    counter.start()
+    try:
+        before = ticks
+        start = time.perf_counter()
+        sim.step(9000)  # the whole run in one call
+        during, wall = ticks - before, time.perf_counter() - start
+    finally:
+        done.set()
+        counter.join()
+    assert sim.done
+    # With the GIL held for the whole call the counter would stand still (a Python thread
+    # only runs while the GIL is free: at most one switch interval, 5 ms); it counts on while
+    # Rust steps, for most of the call.
+    print(f"{during} ticks in {wall:.2f} s of stepping")
+    assert during > 0.05 * wall * 1e6 and during > 20 * sys.getswitchinterval() * 1e6, (during, wall)
