@@ -14,12 +14,15 @@
 //! | BLC-Sync, BLC-Slow, discretionary sync | [`blc_target`] | 4.3 |
 //! | the deadlock exceptions to BLC-Slow | [`keeps_pace`] | 4.3 \[D\] |
 //! | automation held back while the driver waits to organize | [`held_back`] | 6.20 `cav.organize_while_automated` \[D\] |
+//! | the whole before-lane-change step over a neighbourhood view | [`before_lane_change`] | 4.3 |
 //!
 //! | constant | unit | value | meaning |
 //! |---|---|---|---|
 //! | [`CREEP_SPEED_MPS`] | m/s | 2.23 | spec 4.3's 5 mph: BLC-Slow does not stop a vehicle beside faster traffic below it |
 
-use crate::lanechange::{LaneChangeParams, Side};
+use crate::human::{self, HumanParams};
+use crate::lanechange::{self as lcm, LaneChangeParams, Side};
+use crate::{Leader, Relax};
 
 /// Creep speed of spec 4.3 (5 mph, m/s).
 pub const CREEP_SPEED_MPS: f64 = 2.23;
@@ -168,6 +171,107 @@ pub fn held_back(a_auto: f64, lag_ok: bool, a_ant: f64) -> f64 {
     }
 }
 
+/// What a driver with a lane-change desire sees (spec 4.3): itself, the way ahead in its lane,
+/// the gap in the target lane. Assembled by the engine's decide phase.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BlcView {
+    /// Own speed (m/s) and the acceleration of the last step (m/s²).
+    pub v: f64,
+    pub a: f64,
+    /// Own desired speed in the current lane and in the target lane (m/s).
+    pub v_des: f64,
+    pub v_des_target: f64,
+    /// The leader in the current lane, or the end of the lane as a standing leader.
+    pub leader: Option<Leader>,
+    /// Car-following relaxation in force (spec 4.6).
+    pub relax: Relax,
+    /// The target lane's leader: gap from own front to its rear (m), its speed.
+    pub target_leader: Option<Leader>,
+    /// The target lane's follower, if any.
+    pub target_follower: Option<TargetFollower>,
+    /// The desire: its side is implied; mandatory or not, and its strength γ.
+    pub mandatory: bool,
+    pub gamma: f64,
+    /// An organizing move that accepts the lead gap regardless of the speed difference
+    /// (`cav.organize_regardless_of_speed`, docs/model-choices.md 6.22).
+    pub organize_regardless: bool,
+    /// A CACC follower must split from its string before it changes (spec 3.6.4).
+    pub must_split: bool,
+    /// The vehicle is in an acceleration lane.
+    pub in_accel_lane: bool,
+}
+
+/// The target lane's follower as the lag-gap rule sees it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TargetFollower {
+    /// Gap from its front to own rear (m).
+    pub gap_m: f64,
+    pub v_mps: f64,
+    /// It is yielding to this vehicle.
+    pub yields: bool,
+}
+
+/// The outcome of the before-lane-change step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Blc {
+    /// The acceleration to apply (smoothed, spec 2.4), m/s².
+    pub accel: f64,
+    /// Change lanes in this step.
+    pub change: bool,
+    /// The lead and lag gaps are acceptable.
+    pub lead_ok: bool,
+    pub lag_ok: bool,
+    /// The anticipated acceleration behind the target-lane leader (m/s²).
+    pub a_ant: f64,
+}
+
+/// The before-lane-change step (spec 4.3), in order: the acceleration behind the current
+/// leader and, with relaxed gaps, behind the target-lane leader; gap acceptance
+/// ([`lead_acceptable`], the lag rule); [`change_now`]; BLC-Slow only for a mandatory desire
+/// above the slow-down threshold with the lag gap closed and no [`keeps_pace`] exception;
+/// the target from [`blc_target`], smoothed.
+pub fn before_lane_change(h: &HumanParams, lc: &LaneChangeParams, w: &BlcView) -> Blc {
+    let a_cur = human::target_accel(h, w.v, w.v_des, w.leader, w.relax);
+    let a_ant = human::target_accel(h, w.v, w.v_des_target, w.target_leader, lcm::gap_relax(lc));
+    let lead_ok = match w.target_leader {
+        None => true,
+        Some(l) => lead_acceptable(
+            lcm::accept_lead_gap(h, lc, l.gap_m, w.v, l.v_mps),
+            w.mandatory,
+            w.organize_regardless,
+            a_ant,
+        ),
+    };
+    let lag_ok = match w.target_follower {
+        None => true,
+        Some(f) => lcm::accept_lag_gap(h, lc, f.gap_m, w.v, f.v_mps, a_ant),
+    };
+    let change = change_now(lead_ok, lag_ok, w.must_split);
+    let slow = w.mandatory
+        && !lag_ok
+        && w.gamma > lc.slow_down_desire
+        && !w
+            .target_follower
+            .is_some_and(|f| keeps_pace(f.yields, f.v_mps, w.v, w.in_accel_lane));
+    let target = blc_target(
+        a_cur,
+        a_ant,
+        h.comfort_decel,
+        change,
+        w.mandatory,
+        lead_ok,
+        lag_ok,
+        slow,
+    );
+    Blc {
+        accel: human::smooth_accel(w.a, target, h.smoothing),
+        change,
+        lead_ok,
+        lag_ok,
+        a_ant,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -306,5 +410,80 @@ mod tests {
         assert_eq!(held_back(1.0, true, 0.5), 0.5);
         assert_eq!(held_back(1.0, true, -2.0), 0.0);
         assert_eq!(held_back(1.0, false, -2.0), 1.0);
+    }
+
+    /// A driver at 20 m/s wanting to move right: its lane clear ahead, a target-lane leader
+    /// 40 m ahead at the same speed, and (unless changed) a follower `lag` m behind.
+    fn blc_scene(lag: Option<f64>, mandatory: bool, gamma: f64) -> BlcView {
+        BlcView {
+            v: 20.0,
+            a: 0.0,
+            v_des: 25.0,
+            v_des_target: 25.0,
+            leader: None,
+            relax: Relax::NONE,
+            target_leader: Some(Leader {
+                gap_m: 40.0,
+                v_mps: 20.0,
+            }),
+            target_follower: lag.map(|g| TargetFollower {
+                gap_m: g,
+                v_mps: 20.0,
+                yields: false,
+            }),
+            mandatory,
+            gamma,
+            organize_regardless: false,
+            must_split: false,
+            in_accel_lane: false,
+        }
+    }
+
+    fn blc(w: &BlcView) -> Blc {
+        before_lane_change(&HumanParams::default(), &p(), w)
+    }
+
+    #[test]
+    fn blc_changes_at_once_when_both_gaps_are_open() {
+        let out = blc(&blc_scene(Some(40.0), false, 0.5));
+        assert!(out.change && out.lead_ok && out.lag_ok);
+    }
+
+    #[test]
+    fn blc_a_cacc_follower_splits_before_it_changes() {
+        let out = blc(&BlcView {
+            must_split: true,
+            ..blc_scene(Some(40.0), false, 0.5)
+        });
+        assert!(!out.change && out.lead_ok && out.lag_ok);
+    }
+
+    #[test]
+    fn blc_slow_brakes_comfortably_for_a_closed_lag_gap() {
+        let h = HumanParams::default();
+        let out = blc(&blc_scene(Some(1.0), true, 1.0));
+        assert!(!out.change && !out.lag_ok);
+        assert_eq!(
+            out.accel,
+            human::smooth_accel(0.0, h.comfort_decel, h.smoothing)
+        );
+    }
+
+    #[test]
+    fn blc_slow_waits_when_the_follower_yields() {
+        let mut w = blc_scene(Some(1.0), true, 1.0);
+        w.target_follower = w
+            .target_follower
+            .map(|f| TargetFollower { yields: true, ..f });
+        assert!(
+            blc(&w).accel > 0.0,
+            "no BLC-Slow: free acceleration toward v_des"
+        );
+    }
+
+    #[test]
+    fn blc_a_weak_mandatory_desire_does_not_slow_down() {
+        let out = blc(&blc_scene(Some(1.0), true, 0.5 * p().slow_down_desire));
+        assert!(!out.change && out.accel > 0.0);
     }
 }

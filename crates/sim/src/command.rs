@@ -14,9 +14,11 @@
 //! | `ChangeLane { side }` | a mandatory lane-change desire toward `side` (gap acceptance and before-lane-change behaviour of spec 4.3) | once in the target lane |
 //! | `Release` | every command of the vehicle ends; the model drives | at once |
 
+use crate::decide::View;
 use crate::error::SimError;
 use crate::events::LaneChangeReason;
 use crate::sim::{Decision, Simulation};
+use crate::state::Traffic;
 use crate::vehicle::Vehicle;
 use platoonsim_model::lanechange::Side;
 
@@ -61,7 +63,7 @@ impl Simulation {
             id,
             command,
             left: 0,
-            own_speed: v.human.desired_speed,
+            own_speed: v.driver.human.desired_speed,
         };
         match command {
             Command::Accelerate { accel_mps2, steps } => {
@@ -94,7 +96,7 @@ impl Simulation {
                     active.own_speed = a.own_speed;
                 }
                 self.release_kind(id, |c| matches!(c, Command::DesiredSpeed { .. }));
-                self.traffic.vehicles[s as usize].human.desired_speed = speed_mps;
+                self.traffic.vehicles[s as usize].driver.human.desired_speed = speed_mps;
             }
             Command::ChangeLane { side } => {
                 let to = match side {
@@ -132,7 +134,7 @@ impl Simulation {
             let a = &self.control.commands[k];
             if a.id == id && which(&a.command) {
                 if let (Command::DesiredSpeed { .. }, Some(s)) = (a.command, slot) {
-                    self.traffic.vehicles[s as usize].human.desired_speed = a.own_speed;
+                    self.traffic.vehicles[s as usize].driver.human.desired_speed = a.own_speed;
                 }
                 self.control.commands.remove(k);
             } else {
@@ -143,63 +145,68 @@ impl Simulation {
 
     /// Slot of the vehicle with this id, if it is on the road.
     pub(crate) fn slot_of(&self, id: u64) -> Option<u32> {
-        self.traffic
-            .lanes
-            .iter()
-            .flatten()
-            .copied()
-            .find(|&s| self.traffic.vehicles[s as usize].id == id)
+        slot_of(&self.traffic, id)
     }
+}
 
-    /// Phase 2, after the models: the commands in force override the decisions of their
-    /// vehicles. Commands of vehicles that left the road end; finished ones are removed.
-    #[cold]
-    #[inline(never)]
-    pub(crate) fn apply_commands(&mut self, decisions: &mut [Decision]) {
-        let mut k = 0;
-        while k < self.control.commands.len() {
-            let a = self.control.commands[k].clone();
-            let Some(s) = self.slot_of(a.id) else {
-                self.control.commands.remove(k);
-                continue;
-            };
-            let v = &self.traffic.vehicles[s as usize];
-            let done = match a.command {
-                Command::Accelerate { accel_mps2, .. } => {
-                    // Under external control: the commanded acceleration, and no lane change.
-                    decisions[s as usize].accel = accel_mps2;
-                    decisions[s as usize].change = None;
-                    self.control.commands[k].left -= 1;
-                    self.control.commands[k].left == 0
-                }
-                Command::DesiredSpeed { .. } => false,
-                Command::ChangeLane { side } => {
-                    if u64::from(v.lane) == a.left {
-                        true
-                    } else if toward(v, side, a.left) {
-                        decisions[s as usize] = self.commanded_change(s, v, side);
-                        false
-                    } else {
-                        true // it moved elsewhere meanwhile (another change): the command lapses
-                    }
-                }
-                Command::Release => true,
-            };
-            if done {
-                self.control.commands.remove(k);
-            } else {
-                k += 1;
+/// Phase 2, after the models: the commands in force override the decisions of their
+/// vehicles. Commands of vehicles that left the road end; finished ones are removed.
+#[cold]
+#[inline(never)]
+pub(crate) fn apply_commands(
+    view: &View<'_>,
+    commands: &mut Vec<Active>,
+    decisions: &mut [Decision],
+) {
+    let mut k = 0;
+    while k < commands.len() {
+        let a = commands[k].clone();
+        let Some(s) = slot_of(view.traffic, a.id) else {
+            commands.remove(k);
+            continue;
+        };
+        let v = &view.traffic.vehicles[s as usize];
+        let done = match a.command {
+            Command::Accelerate { accel_mps2, .. } => {
+                // Under external control: the commanded acceleration, and no lane change.
+                decisions[s as usize].accel = accel_mps2;
+                decisions[s as usize].change = None;
+                commands[k].left -= 1;
+                commands[k].left == 0
             }
+            Command::DesiredSpeed { .. } => false,
+            Command::ChangeLane { side } => {
+                if u64::from(v.lane) == a.left {
+                    true
+                } else if toward(v, side, a.left) {
+                    // A mandatory desire of 1, with the gap acceptance and before-lane-change
+                    // behaviour of the driver model.
+                    let mut d = view.forced_change(s, v, side);
+                    d.why = LaneChangeReason::Commanded;
+                    decisions[s as usize] = d;
+                    false
+                } else {
+                    true // it moved elsewhere meanwhile (another change): the command lapses
+                }
+            }
+            Command::Release => true,
+        };
+        if done {
+            commands.remove(k);
+        } else {
+            k += 1;
         }
     }
+}
 
-    /// The decision of a vehicle commanded to change toward `side`: a mandatory desire of 1,
-    /// with the gap acceptance and before-lane-change behaviour of the driver model.
-    fn commanded_change(&self, s: u32, v: &Vehicle, side: Side) -> Decision {
-        let mut d = self.forced_change(s, v, side);
-        d.why = LaneChangeReason::Commanded;
-        d
-    }
+/// Slot of the vehicle with this id, if it is on the road.
+fn slot_of(traffic: &Traffic, id: u64) -> Option<u32> {
+    traffic
+        .lanes
+        .iter()
+        .flatten()
+        .copied()
+        .find(|&s| traffic.vehicles[s as usize].id == id)
 }
 
 /// Is `target` the lane next to the vehicle on `side`?

@@ -5,8 +5,12 @@
 
 use crate::events::LaneChangeReason;
 
-use crate::sense::{Neighbours, NONE};
-use crate::sim::{Decision, Simulation};
+use crate::config::Config;
+use crate::insert::Entrance;
+use crate::organize::Organizer;
+use crate::sense::{Neighbours, Sensed, NONE};
+use crate::sim::Decision;
+use crate::state::{Clock, Control, RoadState, Scratch, Traffic};
 use crate::vehicle::{Mode, Relaxation, Vehicle};
 use platoonsim_model::cav::{self, Family};
 use platoonsim_model::driver;
@@ -33,44 +37,113 @@ pub(crate) struct Desire {
     pub organize: bool,
 }
 
-impl Simulation {
-    /// Phase 2.
-    pub(crate) fn decide(&mut self) {
-        let n = self.traffic.vehicles.len();
-        if self.scratch.decisions.len() < n {
-            self.scratch.decisions.resize(
-                n,
-                Decision {
-                    accel: 0.0,
-                    mode: Mode::Cf,
-                    family: Family::Speed,
-                    regime: None,
-                    time_gap: 0.0,
-                    change: None,
-                    why: LaneChangeReason::Discretionary,
-                    takeover: false,
-                },
-            );
+/// What the decide phase reads: the step-start state, part by part. Every rule of the phase
+/// is a method of this view (here, in `desire.rs` and in `yielding.rs`), so none can write
+/// the state: the phase's only output is the decision per vehicle.
+pub(crate) struct View<'a> {
+    pub cfg: &'a Config,
+    pub clock: &'a Clock,
+    pub traffic: &'a Traffic,
+    pub road: &'a RoadState,
+    /// What the sense phase found, per slot.
+    pub sensed: &'a [Sensed],
+    /// Per lane, (x, v) at the step start (sense phase).
+    pub lane_xv: &'a [Vec<(f64, f64)>],
+    /// Per on-ramp, the anticipation factors of this step ([`ramp_factors`]).
+    pub ramp_factor: &'a [[f64; 2]],
+    pub organizer: &'a dyn Organizer,
+    /// Whether the organizer advises human drivers (index 0) and CAVs (1).
+    pub advise: [bool; 2],
+}
+
+/// Phase 2: every vehicle's decision from the step-start state, into `scratch.decisions`;
+/// then the commands in force override the decisions of their vehicles (`command.rs`).
+pub(crate) fn decide(
+    cfg: &Config,
+    clock: &Clock,
+    traffic: &Traffic,
+    road: &RoadState,
+    entrances: &[Entrance],
+    control: &mut Control,
+    scratch: &mut Scratch,
+) {
+    let n = traffic.vehicles.len();
+    if scratch.decisions.len() < n {
+        scratch.decisions.resize(
+            n,
+            Decision {
+                accel: 0.0,
+                mode: Mode::Cf,
+                family: Family::Speed,
+                regime: None,
+                time_gap: 0.0,
+                change: None,
+                why: LaneChangeReason::Discretionary,
+                takeover: false,
+            },
+        );
+    }
+    ramp_factors(cfg, traffic, road, entrances, &mut scratch.ramp_factor);
+    let view = View {
+        cfg,
+        clock,
+        traffic,
+        road,
+        sensed: &scratch.sensed,
+        lane_xv: &scratch.lane_xv,
+        ramp_factor: &scratch.ramp_factor,
+        organizer: control.organizer.as_ref(),
+        advise: control.advise,
+    };
+    // The lanes are walked by iterator (no bounds checks on the lane lists).
+    let decisions = &mut scratch.decisions;
+    for lane in &traffic.lanes {
+        for &s in lane {
+            decisions[s as usize] = view.decide_one(s);
         }
-        self.update_ramp_density();
-        // Taken out for the loop, so that the lanes are walked by iterator (no bounds checks
-        // on the lane lists) while the decisions are written.
-        let mut decisions = std::mem::take(&mut self.scratch.decisions);
-        for lane in &self.traffic.lanes {
-            for &s in lane {
-                decisions[s as usize] = self.decide_one(s);
-            }
-        }
-        if !self.control.commands.is_empty() {
-            self.apply_commands(&mut decisions);
-        }
-        self.scratch.decisions = decisions;
+    }
+    if !control.commands.is_empty() {
+        crate::command::apply_commands(&view, &mut control.commands, decisions);
+    }
+}
+
+/// Density on each on-ramp (its queue plus its acceleration lane) (veh/km), for the
+/// anticipation rule (spec 4.2), and from it the rule's factor for j = 1, 2.
+fn ramp_factors(
+    cfg: &Config,
+    traffic: &Traffic,
+    road: &RoadState,
+    entrances: &[Entrance],
+    factors: &mut [[f64; 2]],
+) {
+    for (i, r) in road.geom.on_ramps.iter().enumerate() {
+        let queued = entrances[i + 1].waiting();
+        let lane = &traffic.lanes[r.lane as usize];
+        let on_accel = if r.adds_lane {
+            0
+        } else {
+            let hi = lane.partition_point(|&o| traffic.vehicles[o as usize].x >= r.accel_end);
+            let lo = lane.partition_point(|&o| traffic.vehicles[o as usize].x >= r.x);
+            lo.saturating_sub(hi)
+        };
+        let density = (queued + on_accel) as f64 / (r.density_length_m / 1000.0);
+        let c = cfg.lane_change.anticipation_strength;
+        // The same expression as per vehicle before, so the same bits.
+        factors[i] = [1, 2].map(|j: u32| 1.0 + c * (density / RHO_JAM_PER_KM) / f64::from(j));
+    }
+}
+
+impl View<'_> {
+    /// Is the vehicle in slot `s` a CAV?
+    #[inline]
+    pub(crate) fn is_cav(&self, s: u32) -> bool {
+        s != NONE && self.traffic.vehicles[s as usize].is_cav()
     }
 
     /// The decision of a vehicle that must change toward `side` (a commanded change): a
     /// mandatory desire of 1 with the model's gap acceptance and BLC behaviour (spec 4.3).
     pub(crate) fn forced_change(&self, s: u32, v: &Vehicle, side: Side) -> Decision {
-        let nb = &self.scratch.sensed[s as usize].nb;
+        let nb = &self.sensed[s as usize].nb;
         let (leader, _) = self.leader_or_wall(s, v, nb.leader);
         let d = Desire {
             side,
@@ -102,7 +175,7 @@ impl Simulation {
         if self.road.geom.plain {
             return (leader, false);
         }
-        match self.scratch.sensed[s as usize].here.wall {
+        match self.sensed[s as usize].here.wall {
             Some(w) if leader.is_none_or(|l| w - v.x < l.gap_m) => (
                 Some(Leader {
                     gap_m: w - v.x,
@@ -114,42 +187,21 @@ impl Simulation {
         }
     }
 
-    /// Density on each on-ramp (its queue plus its acceleration lane) (veh/km), for the
-    /// anticipation rule (spec 4.2), and from it the rule's factor for j = 1, 2.
-    fn update_ramp_density(&mut self) {
-        for (i, r) in self.road.geom.on_ramps.iter().enumerate() {
-            let queued = self.entrances[i + 1].waiting();
-            let lane = &self.traffic.lanes[r.lane as usize];
-            let on_accel = if r.adds_lane {
-                0
-            } else {
-                let hi =
-                    lane.partition_point(|&o| self.traffic.vehicles[o as usize].x >= r.accel_end);
-                let lo = lane.partition_point(|&o| self.traffic.vehicles[o as usize].x >= r.x);
-                lo.saturating_sub(hi)
-            };
-            let density = (queued + on_accel) as f64 / (r.density_length_m / 1000.0);
-            let c = self.cfg.lane_change.anticipation_strength;
-            // The same expression as per vehicle before, so the same bits.
-            self.scratch.ramp_factor[i] =
-                [1, 2].map(|j: u32| 1.0 + c * (density / RHO_JAM_PER_KM) / f64::from(j));
-        }
-    }
-
     /// Current relaxation factors of a vehicle (spec 4.6).
     #[inline]
     fn relax_now(&self, v: &Vehicle) -> Relax {
-        match v.relax {
+        match v.lcs.relax {
             Relaxation::None => Relax::NONE,
-            Relaxation::Since(since) => {
-                lcm::relax_at(&v.lc, (self.clock.step - since) as f64 * self.clock.dt)
-            }
+            Relaxation::Since(since) => lcm::relax_at(
+                &v.driver.lc,
+                (self.clock.step - since) as f64 * self.clock.dt,
+            ),
         }
     }
 
     fn decide_one(&self, s: u32) -> Decision {
         let v = &self.traffic.vehicles[s as usize];
-        let nb = &self.scratch.sensed[s as usize].nb;
+        let nb = &self.sensed[s as usize].nb;
         let v_des = self.v_des_in(s, v, v.lane as usize);
         let (leader, wall) = self.leader_or_wall(s, v, nb.leader);
 
@@ -163,7 +215,10 @@ impl Simulation {
             // discretionary synchronization would (no acceleration beyond what the target-lane
             // leader allows; it never brakes for it). A driver who took over and lost the gap
             // hands back once the relaxation has ended.
-            if d.organize && self.cfg.cav.organize_while_automated && v.relax == Relaxation::None {
+            if d.organize
+                && self.cfg.cav.organize_while_automated
+                && v.lcs.relax == Relaxation::None
+            {
                 let (blc, g) = self.before_lane_change(s, v, nb, leader, d);
                 if g.lead_ok && g.lag_ok {
                     return blc;
@@ -191,22 +246,29 @@ impl Simulation {
         // 3. Human model (humans and CAVs driving manually), possibly yielding.
         let v_des = self.manual_v_des(s, v, v_des);
         let relax = self.relax_now(v);
-        let mut target = human::target_accel(&v.human, v.v, v_des, leader, relax);
+        let mut target = human::target_accel(&v.driver.human, v.v, v_des, leader, relax);
         let mut mode = Mode::Cf;
         if let Some(req) = yield_to {
             let r = &self.traffic.vehicles[req as usize];
-            target = lcm::yield_accel(&v.human, &v.lc, v.v, v_des, target, self.yield_gap(v, r));
+            target = lcm::yield_accel(
+                &v.driver.human,
+                &v.driver.lc,
+                v.v,
+                v_des,
+                target,
+                self.yield_gap(v, r),
+            );
             mode = Mode::Ycf {
                 to: r.id,
                 auto: false,
             };
         }
         Decision {
-            accel: human::smooth_accel(v.a, target, v.human.smoothing),
+            accel: human::smooth_accel(v.a, target, v.driver.human.smoothing),
             mode,
-            family: v.family,
+            family: v.cacc.family,
             regime: None,
-            time_gap: v.time_gap_s,
+            time_gap: v.cacc.time_gap_s,
             change: None,
             why: LaneChangeReason::Discretionary,
             takeover: false,
@@ -230,8 +292,8 @@ impl Simulation {
             if let Some(req) = self.agreed_request(v, nb, true) {
                 let r = &self.traffic.vehicles[req as usize];
                 d.accel = lcm::yield_accel(
-                    &v.human,
-                    &v.lc,
+                    &v.driver.human,
+                    &v.driver.lc,
                     v.v,
                     self.v_des_in(s, v, v.lane as usize),
                     d.accel,
@@ -250,9 +312,9 @@ impl Simulation {
     fn cav_control(&self, s: u32, v: &Vehicle, leader: Option<Leader>, wall: bool) -> Decision {
         let p = &self.cfg.cav;
         let v_des = self.v_des_in(s, v, v.lane as usize);
-        let ld = self.scratch.sensed[s as usize].nb.leader;
+        let ld = self.sensed[s as usize].nb.leader;
         let leader = leader.filter(|l| l.gap_m <= p.sensor_range_m);
-        let mut time_gap = v.time_gap_s;
+        let mut time_gap = v.cacc.time_gap_s;
         let cmd = match leader {
             None => cav::Command {
                 accel: cav::speed_regulation(p, v.v, v_des),
@@ -260,17 +322,17 @@ impl Simulation {
                 family: Family::Speed,
             },
             Some(l) if !wall && self.is_cav(ld) => {
-                let target = if !self.scratch.sensed[s as usize].linked {
+                let target = if !self.sensed[s as usize].linked {
                     p.inter_platoon_gap_s
                 } else {
-                    v.cacc_gap_s
+                    v.cacc.gap_s
                 };
                 time_gap = cav::ramp_time_gap(p, time_gap, target, self.clock.dt);
-                cav::cacc(p, v.v, v.a, v_des, l, time_gap, v.family)
+                cav::cacc(p, v.v, v.a, v_des, l, time_gap, v.cacc.family)
             }
             Some(l) => {
                 time_gap = cav::ramp_time_gap(p, time_gap, p.acc_time_gap_s, self.clock.dt);
-                cav::acc(p, v.v, v_des, Some(l), time_gap, v.family)
+                cav::acc(p, v.v, v_des, Some(l), time_gap, v.cacc.family)
             }
         };
         Decision {
@@ -321,60 +383,45 @@ impl Simulation {
             Side::Right => (v.lane as usize).saturating_sub(1),
         };
         let v_des_target = self.v_des_in(s, v, target);
-        let h = &v.human;
         // An automated CAV hands over to its driver now ("manual mode from a lane-change desire
         // on", spec 3.1). At a CACC gap of 0.6 s the human model alone would brake hard; the
         // driver takes over with relaxed car following that recovers over t_s, as after a cut-in
         // (spec 4.6) [D].
         let takeover = v.automated();
         let relax = if takeover {
-            lcm::gap_relax(&v.lc)
+            lcm::gap_relax(&v.driver.lc)
         } else {
             self.relax_now(v)
         };
-        let a_cur = human::target_accel(h, v.v, v_des, leader, relax);
-        let lead_view = self.view(v, tl);
-        let a_ant = human::target_accel(h, v.v, v_des_target, lead_view, lcm::gap_relax(&v.lc));
-        let lead_ok = match lead_view {
-            None => true,
-            Some(l) => {
-                // Discretionary changes must not have to brake behind the new leader (spec
-                // 4.3); a mandatory change, and a move toward the PD lane "regardless of the
-                // speed difference" (`cav.organize_regardless_of_speed` [D] 6.22), need not.
-                driver::lead_acceptable(
-                    lcm::accept_lead_gap(h, &v.lc, l.gap_m, v.v, l.v_mps),
-                    d.mandatory,
-                    d.organize && self.cfg.cav.organize_regardless_of_speed,
-                    a_ant,
-                )
-            }
-        };
-        let lag_ok = if tf == NONE {
-            true
-        } else {
+        let target_follower = (tf != NONE).then(|| {
             let f = &self.traffic.vehicles[tf as usize];
-            lcm::accept_lag_gap(h, &v.lc, v.rear() - f.x, v.v, f.v, a_ant)
+            driver::TargetFollower {
+                gap_m: v.rear() - f.x,
+                v_mps: f.v,
+                yields: matches!(f.mode, Mode::Ycf { to, .. } if to == v.id),
+            }
+        });
+        let view = driver::BlcView {
+            v: v.v,
+            a: v.a,
+            v_des,
+            v_des_target,
+            leader,
+            relax,
+            target_leader: self.view(v, tl),
+            target_follower,
+            mandatory: d.mandatory,
+            gamma: d.gamma,
+            // A move toward the PD lane accepts the lead gap "regardless of the speed
+            // difference" (`cav.organize_regardless_of_speed` [D] 6.22).
+            organize_regardless: d.organize && self.cfg.cav.organize_regardless_of_speed,
+            must_split: self.sensed[s as usize].linked,
+            in_accel_lane: !self.road.geom.plain && self.sensed[s as usize].here.accel,
         };
-        // Only a platoon leader changes lanes: a follower splits first (spec 3.6.4).
-        let must_split = self.scratch.sensed[s as usize].linked;
-        let change = driver::change_now(lead_ok, lag_ok, must_split);
-        // BLC-Slow only for a mandatory change with the lag gap closed (evaluated lazily:
-        // `keeps_pace` reads the follower).
-        let slow =
-            d.mandatory && !lag_ok && d.gamma > v.lc.slow_down_desire && !self.keeps_pace(s, v, tf);
-        let target = driver::blc_target(
-            a_cur,
-            a_ant,
-            h.comfort_decel,
-            change,
-            d.mandatory,
-            lead_ok,
-            lag_ok,
-            slow,
-        );
+        let blc = driver::before_lane_change(&v.driver.human, &v.driver.lc, &view);
         (
             Decision {
-                accel: human::smooth_accel(v.a, target, h.smoothing),
+                accel: blc.accel,
                 mode: Mode::Blc {
                     side: d.side,
                     mandatory: d.mandatory,
@@ -382,8 +429,8 @@ impl Simulation {
                 },
                 family: Family::Speed,
                 regime: None,
-                time_gap: v.time_gap_s,
-                change: change.then_some(d.side),
+                time_gap: v.cacc.time_gap_s,
+                change: blc.change.then_some(d.side),
                 why: if d.mandatory {
                     LaneChangeReason::Mandatory
                 } else if d.organize {
@@ -394,30 +441,10 @@ impl Simulation {
                 takeover,
             },
             Gaps {
-                lead_ok,
-                lag_ok,
-                a_ant,
+                lead_ok: blc.lead_ok,
+                lag_ok: blc.lag_ok,
+                a_ant: blc.a_ant,
             },
-        )
-    }
-
-    /// Exceptions to BLC-Slow [D]: the target-lane follower is yielding to this vehicle (it is
-    /// dropping back to make room; slowing down as well would leave both waiting for the other,
-    /// a deadlock seen at standstill), or the follower is faster (it passes by itself) and
-    /// either this vehicle is in an acceleration lane (slowing would only widen the speed
-    /// difference the next gap must absorb) or it is already below the creep speed (spec 4.3's
-    /// 5 mph): beside a slow gapless string, BLC-Slow would stop it in an open lane and stop
-    /// the whole lane behind it.
-    fn keeps_pace(&self, s: u32, v: &Vehicle, tf: u32) -> bool {
-        if tf == NONE {
-            return false;
-        }
-        let f = &self.traffic.vehicles[tf as usize];
-        driver::keeps_pace(
-            matches!(f.mode, Mode::Ycf { to, .. } if to == v.id),
-            f.v,
-            v.v,
-            !self.road.geom.plain && self.scratch.sensed[s as usize].here.accel,
         )
     }
 }
@@ -428,10 +455,10 @@ const RHO_JAM_PER_KM: f64 = 1000.0 / 6.0;
 /// The driver's own desired speed v_F, in no particular lane.
 #[inline]
 pub(crate) fn v_des_of(v: &Vehicle) -> f64 {
-    v.human.desired_speed
+    v.driver.human.desired_speed
 }
 
-impl Simulation {
+impl View<'_> {
     /// The desired speed of a driver in manual control (a human, or a CAV's driver) in its own
     /// lane, from `v_des`, that lane's `v_des_in`: with cross-lane friction on (spec 2.7), the
     /// pull of the slower adjacent lane. The automation keeps its set speed: friction is a
@@ -448,10 +475,10 @@ impl Simulation {
     /// adjacent lanes (the same scan, n_scan vehicles within d_scan, as the lane-change
     /// motivation; a lane with no vehicle in range counts as `v_des`, so it adds nothing).
     fn with_friction(&self, s: u32, v: &Vehicle, v_des: f64, c_fr: f64) -> f64 {
-        let nb = &self.scratch.sensed[s as usize].nb;
+        let nb = &self.sensed[s as usize].nb;
         let lane = v.lane as usize;
         let mut v_adj = v_des;
-        if lane + 1 < self.scratch.lane_xv.len() {
+        if lane + 1 < self.lane_xv.len() {
             v_adj = v_adj.min(self.avg_speed_ahead(lane + 1, nb.left_j as usize, v.x, v_des));
         }
         if lane > 0 {
@@ -469,11 +496,8 @@ impl Simulation {
         if self.road.lane_caps_mps.is_empty() {
             return v_des_of(v); // no lookup of the vehicle's geometry on the hot path
         }
-        self.road.lane_capped(
-            v_des_of(v),
-            lane,
-            self.scratch.sensed[s as usize].here.right,
-        )
+        self.road
+            .lane_capped(v_des_of(v), lane, self.sensed[s as usize].here.right)
     }
 }
 

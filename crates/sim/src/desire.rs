@@ -2,17 +2,17 @@
 //! strategy's advice, the anticipation of on-ramps and the speeds ahead. The rules themselves
 //! are pure functions in `platoonsim_model::driver`; this module gathers their inputs.
 
+use crate::decide::View;
 use crate::decide::{v_des_of, Desire};
 use crate::network::NO_LANE;
 use crate::organize::Advice;
 use crate::sense::Neighbours;
-use crate::sim::Simulation;
 use crate::vehicle::{Kind, Vehicle, NEVER, NO_EXIT};
 use platoonsim_model::bounded;
 use platoonsim_model::driver;
 use platoonsim_model::lanechange::{self as lcm, Side};
 
-impl Simulation {
+impl View<'_> {
     /// Spec 4.2: the lane-change desire, if it exceeds the driver's threshold.
     #[inline]
     pub(crate) fn desire(&self, s: u32, v: &Vehicle, nb: &Neighbours) -> Option<Desire> {
@@ -22,9 +22,9 @@ impl Simulation {
         }
         // Anti-oscillation (spec 4.2), first part: no desire at all so soon after a change
         // (checked before the scans below; `desire` has no side effects).
-        let since = if v.last_lc_step != NEVER {
-            let since = (self.clock.step - v.last_lc_step) as f64 * self.clock.dt;
-            if driver::too_soon_after_change(&v.lc, since) {
+        let since = if v.lcs.last_step != NEVER {
+            let since = (self.clock.step - v.lcs.last_step) as f64 * self.clock.dt;
+            if driver::too_soon_after_change(&v.driver.lc, since) {
                 return None;
             }
             Some(since)
@@ -34,8 +34,8 @@ impl Simulation {
         // A vehicle its strategy advises (`organize`) takes the longer way; the others (every
         // vehicle without a strategy) pay nothing for strategies.
         let advised = match v.kind {
-            Kind::Human => self.control.advise[0],
-            Kind::Cav => self.control.advise[1],
+            Kind::Human => self.advise[0],
+            Kind::Cav => self.advise[1],
         };
         if advised {
             return self.advised_desire(s, v, nb, since);
@@ -46,7 +46,7 @@ impl Simulation {
             self.mandatory(s, v, None)
         };
         let [left, right] = self.discretionary(s, v, nb, self.is_follower(s, v));
-        let (side, gamma) = driver::combine(mandatory, left, right, v.lc.mandatory_weight)?;
+        let (side, gamma) = driver::combine(mandatory, left, right, v.driver.lc.mandatory_weight)?;
         settle(v, since, side, gamma, mandatory.is_some(), false)
     }
 
@@ -62,11 +62,9 @@ impl Simulation {
         nb: &Neighbours,
         since: Option<f64>,
     ) -> Option<Desire> {
-        let advice = self.control.organizer.advise(
-            v,
-            self.clock.step as f64 * self.clock.dt,
-            &self.road.geom,
-        );
+        let advice =
+            self.organizer
+                .advise(v, self.clock.step as f64 * self.clock.dt, &self.road.geom);
         let avoid = match advice {
             Advice::Avoid { lane, from_m } => Some((lane, from_m)),
             _ => None,
@@ -89,7 +87,8 @@ impl Simulation {
             let [mut left, mut right] = self.discretionary(s, v, nb, self.is_follower(s, v));
             if let Some((lane, from_m)) = avoid {
                 let closed = |target: u32| {
-                    target == lane && lcm::mandatory_desire(&v.lc, from_m - v.x, v.v, 1) > 0.0
+                    target == lane
+                        && lcm::mandatory_desire(&v.driver.lc, from_m - v.x, v.v, 1) > 0.0
                 };
                 if closed(v.lane + 1) {
                     left = None;
@@ -98,7 +97,7 @@ impl Simulation {
                     right = None;
                 }
             }
-            driver::combine(mandatory, left, right, v.lc.mandatory_weight)?
+            driver::combine(mandatory, left, right, v.driver.lc.mandatory_weight)?
         };
         settle(v, since, side, gamma, mandatory.is_some(), join.is_some())
     }
@@ -108,22 +107,20 @@ impl Simulation {
     /// discretionary desire (w_CAV follower, spec 4.7).
     #[inline]
     pub(crate) fn is_follower(&self, s: u32, v: &Vehicle) -> bool {
-        self.scratch.sensed[s as usize].linked
-            || (v.is_cav() && self.scratch.sensed[s as usize].cav_ahead)
+        self.sensed[s as usize].linked || (v.is_cav() && self.sensed[s as usize].cav_ahead)
     }
 
     /// The side toward which vehicle `v` organizes now (its strategy's `Join` advice, no
     /// mandatory need aside: it is not near its exit), if it is not in the organized lane.
     /// Used for yielding to organizing vehicles.
     pub(crate) fn organizing_side(&self, v: &Vehicle) -> Option<Side> {
-        if !self.control.advise[v.kind as usize] || self.exit_near(v) {
+        if !self.advise[v.kind as usize] || self.exit_near(v) {
             return None;
         }
-        match self.control.organizer.advise(
-            v,
-            self.clock.step as f64 * self.clock.dt,
-            &self.road.geom,
-        ) {
+        match self
+            .organizer
+            .advise(v, self.clock.step as f64 * self.clock.dt, &self.road.geom)
+        {
             Advice::Join { lane, .. } => driver::toward(v.lane, lane),
             _ => None,
         }
@@ -137,7 +134,7 @@ impl Simulation {
 
     /// Is the vehicle's off-ramp within `range` ahead?
     pub(crate) fn exit_within(&self, v: &Vehicle, range: f64) -> bool {
-        v.exit != NO_EXIT && self.road.geom.off_ramps[v.exit as usize].x - v.x < range
+        v.route.exit != NO_EXIT && self.road.geom.off_ramps[v.route.exit as usize].x - v.x < range
     }
 
     /// Mandatory desire (spec 4.2), if any is positive: leaving a lane that ends (an
@@ -151,7 +148,7 @@ impl Simulation {
         // that ends at `from_m`, toward the right unless it is the rightmost lane.
         if let Some((lane, from_m)) = avoid {
             if v.lane == lane {
-                let g = lcm::mandatory_desire(&v.lc, from_m - v.x, v.v, 1);
+                let g = lcm::mandatory_desire(&v.driver.lc, from_m - v.x, v.v, 1);
                 if g > 0.0 {
                     let side = if lane == 0 { Side::Left } else { Side::Right };
                     best = Some((side, g));
@@ -161,22 +158,22 @@ impl Simulation {
         if self.road.geom.plain {
             return best;
         }
-        if let Some(w) = self.scratch.sensed[s as usize].here.wall {
+        if let Some(w) = self.sensed[s as usize].here.wall {
             let probe = (w - 1.0).max(v.x);
             let side = if self.road.geom.through(v.lane + 1, probe) || v.lane == 0 {
                 Side::Left
             } else {
                 Side::Right
             };
-            let g = lcm::mandatory_desire(&v.lc, w - v.x, v.v, 1);
+            let g = lcm::mandatory_desire(&v.driver.lc, w - v.x, v.v, 1);
             if g > 0.0 && best.is_none_or(|(_, b)| g > b) {
                 best = Some((side, g));
             }
         }
-        if v.exit != NO_EXIT {
-            let r = &self.road.geom.off_ramps[v.exit as usize];
+        if v.route.exit != NO_EXIT {
+            let r = &self.road.geom.off_ramps[v.route.exit as usize];
             if v.x < r.x && v.lane > r.lane {
-                let g = lcm::mandatory_desire(&v.lc, r.x - v.x, v.v, v.lane - r.lane);
+                let g = lcm::mandatory_desire(&v.driver.lc, r.x - v.x, v.v, v.lane - r.lane);
                 if g > 0.0 && best.is_none_or(|(_, b)| g > b) {
                     best = Some((Side::Right, g));
                 }
@@ -227,8 +224,8 @@ impl Simulation {
         // η_e: no discretionary change within E_exit of the exit; a penalty on moving away from
         // the exit lane within the anticipation range (spec 4.2, 4.9).
         let mut eta_left = 1.0;
-        if v.exit != NO_EXIT {
-            let d = self.road.geom.off_ramps[v.exit as usize].x - v.x;
+        if v.route.exit != NO_EXIT {
+            let d = self.road.geom.off_ramps[v.route.exit as usize].x - v.x;
             if d < lcd.exit_no_change_m {
                 return [None, None];
             }
@@ -252,10 +249,10 @@ impl Simulation {
         }
         // v_ant ≤ the driver's desired speed in the target lane ≤ its own desired speed, so no
         // side can beat the absolute gain gate: nothing to scan.
-        if v_des_of(v) - v_cur < v.lc.min_speed_gain_mps {
+        if v_des_of(v) - v_cur < v.driver.lc.min_speed_gain_mps {
             return [None, None];
         }
-        let here = &self.scratch.sensed[s as usize].here;
+        let here = &self.sensed[s as usize].here;
         let mut out = [None, None];
         let lane = v.lane as usize;
         for (i, side, target, j, w, eta, open) in [
@@ -286,7 +283,7 @@ impl Simulation {
             }
 
             let v_ant = self.anticipated_speed(s, v, target, j as usize, v_cur);
-            out[i] = Some(w * eta * lcm::discretionary_desire(&v.lc, v_ant, v_cur, side));
+            out[i] = Some(w * eta * lcm::discretionary_desire(&v.driver.lc, v_ant, v_cur, side));
         }
         out
     }
@@ -299,7 +296,7 @@ impl Simulation {
         self.road
             .geom
             .wall_ahead(target as u32, v.x)
-            .is_some_and(|w| lcm::mandatory_desire(&v.lc, w - v.x, v.v, 1) > 0.0)
+            .is_some_and(|w| lcm::mandatory_desire(&v.driver.lc, w - v.x, v.v, 1) > 0.0)
     }
 
     /// Spec 4.2 "Anticipatory": in the two rightmost through lanes within the anticipation
@@ -307,7 +304,7 @@ impl Simulation {
     #[inline]
     fn anticipation_factor(&self, s: u32, v: &Vehicle) -> f64 {
         let lcd = &self.cfg.lane_change;
-        let here = &self.scratch.sensed[s as usize].here;
+        let here = &self.sensed[s as usize].here;
         let k = here.ramps_upto as usize;
         let Some((ramp, _)) =
             self.road
@@ -329,7 +326,7 @@ impl Simulation {
             return 1.0;
         }
         // 1 + c_inc (ρ_ramp/ρ_jam)/j, computed once per step (`update_ramp_density`).
-        self.scratch.ramp_factor[ramp][(j - 1) as usize]
+        self.ramp_factor[ramp][(j - 1) as usize]
     }
 
     /// Average speed of the next `n_scan` vehicles within `d_scan` ahead of `x` in `lane`,
@@ -338,7 +335,7 @@ impl Simulation {
     pub(crate) fn avg_speed_ahead(&self, lane: usize, from: usize, x: f64, v_empty: f64) -> f64 {
         let lcd = &self.cfg.lane_change;
         // The vehicles ahead, nearest first (one bounds check for the scan).
-        let ahead = &self.scratch.lane_xv[lane][..from];
+        let ahead = &self.lane_xv[lane][..from];
         let mut sum = 0.0;
         let mut n = 0u32;
         for &(ox, ov) in ahead.iter().rev().take(lcd.scan_vehicles as usize) {
@@ -370,12 +367,12 @@ impl Simulation {
         if j == 0 {
             return v_des; // no target leader
         }
-        let (tl_x, tl_v) = self.scratch.lane_xv[target][j - 1];
+        let (tl_x, tl_v) = self.lane_xv[target][j - 1];
         if tl_x - v.x > self.cfg.lane_change.scan_distance_m {
             return v_des;
         }
         let bound = bounded::min(tl_v, v_des);
-        if bound - v_cur < v.lc.min_speed_gain_mps {
+        if bound - v_cur < v.driver.lc.min_speed_gain_mps {
             return bound;
         }
         let avg = self.avg_speed_ahead(target, j, v.x, v_des);
@@ -395,11 +392,11 @@ fn settle(
     organize: bool,
 ) -> Option<Desire> {
     if let Some(since) = since {
-        if driver::quick_return(&v.lc, since, gamma, side, v.last_lc_side) {
+        if driver::quick_return(&v.driver.lc, since, gamma, side, v.lcs.last_side) {
             return None;
         }
     }
-    driver::wants_change(&v.lc, gamma).then_some(Desire {
+    driver::wants_change(&v.driver.lc, gamma).then_some(Desire {
         side,
         gamma,
         mandatory,

@@ -57,7 +57,7 @@ pub(crate) fn observe_detectors(
                     x1: v.x,
                     v0,
                     v1: v.v,
-                    len: v.human.length_m,
+                    len: v.driver.human.length_m,
                     cav: v.is_cav(),
                 };
                 det.observe(l, m, dt);

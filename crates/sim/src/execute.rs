@@ -83,24 +83,31 @@ fn try_change(
         }
     });
     if let Some(l) = lead {
-        if !lcm::accept_lead_gap(&v.human, &v.lc, l.gap_m, v.v, l.v_mps) {
+        if !lcm::accept_lead_gap(&v.driver.human, &v.driver.lc, l.gap_m, v.v, l.v_mps) {
             return;
         }
     }
     if tf != NONE {
         let f = &traffic.vehicles[tf as usize];
         let a_ant = human::target_accel(
-            &v.human,
+            &v.driver.human,
             v.v,
             road.desired_speed_in(
-                v.human.desired_speed,
+                v.driver.human.desired_speed,
                 to,
                 scratch.sensed[s as usize].here.right,
             ),
             lead,
-            lcm::gap_relax(&v.lc),
+            lcm::gap_relax(&v.driver.lc),
         );
-        if !lcm::accept_lag_gap(&v.human, &v.lc, v.rear() - f.x, v.v, f.v, a_ant) {
+        if !lcm::accept_lag_gap(
+            &v.driver.human,
+            &v.driver.lc,
+            v.rear() - f.x,
+            v.v,
+            f.v,
+            a_ant,
+        ) {
             return;
         }
     }
@@ -115,10 +122,10 @@ fn try_change(
     let v = &mut traffic.vehicles[s as usize];
     v.lane = to as u32;
     v.mode = Mode::Cf;
-    v.relax = Relaxation::Since(step + 1);
-    v.last_lc_step = step;
-    v.last_lc_side = Some(side);
-    v.lane_changes += 1;
+    v.lcs.relax = Relaxation::Since(step + 1);
+    v.lcs.last_step = step;
+    v.lcs.last_side = Some(side);
+    v.lcs.count += 1;
     if watch.observing {
         let (id, kind, x) = (v.id, v.kind, v.x);
         watch.events.push(Event::LaneChange {
@@ -135,7 +142,7 @@ fn try_change(
     if tf != NONE {
         let f = &mut traffic.vehicles[tf as usize];
         if !f.automated() {
-            f.relax = Relaxation::Since(step + 1);
+            f.lcs.relax = Relaxation::Since(step + 1);
             if matches!(f.mode, Mode::Ycf { .. }) {
                 f.mode = Mode::Cf;
             }

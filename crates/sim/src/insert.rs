@@ -17,8 +17,12 @@ use crate::config::Config;
 use crate::events::Event;
 use crate::network::NO_LANE;
 use crate::rng::{Purpose, Stream};
-use crate::sim::Simulation;
-use crate::vehicle::{Kind, Mode, ModeLabel, Relaxation, Vehicle, NEVER, NO_EXIT};
+use crate::sense::Sensed;
+use crate::state::{Clock, RoadState, Traffic, Watch};
+use crate::vehicle::{
+    CaccState, Driver, Kind, LaneChangeState, Mode, ModeLabel, Relaxation, Route, Stats, Vehicle,
+    NEVER, NO_EXIT,
+};
 use platoonsim_model::cav::{self, Family};
 use platoonsim_model::human::{self, HUMAN_DRAWS};
 use platoonsim_model::lanechange::LC_DRAWS;
@@ -165,40 +169,65 @@ fn create(cfg: &Config, id: u64, x: f64, t: f64, origin: u32) -> Vehicle {
         Kind::Human => 0.0,
     };
     Vehicle {
-        id,
-        kind,
-        entered_step: NEVER,
-        measured: false,
-        human,
-        lc: cfg.lane_change.sample(&zl),
-        cacc_gap_s,
-        time_gap_s: 0.0,
-        string_pred: NEVER,
-        rng,
         x: 0.0,
-        x_prev: 0.0,
         v: 0.0,
         a: 0.0,
+        x_prev: 0.0,
+        id,
         lane: 0,
+        kind,
         mode: Mode::Cf,
-        relax: Relaxation::None,
-        family: Family::Speed,
-        regime: None,
-        last_lc_step: NEVER,
-        last_lc_side: None,
-        lane_changes: 0,
-        max_platoon: 1,
-        max_platoon_tg2: 1,
-        exit,
-        origin,
-        planned_exit: exit,
-        conflict_step: NEVER,
-        conflict_leader: NEVER,
-        reported: (ModeLabel::Cf, None),
+        cacc: CaccState {
+            pred: NEVER,
+            time_gap_s: 0.0,
+            gap_s: cacc_gap_s,
+            family: Family::Speed,
+            regime: None,
+        },
+        lcs: LaneChangeState {
+            relax: Relaxation::None,
+            last_step: NEVER,
+            count: 0,
+            last_side: None,
+        },
+        driver: Driver {
+            human,
+            lc: cfg.lane_change.sample(&zl),
+            rng,
+        },
+        route: Route {
+            exit,
+            origin,
+            planned_exit: exit,
+        },
+        stats: Stats {
+            entered_step: NEVER,
+            conflict_step: NEVER,
+            conflict_leader: NEVER,
+            max_platoon: 1,
+            max_platoon_tg2: 1,
+            measured: false,
+            reported: (ModeLabel::Cf, None),
+        },
     }
 }
 
-impl Simulation {
+/// What the insertion phase reads and writes.
+pub(crate) struct Inserting<'a> {
+    pub cfg: &'a Config,
+    pub clock: &'a Clock,
+    pub road: &'a RoadState,
+    /// Platoon positions from this step's sense phase (a CAV entering behind a full platoon
+    /// keeps the inter-platoon gap).
+    pub sensed: &'a [Sensed],
+    pub entrances: &'a mut [Entrance],
+    pub traffic: &'a mut Traffic,
+    /// The statistics' count of vehicles entered.
+    pub entered: &'a mut u64,
+    pub watch: &'a mut Watch,
+}
+
+impl Inserting<'_> {
     /// Phase 5b: arrivals at every entrance, then insertion from each virtual queue.
     pub(crate) fn insert(&mut self) {
         let t_end = (self.clock.step + 1) as f64 * self.clock.dt;
@@ -209,7 +238,7 @@ impl Simulation {
                     None => 0.0,
                     Some(r) => self.road.geom.on_ramps[r].x,
                 };
-                let v = create(&self.cfg, self.traffic.next_id, x, t, e as u32);
+                let v = create(self.cfg, self.traffic.next_id, x, t, e as u32);
                 self.traffic.next_id += 1;
                 let ent = &mut self.entrances[e];
                 ent.queue.push_back(v);
@@ -259,7 +288,7 @@ impl Simulation {
                     .queue
                     .front_mut()
                     .expect("queue has a head");
-                let pick = head.rng.index(n_full);
+                let pick = head.driver.rng.index(n_full);
                 let lane = (0..32)
                     .filter(|l| full & (1 << l) != 0)
                     .nth(pick)
@@ -289,7 +318,11 @@ impl Simulation {
         };
         let ramp = &self.road.geom.on_ramps[r];
         let (x, lane) = (ramp.x, ramp.lane as usize);
-        let v_max = head.human.desired_speed.min(self.road.ramp_speed_mps);
+        let v_max = head
+            .driver
+            .human
+            .desired_speed
+            .min(self.road.ramp_speed_mps);
         let list = &self.traffic.lanes[lane];
         let j = list.partition_point(|&o| self.traffic.vehicles[o as usize].x > x);
         let ld = (j > 0).then(|| list[j - 1]);
@@ -308,7 +341,7 @@ impl Simulation {
         };
         if let Some(f) = fo {
             let f = &self.traffic.vehicles[f as usize];
-            let gap = x - head.human.length_m - f.x;
+            let gap = x - head.driver.human.length_m - f.x;
             if gap <= 0.0 {
                 return;
             }
@@ -317,13 +350,13 @@ impl Simulation {
                 v_mps: speed,
             };
             let a = human::target_accel(
-                &f.human,
+                &f.driver.human,
                 f.v,
-                f.human.desired_speed,
+                f.driver.human.desired_speed,
                 Some(view),
                 Relax::NONE,
             );
-            if a < f.human.comfort_decel {
+            if a < f.driver.human.comfort_decel {
                 return;
             }
         }
@@ -341,32 +374,32 @@ impl Simulation {
         veh.x_prev = x;
         veh.v = speed;
         veh.a = 0.0;
-        veh.entered_step = self.clock.step + 1;
-        veh.measured = veh.entered_step >= self.clock.warmup_step;
+        veh.stats.entered_step = self.clock.step + 1;
+        veh.stats.measured = veh.stats.entered_step >= self.clock.warmup_step;
         if veh.is_cav() {
-            veh.time_gap_s = veh.cacc_gap_s;
+            veh.cacc.time_gap_s = veh.cacc.gap_s;
             if at > 0 {
                 let ld = self.traffic.lanes[lane][at - 1];
-                veh.time_gap_s = self.entry_time_gap(&veh, ld);
+                veh.cacc.time_gap_s = self.entry_time_gap(&veh, ld);
                 if self.traffic.vehicles[ld as usize].rear() - x < 2.0 * speed.max(1.0) {
-                    veh.family = Family::Gap;
+                    veh.cacc.family = Family::Gap;
                 }
             }
         }
-        self.measures.metrics.entered += 1;
-        veh.reported = (veh.mode_label(), veh.regime);
+        *self.entered += 1;
+        veh.stats.reported = (veh.mode_label(), veh.cacc.regime);
         if self.watch.observing {
             self.watch.events.push(Event::Entered {
                 t_s: crate::record::step_time(self.clock.step + 1, self.clock.dt),
                 id: veh.id,
                 kind: veh.kind,
-                entrance: veh.origin,
+                entrance: veh.route.origin,
                 lane: veh.lane,
                 x_m: x + self.cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m),
                 v_mps: speed,
             });
         }
-        let s = self.alloc(veh);
+        let s = self.traffic.alloc(veh);
         self.traffic.lanes[lane].insert(at, s);
     }
 
@@ -376,16 +409,10 @@ impl Simulation {
         let p = &self.cfg.cav;
         if !self.traffic.vehicles[ld as usize].is_cav() {
             p.acc_time_gap_s
-        } else if self
-            .scratch
-            .sensed
-            .get(ld as usize)
-            .map_or(1, |t| t.platoon_pos)
-            >= p.max_platoon
-        {
+        } else if self.sensed.get(ld as usize).map_or(1, |t| t.platoon_pos) >= p.max_platoon {
             p.inter_platoon_gap_s
         } else {
-            veh.cacc_gap_s
+            veh.cacc.gap_s
         }
     }
 
@@ -393,7 +420,7 @@ impl Simulation {
     /// limit when the network has lane-based caps (spec 2.7, counted from the rightmost through
     /// lane there), so that it enters in steady state.
     fn entry_desired_speed(&self, veh: &Vehicle, lane: usize) -> f64 {
-        let v_f = veh.human.desired_speed;
+        let v_f = veh.driver.human.desired_speed;
         if self.road.lane_caps_mps.is_empty() {
             return v_f;
         }
@@ -416,7 +443,7 @@ impl Simulation {
         wall: Option<f64>,
         v_max: f64,
     ) -> Option<f64> {
-        let v_des = veh.human.desired_speed;
+        let v_des = veh.driver.human.desired_speed;
         let mut leader = ld.map(|ld| {
             let l = &self.traffic.vehicles[ld as usize];
             (
@@ -459,7 +486,10 @@ impl Simulation {
                     };
                     leader.gap_m >= eq && cav::safe_speed(p, leader.gap_m, l.v) >= v
                 }
-                _ => human::target_accel(&veh.human, v, v_des, Some(leader), Relax::NONE) >= 0.0,
+                _ => {
+                    human::target_accel(&veh.driver.human, v, v_des, Some(leader), Relax::NONE)
+                        >= 0.0
+                }
             }
         };
         if ok(v_max) {

@@ -132,24 +132,24 @@ fn move_vehicles(
             sorted &= veh.x <= ahead;
             ahead = veh.x;
             // As in exits: not `x < ramp.x` (a NaN position counts too).
-            if veh.exit != NO_EXIT
+            if veh.route.exit != NO_EXIT
                 && off_ramps
-                    .get(veh.exit as usize)
+                    .get(veh.route.exit as usize)
                     .is_some_and(|r| veh.x.partial_cmp(&r.x) != Some(std::cmp::Ordering::Less))
             {
                 *exit_due = true;
             }
             veh.mode = d.mode;
-            veh.family = d.family;
-            veh.regime = d.regime;
-            veh.time_gap_s = d.time_gap;
+            veh.cacc.family = d.family;
+            veh.cacc.regime = d.regime;
+            veh.cacc.time_gap_s = d.time_gap;
             if d.takeover {
-                veh.relax = Relaxation::Since(step);
+                veh.lcs.relax = Relaxation::Since(step);
             }
-            if let Relaxation::Since(since) = veh.relax {
+            if let Relaxation::Since(since) = veh.lcs.relax {
                 let elapsed = (step + 1 - since) as f64 * dt;
-                if elapsed >= veh.lc.relax_time_s {
-                    veh.relax = Relaxation::None;
+                if elapsed >= veh.driver.lc.relax_time_s {
+                    veh.lcs.relax = Relaxation::None;
                 }
             }
         }

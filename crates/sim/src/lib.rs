@@ -19,6 +19,7 @@ pub mod detector;
 mod error;
 pub mod events;
 mod execute;
+mod exits;
 mod here;
 mod insert;
 mod integrate;

@@ -21,20 +21,20 @@ pub struct Metrics {
 
 impl Metrics {
     fn count(&mut self, v: &Vehicle) {
-        if !v.measured {
+        if !v.stats.measured {
             return;
         }
         self.vehicles_counted += 1;
-        self.lane_changes += v.lane_changes as u64;
+        self.lane_changes += v.lcs.count as u64;
         if v.is_cav() {
-            self.lane_changes_cav += v.lane_changes as u64;
+            self.lane_changes_cav += v.lcs.count as u64;
             self.cavs_counted += 1;
-            self.platoon_length_sum += v.max_platoon as u64;
-            if v.max_platoon > 1 {
+            self.platoon_length_sum += v.stats.max_platoon as u64;
+            if v.stats.max_platoon > 1 {
                 self.cavs_platooned += 1;
             }
-            self.platoon_length_sum_tg2 += v.max_platoon_tg2 as u64;
-            if v.max_platoon_tg2 > 1 {
+            self.platoon_length_sum_tg2 += v.stats.max_platoon_tg2 as u64;
+            if v.stats.max_platoon_tg2 > 1 {
                 self.cavs_platooned_tg2 += 1;
             }
         }

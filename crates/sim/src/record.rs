@@ -217,7 +217,7 @@ impl Observer for Recorder {
         };
         // The step that ends at t_s (`step_time` inverted: exact for any run length).
         let left_step = (how != Departure::OnRoad).then(|| (t_s / self.dt).round() as u64);
-        let entry_x = self.entry_x[v.origin as usize];
+        let entry_x = self.entry_x[v.route.origin as usize];
         trips.push(trip_of(v, how, left_step, entry_x, self.origin_m, self.dt));
     }
 }
@@ -287,7 +287,7 @@ impl TrajectoryRecorder {
             let (mut ahead_id, mut ahead_pos) = (NEVER, 0u8);
             for &s in lane {
                 let v = &vehicles[s as usize];
-                let pos = if v.string_pred != NEVER && v.string_pred == ahead_id {
+                let pos = if v.cacc.pred != NEVER && v.cacc.pred == ahead_id {
                     ahead_pos.saturating_add(1)
                 } else {
                     1
@@ -303,7 +303,7 @@ impl TrajectoryRecorder {
                         v_mps: v.v,
                         a_mps2: v.a,
                         mode: v.mode_label(),
-                        regime: v.regime,
+                        regime: v.cacc.regime,
                         platoon_pos: pos,
                     });
                 }
@@ -330,25 +330,25 @@ pub(crate) fn trip_of(
         TripEnd::OnRoad => TripStatus::InNetwork,
         TripEnd::Collided => TripStatus::Collided,
         TripEnd::OffRamp(r) => TripStatus::Exited { off_ramp: Some(r) },
-        TripEnd::RoadEnd if v.planned_exit != NO_EXIT => TripStatus::MissedExitThenEnd {
-            missed: v.planned_exit as usize,
+        TripEnd::RoadEnd if v.route.planned_exit != NO_EXIT => TripStatus::MissedExitThenEnd {
+            missed: v.route.planned_exit as usize,
         },
         TripEnd::RoadEnd => TripStatus::Exited { off_ramp: None },
     };
     Trip {
         id: v.id,
         kind: v.kind,
-        origin: v.origin as usize,
+        origin: v.route.origin as usize,
         status,
-        entered_s: step_time(v.entered_step, dt),
+        entered_s: step_time(v.stats.entered_step, dt),
         left_s: left_step.map(|s| step_time(s, dt)),
-        travel_time_s: left_step.map(|s| step_time(s - v.entered_step, dt)),
+        travel_time_s: left_step.map(|s| step_time(s - v.stats.entered_step, dt)),
         entry_x_m: entry_x + origin_m,
         last_x_m: v.x + origin_m,
-        lane_changes: v.lane_changes,
-        max_platoon: v.max_platoon,
-        max_platoon_tg2: v.max_platoon_tg2,
-        measured: v.measured,
+        lane_changes: v.lcs.count,
+        max_platoon: v.stats.max_platoon,
+        max_platoon_tg2: v.stats.max_platoon_tg2,
+        measured: v.stats.measured,
     }
 }
 

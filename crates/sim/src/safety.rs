@@ -130,7 +130,7 @@ impl Safety {
     #[inline]
     pub fn normal(&self, v: &Vehicle) -> f64 {
         match v.kind {
-            Kind::Human => v.human.max_decel,
+            Kind::Human => v.driver.human.max_decel,
             Kind::Cav => self.braking.cav_max_decel,
         }
     }
@@ -191,11 +191,11 @@ impl Safety {
             let (tet, tit) = law::exposure(ttc, self.exposure.ttc_threshold_s, dt);
             *self.exposure.tet_s.get_mut(fol.kind) += tet;
             *self.exposure.tit_s2.get_mut(fol.kind) += tit;
-            if !(fol.conflict_step == step - 1 && fol.conflict_leader == lead_id) {
+            if !(fol.stats.conflict_step == step - 1 && fol.stats.conflict_leader == lead_id) {
                 *self.exposure.conflicts.get_mut(fol.kind) += 1;
             }
-            fol.conflict_step = step;
-            fol.conflict_leader = lead_id;
+            fol.stats.conflict_step = step;
+            fol.stats.conflict_leader = lead_id;
         }
     }
 

@@ -135,7 +135,7 @@ pub(crate) fn sense(p: &CavParams, traffic: &mut Traffic, road: &RoadState, scra
             t.linked = cand;
             t.sub_size = size;
             follower = s;
-            f_pred = v.string_pred;
+            f_pred = v.cacc.pred;
             f_cand = cand;
             f_size = size;
         }
@@ -211,7 +211,7 @@ fn platoons(p: &CavParams, traffic: &mut Traffic, road: &RoadState, scratch: &mu
                 let ld = lane[k - 1] as usize;
                 let lpos = sensed[ld].platoon_pos;
                 let lid = vehicles[ld].id;
-                let member = vehicles[si].string_pred == lid;
+                let member = vehicles[si].cacc.pred == lid;
                 if (member && lpos < max) || (!member && lpos + sensed[si].sub_size <= max) {
                     pred_id = lid;
                     pos = lpos + 1;
@@ -237,7 +237,7 @@ fn platoons(p: &CavParams, traffic: &mut Traffic, road: &RoadState, scratch: &mu
             let cav_ahead = t.cav_ahead;
             let v = &mut vehicles[si];
             let adjacent = cav_ahead && v.automated();
-            v.string_pred = pred_id;
+            v.cacc.pred = pred_id;
             if !adjacent || k - adj_start >= max as usize {
                 close_run(vehicles, lane, adj_start, k, false);
                 adj_start = k;
@@ -313,9 +313,9 @@ fn close_run(vehicles: &mut [Vehicle], lane: &[u32], start: usize, end: usize, s
     for &s in run {
         let v = &mut vehicles[s as usize];
         let m = if strict {
-            &mut v.max_platoon_tg2
+            &mut v.stats.max_platoon_tg2
         } else {
-            &mut v.max_platoon
+            &mut v.stats.max_platoon
         };
         if *m < size {
             *m = size;

@@ -11,10 +11,9 @@ use crate::network::Geometry;
 use crate::organize::{self, Organizer};
 use crate::record::{Recorder, Recording, TrajectoryRecorder};
 use crate::safety::Safety;
-use crate::sense::NONE;
 use crate::state::{Clock, Control, Detectors, Measures, RoadState, Scratch, Traffic, Watch};
 use crate::summary::{Output, Summary};
-use crate::vehicle::{Kind, Vehicle, NO_EXIT};
+use crate::vehicle::Vehicle;
 use platoonsim_model::lanechange::Side;
 
 /// Steps between two renumberings of the vehicle slots (`Simulation::compact`).
@@ -217,36 +216,16 @@ impl Simulation {
 
     /// Slot `s` leaves the road as `how` in this step (or is still on it at the end): the
     /// statistics, the trip record and the user's observers see it, in that order.
-    #[inline(never)]
     pub(crate) fn leave(&mut self, s: u32, how: Departure) {
-        // A departure happens in the step under way; a vehicle still on the road is reported
-        // at the end of the run (after the last step).
-        let step = match how {
-            Departure::OnRoad => self.clock.step,
-            _ => self.clock.step + 1,
-        };
-        let t = crate::record::step_time(step, self.clock.dt);
-        let v = &self.traffic.vehicles[s as usize];
-        self.measures.metrics.on_exit(v, how, t);
-        if self.rec.trips.is_some() {
-            self.rec.on_exit(v, how, t);
+        let origin_m = self.origin_m();
+        crate::exits::Departures {
+            clock: &self.clock,
+            origin_m,
+            metrics: &mut self.measures.metrics,
+            rec: &mut self.rec,
+            watch: &mut self.watch,
         }
-        if self.watch.observing {
-            for o in &mut self.watch.observers {
-                o.on_exit(v, how, t);
-            }
-            if how != Departure::OnRoad {
-                let origin = self.origin_m();
-                self.watch.events.push(Event::Exited {
-                    t_s: t,
-                    id: v.id,
-                    kind: v.kind,
-                    how,
-                    x_m: v.x + origin,
-                    v_mps: v.v,
-                });
-            }
-        }
+        .leave(&self.traffic.vehicles[s as usize], how);
     }
 
     /// Simulated time (s), as the records print it (`record::step_time`: 12.3 rather than
@@ -314,7 +293,15 @@ impl Simulation {
             &self.road,
             &mut self.scratch,
         );
-        self.decide();
+        crate::decide::decide(
+            &self.cfg,
+            &self.clock,
+            &self.traffic,
+            &self.road,
+            &self.entrances,
+            &mut self.control,
+            &mut self.scratch,
+        );
         self.integrate();
         let origin = self.origin_m();
         crate::execute::apply_lane_changes(
@@ -325,8 +312,34 @@ impl Simulation {
             &mut self.scratch,
             &mut self.watch,
         );
-        self.exits();
-        self.insert();
+        let origin_m = self.origin_m();
+        crate::exits::exits(
+            self.cfg.road.length_m,
+            &self.road,
+            &mut self.traffic,
+            &mut self.scratch.exit_due,
+            &mut self.detectors.list,
+            &self.detectors.exit_of_ramp,
+            &mut self.measures.missed_exits,
+            &mut crate::exits::Departures {
+                clock: &self.clock,
+                origin_m,
+                metrics: &mut self.measures.metrics,
+                rec: &mut self.rec,
+                watch: &mut self.watch,
+            },
+        );
+        crate::insert::Inserting {
+            cfg: &self.cfg,
+            clock: &self.clock,
+            road: &self.road,
+            sensed: &self.scratch.sensed,
+            entrances: &mut self.entrances,
+            traffic: &mut self.traffic,
+            entered: &mut self.measures.metrics.entered,
+            watch: &mut self.watch,
+        }
+        .insert();
         crate::detect::observe_detectors(
             self.clock.dt,
             &self.traffic,
@@ -363,57 +376,6 @@ impl Simulation {
             self.notify();
         }
         checked
-    }
-
-    /// Phase 5a: vehicles whose front passed the road end leave; on a network, vehicles that
-    /// reach their off-ramp in its lane leave by it, and those that reach it in another lane
-    /// miss it and drive on to the end [D].
-    fn exits(&mut self) {
-        let end = self.cfg.road.length_m;
-        for l in 0..self.traffic.lanes.len() {
-            while let Some(&s) = self.traffic.lanes[l].first() {
-                if self.traffic.vehicles[s as usize].x < end {
-                    break;
-                }
-                self.traffic.lanes[l].remove(0);
-                self.leave(s, Departure::RoadEnd);
-                self.traffic.free.push(s);
-            }
-        }
-        // Only when integrate saw a vehicle at or past its off-ramp (x and exits do not change
-        // between the two phases; vehicles inserted after this phase are integrated first).
-        if !std::mem::take(&mut self.scratch.exit_due) {
-            return;
-        }
-        for l in 0..self.traffic.lanes.len() {
-            let mut k = 0;
-            while k < self.traffic.lanes[l].len() {
-                let s = self.traffic.lanes[l][k];
-                let v = &mut self.traffic.vehicles[s as usize];
-                if v.exit == NO_EXIT {
-                    k += 1;
-                    continue;
-                }
-                let ramp = &self.road.geom.off_ramps[v.exit as usize];
-                if v.x < ramp.x {
-                    k += 1;
-                    continue;
-                }
-                if v.lane != ramp.lane {
-                    v.exit = NO_EXIT;
-                    self.measures.missed_exits += 1;
-                    k += 1;
-                    continue;
-                }
-                let (exit, speed, cav) = (v.exit as usize, v.v, v.is_cav());
-                self.traffic.lanes[l].remove(k);
-                if let Some(d) = self.detectors.exit_of_ramp[exit] {
-                    self.detectors.list[d].count_exit(speed, cav);
-                }
-                self.leave(s, Departure::OffRamp(exit));
-                self.traffic.free.push(s);
-            }
-        }
     }
 
     /// Run to the end and produce the outputs.
@@ -568,18 +530,18 @@ impl Simulation {
         for lane in lanes.iter() {
             for &s in lane {
                 let v = &mut vehicles[s as usize];
-                let now = (v.mode_label(), v.regime);
-                if v.reported != now {
+                let now = (v.mode_label(), v.cacc.regime);
+                if v.stats.reported != now {
                     events.push(Event::ModeChange {
                         t_s: t,
                         id: v.id,
                         kind: v.kind,
-                        from: v.reported.0,
+                        from: v.stats.reported.0,
                         to: now.0,
-                        regime_from: v.reported.1,
+                        regime_from: v.stats.reported.1,
                         regime_to: now.1,
                     });
-                    v.reported = now;
+                    v.stats.reported = now;
                 }
             }
         }
@@ -624,22 +586,5 @@ impl Simulation {
         self.traffic.vehicles = packed;
         self.traffic.free.clear();
         self.scratch.changed_this_step.fill(u64::MAX);
-    }
-
-    /// Allocate a slot for a new vehicle.
-    pub(crate) fn alloc(&mut self, v: Vehicle) -> u32 {
-        if let Some(s) = self.traffic.free.pop() {
-            self.traffic.vehicles[s as usize] = v;
-            s
-        } else {
-            self.traffic.vehicles.push(v);
-            (self.traffic.vehicles.len() - 1) as u32
-        }
-    }
-
-    /// Is this slot's vehicle a CAV?
-    #[inline]
-    pub(crate) fn is_cav(&self, s: u32) -> bool {
-        s != NONE && self.traffic.vehicles[s as usize].kind == Kind::Cav
     }
 }

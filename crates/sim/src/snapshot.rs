@@ -98,7 +98,7 @@ impl Simulation {
         for l in 0..self.traffic.lanes.len() {
             let (mut ahead, mut ahead_pos, mut head) = (NEVER, 0u32, NEVER);
             for v in self.lane_vehicles(l) {
-                let member = v.string_pred != NEVER && v.string_pred == ahead;
+                let member = v.cacc.pred != NEVER && v.cacc.pred == ahead;
                 let pos = if member { ahead_pos + 1 } else { 1 };
                 if !member {
                     head = v.id;
@@ -110,7 +110,7 @@ impl Simulation {
                 out.v_mps.push(v.v);
                 out.a_mps2.push(v.a);
                 out.mode.push(mode_index(v.mode_label()));
-                out.regime.push(regime_index(v.regime));
+                out.regime.push(regime_index(v.cacc.regime));
                 out.platoon_pos.push(pos);
                 out.platoon_id.push(head);
                 out.leader_id.push((ahead != NEVER).then_some(ahead));

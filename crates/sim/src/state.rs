@@ -41,6 +41,19 @@ pub(crate) struct Traffic {
     pub next_id: u64,
 }
 
+impl Traffic {
+    /// Allocate a slot for a new vehicle.
+    pub fn alloc(&mut self, v: Vehicle) -> u32 {
+        if let Some(s) = self.free.pop() {
+            self.vehicles[s as usize] = v;
+            s
+        } else {
+            self.vehicles.push(v);
+            (self.vehicles.len() - 1) as u32
+        }
+    }
+}
+
 /// The road: its geometry and the lookup tables built from it once.
 #[derive(Clone, Debug)]
 pub(crate) struct RoadState {

@@ -54,70 +54,115 @@ pub const NEVER: u64 = u64::MAX;
 /// `Vehicle::exit` of a vehicle that leaves at the mainline end.
 pub const NO_EXIT: u32 = u32::MAX;
 
-/// One vehicle.
+/// One vehicle: its kinematic state, identity and driving mode first, then its state by
+/// concern.
 ///
 /// Laid out by hand (`repr(C)`, cache-line aligned) for the step's sweeps over the lanes: the
-/// state every phase reads first (64 bytes), then the driving state, then the car-following
-/// parameters (body length first: `rear()`), then the rest (the lane-change parameters begin
-/// with those read in most steps: `LaneChangeParams` is laid out for this).
+/// first cache line holds what every phase reads (position, speed, acceleration, id, lane,
+/// type, mode), the second the CAV controller's and the lane-change state, then the route
+/// (its exit is read every step) and the driver's drawn parameters (body length first:
+/// `rear()`), then the bookkeeping, cold, in a line of its own.
 #[derive(Clone, Debug)]
 #[repr(C, align(64))]
 pub struct Vehicle {
+    /// Front bumper position (m, engine coordinate).
     pub x: f64,
+    /// Speed (m/s).
     pub v: f64,
+    /// Acceleration applied in the last step (m/s²).
     pub a: f64,
+    /// Position before the last step (m): detectors count crossings with it.
     pub x_prev: f64,
     /// Unique, increasing in creation order.
     pub id: u64,
+    /// Lane (0 = rightmost).
+    pub lane: u32,
+    pub kind: Kind,
+    pub mode: Mode,
+    /// The CAV controller's state (zero for a human driver).
+    pub cacc: CaccState,
+    /// Lane-change history: relaxation, the last change, the count.
+    pub lcs: LaneChangeState,
+    /// Where it came from and where it leaves.
+    pub route: Route,
+    /// The driver's drawn parameters and random stream.
+    pub driver: Driver,
+    /// Bookkeeping for the statistics, the safety measures and the observers; the driving
+    /// model never reads it.
+    pub stats: Stats,
+}
+
+/// The CAV controller's state.
+#[derive(Clone, Copy, Debug)]
+#[repr(C)]
+pub struct CaccState {
     /// Id of the predecessor whose CACC string this CAV has joined (`NEVER`: it leads its own
     /// string). Membership is sticky: see `sense.rs`.
-    pub string_pred: u64,
+    pub pred: u64,
     /// Effective target time gap of the CAV controller, ramping toward the current setting
     /// (spec 3.5 transitions); 0 before the first setting.
     pub time_gap_s: f64,
-    /// CACC time gap t_C (s); CAVs only (0 for humans).
-    pub cacc_gap_s: f64,
-
-    pub mode: Mode,
-    pub relax: Relaxation,
-    /// Step of the last lane change.
-    pub last_lc_step: u64,
-    pub lane: u32,
-    /// Index of the off-ramp it leaves by (`NO_EXIT`: the mainline end).
-    pub exit: u32,
-    pub kind: Kind,
+    /// CACC time gap t_C (s) drawn for this CAV (0 for humans).
+    pub gap_s: f64,
     /// CAV controller family (hysteresis state, spec 3.3/3.4).
     pub family: Family,
     /// The CAV controller's regime in the last step while automated (spec 3.9); `None` for a
     /// human driver or a CAV driven manually.
     pub regime: Option<CavMode>,
-    /// Side of the last lane change.
-    pub last_lc_side: Option<Side>,
-    /// Lane changes made.
-    pub lane_changes: u32,
-    /// Largest platoon this CAV has been in (1 = never), paper definition: a chain of CAVs each
-    /// directly following the previous one under CACC within sensor range (`sense.rs`).
-    pub max_platoon: u32,
-    /// The same with the spec 6.15 link criterion (follower not in speed regulation, tg ≤ 2 s).
-    pub max_platoon_tg2: u32,
+}
 
+/// Lane-change history.
+#[derive(Clone, Copy, Debug)]
+#[repr(C)]
+pub struct LaneChangeState {
+    /// Which relaxation is running (spec 4.6).
+    pub relax: Relaxation,
+    /// Step of the last lane change (`NEVER`: none yet).
+    pub last_step: u64,
+    /// Lane changes made.
+    pub count: u32,
+    /// Side of the last lane change.
+    pub last_side: Option<Side>,
+}
+
+/// A driver's drawn parameters (spec 2, 4) and own random stream.
+#[derive(Clone, Debug)]
+#[repr(C)]
+pub struct Driver {
     pub human: HumanParams,
-    /// Step at which it entered the road.
-    pub entered_step: u64,
     pub lc: LaneChangeParams,
     /// Own random stream (lane choice, yielding draws).
     pub rng: Stream,
+}
 
-    // Cold: read only when the vehicle leaves, for the optional trip records (`record.rs`).
+/// Where a vehicle came from and where it leaves.
+#[derive(Clone, Copy, Debug)]
+#[repr(C)]
+pub struct Route {
+    /// Index of the off-ramp it leaves by (`NO_EXIT`: the mainline end).
+    pub exit: u32,
     /// Entrance it came in by: 0 the mainline, i + 1 on-ramp i.
     pub origin: u32,
     /// The off-ramp it chose on entry (`NO_EXIT`: the mainline end). Unlike `exit`, kept when it
     /// misses that off-ramp.
     pub planned_exit: u32,
+}
+
+/// What the run keeps about a vehicle for its outputs; the driving model never reads it.
+#[derive(Clone, Copy, Debug)]
+#[repr(C)]
+pub struct Stats {
+    /// Step at which it entered the road.
+    pub entered_step: u64,
     /// The last step in which it was in a conflict (TTC below the threshold, `safety.rs`), and
     /// with which leader: a conflict continues while both stay the same from step to step.
     pub conflict_step: u64,
     pub conflict_leader: u64,
+    /// Largest platoon this CAV has been in (1 = never), paper definition: a chain of CAVs each
+    /// directly following the previous one under CACC within sensor range (`sense.rs`).
+    pub max_platoon: u32,
+    /// The same with the spec 6.15 link criterion (follower not in speed regulation, tg ≤ 2 s).
+    pub max_platoon_tg2: u32,
     /// Entered during the measurement window: counts in the statistics (read when it leaves).
     pub measured: bool,
     /// The driving mode and regime last reported to observers (`events.rs`).
@@ -132,7 +177,7 @@ impl Vehicle {
                 self.mode,
                 Mode::Cf | Mode::Ycf { auto: true, .. } | Mode::Blc { auto: true, .. }
             )
-            && self.relax == Relaxation::None
+            && self.lcs.relax == Relaxation::None
     }
 
     pub fn is_cav(&self) -> bool {
@@ -141,7 +186,7 @@ impl Vehicle {
 
     /// Rear bumper position.
     pub fn rear(&self) -> f64 {
-        self.x - self.human.length_m
+        self.x - self.driver.human.length_m
     }
 
     /// The driving mode for the records ([`ModeLabel`]).
@@ -199,19 +244,20 @@ mod tests {
     #[test]
     fn layout_keeps_the_hot_state_together() {
         assert_eq!(align_of::<Vehicle>(), 64);
+        // Line 0: what every phase reads.
         assert_eq!(offset_of!(Vehicle, x), 0);
-        assert!(offset_of!(Vehicle, cacc_gap_s) < 64);
-        assert_eq!(offset_of!(Vehicle, mode), 64);
-        assert!(offset_of!(Vehicle, max_platoon_tg2) < 128);
-        assert_eq!(offset_of!(Vehicle, human), 128);
+        assert_eq!(offset_of!(Vehicle, mode) + size_of::<Mode>(), 64);
+        // Line 1: the controller and the lane-change state.
+        assert_eq!(offset_of!(Vehicle, cacc), 64);
+        assert_eq!(offset_of!(Vehicle, lcs) + size_of::<LaneChangeState>(), 128);
+        // Then the route and the driver, body length first.
+        assert_eq!(offset_of!(Vehicle, route), 128);
+        assert_eq!(offset_of!(Vehicle, driver.human.length_m), 144);
         assert_eq!(offset_of!(HumanParams, length_m), 0);
-        // The trip-record fields are cold: after everything else, in the padding of the last
-        // cache line (the record did not grow for them).
-        assert!(offset_of!(Vehicle, origin) > offset_of!(Vehicle, rng));
-        assert!(offset_of!(Vehicle, planned_exit) > offset_of!(Vehicle, rng));
-        assert!(offset_of!(Vehicle, measured) > offset_of!(Vehicle, rng));
-        assert!(offset_of!(Vehicle, reported) > offset_of!(Vehicle, rng));
-        let end_of_rng = offset_of!(Vehicle, rng) + size_of::<Stream>();
-        assert_eq!(size_of::<Vehicle>(), end_of_rng.next_multiple_of(64));
+        // The bookkeeping is cold: last, in the line after the random stream.
+        assert!(
+            offset_of!(Vehicle, stats) >= offset_of!(Vehicle, driver.rng) + size_of::<Stream>()
+        );
+        assert_eq!(size_of::<Vehicle>(), 512);
     }
 }

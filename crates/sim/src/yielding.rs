@@ -3,21 +3,21 @@
 //! Part of the decide phase; the yielding car-following law itself is
 //! `platoonsim_model::lanechange::yield_accel`.
 
+use crate::decide::View;
 use crate::decide::{opposite, pair_uniform};
 use crate::sense::{Neighbours, NONE};
-use crate::sim::Simulation;
 use crate::vehicle::{Mode, Relaxation, Vehicle};
 use platoonsim_model::lanechange::{self as lcm, Side};
 use platoonsim_model::Leader;
 
-impl Simulation {
+impl View<'_> {
     /// The virtual leader of a yielder: the requester `r`, standing its own (relaxed) jam gap
     /// further back, so that the yielder leaves the room the requester's gap acceptance needs
     /// (spec 4.3: g0 > d_jam'); otherwise two standing vehicles wait for each other.
     #[inline]
     pub(crate) fn yield_gap(&self, v: &Vehicle, r: &Vehicle) -> Leader {
         Leader {
-            gap_m: r.rear() - v.x - r.lc.relax_jam * r.human.jam_gap_m,
+            gap_m: r.rear() - v.x - r.driver.lc.relax_jam * r.driver.human.jam_gap_m,
             v_mps: r.v,
         }
     }
@@ -64,8 +64,12 @@ impl Simulation {
             if automated && !mandatory && !joining() {
                 return None;
             }
-            lcm::agrees_to_yield(&v.lc, mandatory, pair_uniform(self.cfg.seed, v.id, r.id))
-                .then_some(req)
+            lcm::agrees_to_yield(
+                &v.driver.lc,
+                mandatory,
+                pair_uniform(self.cfg.seed, v.id, r.id),
+            )
+            .then_some(req)
         })
     }
 
@@ -94,7 +98,7 @@ impl Simulation {
             // (spec 4.3 g0 > d_jam'); two standing vehicles side by side would wait for each
             // other at the end of an acceleration lane. The driver drives on instead and the
             // next follower receives the request [D].
-            if dist < r.lc.relax_jam * r.human.jam_gap_m {
+            if dist < r.driver.lc.relax_jam * r.driver.human.jam_gap_m {
                 continue;
             }
             // The adjacent-lane leader may be far ahead (an empty stretch, or a lane that is
@@ -103,7 +107,7 @@ impl Simulation {
                 continue;
             }
             // Ignore a request from the lane the driver has just left.
-            if let (Relaxation::Since(_), Some(last)) = (v.relax, v.last_lc_side) {
+            if let (Relaxation::Since(_), Some(last)) = (v.lcs.relax, v.lcs.last_side) {
                 if opposite(last) == opposite(toward) {
                     continue;
                 }

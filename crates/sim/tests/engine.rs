@@ -80,7 +80,7 @@ fn every_step_keeps_lanes_sorted_with_positive_gaps_and_finite_states() {
                         sim.time_s()
                     );
                 }
-                ahead = Some((v.x, v.human.length_m));
+                ahead = Some((v.x, v.driver.human.length_m));
             }
         }
     }

@@ -55,7 +55,7 @@ pub struct SweepArgs {
 /// --no-shard).
 fn shard(args: &SweepArgs) -> Result<Option<Shard>> {
     if let Some(text) = &args.shard {
-        let s = Shard::parse(text).map_err(anyhow::Error::msg)?;
+        let s = Shard::parse(text)?;
         if let Some(n) = args.shards {
             if n as usize != s.count {
                 bail!("--shards {n} contradicts --shard {text}");
@@ -67,7 +67,7 @@ fn shard(args: &SweepArgs) -> Result<Option<Shard>> {
         return Ok(None);
     }
     let env = |k: &str| std::env::var(k).ok();
-    let s = Shard::from_env(&env, args.shards.map(|n| n as usize)).map_err(anyhow::Error::msg)?;
+    let s = Shard::from_env(&env, args.shards.map(|n| n as usize))?;
     if s.is_none() && args.shards.is_some() {
         bail!(
             "--shards is given but no shard index: pass --shard I/N, or run under a scheduler \

@@ -11,6 +11,36 @@
 
 use std::fmt;
 
+/// A shard that cannot be read from the command line or a scheduler's environment. The
+/// messages name the flag or variable, its value and what is allowed.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum ShardError {
+    #[error(
+        "invalid --shard '{0}': expected I/N with 1 <= I <= N (e.g. 2/8: the second of eight \
+         shares)"
+    )]
+    Syntax(String),
+    #[error("{name}={value:?} is not an integer")]
+    NotInteger { name: &'static str, value: String },
+    #[error("{source_var}: shard {index} of {count} does not exist (a shard is 1..=N, N >= 1)")]
+    NoSuchShard {
+        source_var: String,
+        index: i64,
+        count: i64,
+    },
+    #[error(
+        "SLURM_ARRAY_TASK_ID is set but neither SLURM_ARRAY_TASK_COUNT nor \
+         SLURM_ARRAY_TASK_MIN/MAX is: give the shard count with --shards N"
+    )]
+    SlurmCountMissing,
+    #[error("{variable} is set ({scheduler}): give the shard count, {what}, with --shards N")]
+    CountMissing {
+        variable: &'static str,
+        scheduler: &'static str,
+        what: &'static str,
+    },
+}
+
 /// Shard `index` of `count`, 1-based.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Shard {
@@ -26,13 +56,8 @@ impl fmt::Display for Shard {
 
 impl Shard {
     /// `I/N` as on the command line.
-    pub fn parse(text: &str) -> Result<Shard, String> {
-        let bad = || {
-            format!(
-                "invalid --shard '{text}': expected I/N with 1 <= I <= N (e.g. 2/8: the second \
-                 of eight shares)"
-            )
-        };
+    pub fn parse(text: &str) -> Result<Shard, ShardError> {
+        let bad = || ShardError::Syntax(text.to_string());
         let (i, n) = text.split_once('/').ok_or_else(bad)?;
         let index: usize = i.trim().parse().map_err(|_| bad())?;
         let count: usize = n.trim().parse().map_err(|_| bad())?;
@@ -53,8 +78,8 @@ impl Shard {
     pub fn from_env(
         get: &dyn Fn(&str) -> Option<String>,
         count: Option<usize>,
-    ) -> Result<Option<Shard>, String> {
-        let int = |name: &str| -> Result<Option<i64>, String> {
+    ) -> Result<Option<Shard>, ShardError> {
+        let int = |name: &'static str| -> Result<Option<i64>, ShardError> {
             match get(name) {
                 None => Ok(None),
                 Some(v) if v.trim().is_empty() => Ok(None),
@@ -62,16 +87,21 @@ impl Shard {
                     .trim()
                     .parse::<i64>()
                     .map(Some)
-                    .map_err(|_| format!("{name}={v:?} is not an integer")),
+                    .map_err(|_| ShardError::NotInteger {
+                        name,
+                        value: v.clone(),
+                    }),
             }
         };
-        let make = |index: i64, n: i64, what: &str| -> Result<Option<Shard>, String> {
+        let make = |index: i64, n: i64, what: String| -> Result<Option<Shard>, ShardError> {
             let shard = usize::try_from(index)
                 .ok()
                 .zip(usize::try_from(n).ok())
                 .and_then(|(i, n)| Shard::new(i, n));
-            shard.map(Some).ok_or_else(|| {
-                format!("{what}: shard {index} of {n} does not exist (a shard is 1..=N, N >= 1)")
+            shard.map(Some).ok_or(ShardError::NoSuchShard {
+                source_var: what,
+                index,
+                count: n,
             })
         };
         if let Some(id) = int("SLURM_ARRAY_TASK_ID")? {
@@ -85,30 +115,26 @@ impl Shard {
                 (Some(n), ..) => n as i64,
                 (None, Some(c), ..) => c,
                 (None, None, Some(lo), Some(hi)) => hi - lo + 1,
-                _ => {
-                    return Err(
-                        "SLURM_ARRAY_TASK_ID is set but neither SLURM_ARRAY_TASK_COUNT nor \
-                         SLURM_ARRAY_TASK_MIN/MAX is: give the shard count with --shards N"
-                            .into(),
-                    )
-                }
+                _ => return Err(ShardError::SlurmCountMissing),
             };
             let index = id - min.unwrap_or(1) + 1;
-            return make(index, n, &format!("SLURM_ARRAY_TASK_ID={id}"));
+            return make(index, n, format!("SLURM_ARRAY_TASK_ID={id}"));
         }
         if let Some(i) = int("JOB_COMPLETION_INDEX")? {
-            let n = count.ok_or(
-                "JOB_COMPLETION_INDEX is set (a Kubernetes Indexed Job): give the shard count, \
-                 the Job's completions, with --shards N",
-            )?;
-            return make(i + 1, n as i64, &format!("JOB_COMPLETION_INDEX={i}"));
+            let n = count.ok_or(ShardError::CountMissing {
+                variable: "JOB_COMPLETION_INDEX",
+                scheduler: "a Kubernetes Indexed Job",
+                what: "the Job's completions",
+            })?;
+            return make(i + 1, n as i64, format!("JOB_COMPLETION_INDEX={i}"));
         }
         if let Some(i) = int("HQ_TASK_ID")? {
-            let n = count.ok_or(
-                "HQ_TASK_ID is set (a HyperQueue task): give the shard count, the size of the \
-                 array 0-(N-1), with --shards N",
-            )?;
-            return make(i + 1, n as i64, &format!("HQ_TASK_ID={i}"));
+            let n = count.ok_or(ShardError::CountMissing {
+                variable: "HQ_TASK_ID",
+                scheduler: "a HyperQueue task",
+                what: "the size of the array 0-(N-1)",
+            })?;
+            return make(i + 1, n as i64, format!("HQ_TASK_ID={i}"));
         }
         Ok(None)
     }
@@ -134,7 +160,10 @@ mod tests {
         }
         assert_eq!(Shard::parse("2/3"), Ok(Shard { index: 2, count: 3 }));
         for bad in ["0/3", "4/3", "1/0", "x/2", "2", "-1/2"] {
-            assert!(Shard::parse(bad).unwrap_err().contains(bad), "{bad}");
+            assert!(
+                Shard::parse(bad).unwrap_err().to_string().contains(bad),
+                "{bad}"
+            );
         }
     }
 
@@ -172,15 +201,19 @@ mod tests {
         assert_eq!(s(&[("HQ_TASK_ID", "0")], Some(4)), Ok(Shard::new(1, 4)));
         assert!(s(&[("HQ_TASK_ID", "4")], None)
             .unwrap_err()
+            .to_string()
             .contains("--shards"));
         assert!(s(&[("HQ_TASK_ID", "4")], Some(4))
             .unwrap_err()
+            .to_string()
             .contains("HQ_TASK_ID=4"));
         assert!(s(&[("SLURM_ARRAY_TASK_ID", "x")], None)
             .unwrap_err()
+            .to_string()
             .contains("SLURM_ARRAY_TASK_ID"));
         assert!(s(&[("JOB_COMPLETION_INDEX", "2")], None)
             .unwrap_err()
+            .to_string()
             .contains("JOB_COMPLETION_INDEX"));
     }
 }
