@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# Every test: the Rust workspace, then the viewer's browser tests (tests/browser: headless
-# Chromium from Debian's package driven by playwright-core). README and .ci/run call this.
-# With --install it first installs what the tests need (Debian's chromium, the npm packages
-# of tests/browser/package-lock.json, the Python packages of .ci/python-deps); without it a
-# missing browser or package skips those tests, except under CI=true, where it fails.
+# Every test: the Rust workspace, the Python package's tests (python/tests: pytest in the venv
+# target/py-venv, scripts/python-tests.sh), then the viewer's browser tests (tests/browser:
+# headless Chromium from Debian's package driven by playwright-core). README and .ci/run call
+# this. With --install it first installs what the tests need (Debian's chromium, the npm
+# packages of tests/browser/package-lock.json, the Python packages of .ci/python-deps, the
+# venv); without it a missing browser, venv or package skips those tests, except under
+# CI=true, where it fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -20,6 +22,9 @@ fi
 
 echo "== cargo test --workspace --release"
 cargo test --workspace --release
+
+echo "== Python tests (python/tests)"
+scripts/python-tests.sh ${1:+"$1"}
 
 echo "== browser tests (tests/browser)"
 if ! command -v node >/dev/null 2>&1 || [ ! -d tests/browser/node_modules ]; then

@@ -33,6 +33,7 @@ pub mod rng;
 mod safety;
 mod sense;
 mod sim;
+pub mod snapshot;
 mod state;
 pub mod summary;
 pub mod vehicle;
@@ -50,6 +51,7 @@ pub use organize::{Advice, LaneChoice, Organizer, StrategyKind, UnknownStrategy,
 pub use platoonsim_model::lanechange::Side;
 pub use record::{Recording, TrajectoryPoint, TrajectorySpec, Trip, TripStatus};
 pub use sim::Simulation;
+pub use snapshot::VehicleColumns;
 pub use summary::{CollisionEvent, CollisionKind, DetectorRecord, Output, Summary};
 pub use vehicle::{Kind, ModeLabel, Vehicle};
 

@@ -1,0 +1,87 @@
+//! The two engine seams the binding plugs into: an organizer whose advice is a table set
+//! from Python between steps, and an observer that buffers events until Python asks.
+
+use platoonsim_sim::network::Geometry;
+use platoonsim_sim::vehicle::Vehicle;
+use platoonsim_sim::{Advice, Event, Observer, Organizer, Simulation};
+use std::sync::{Arc, Mutex, MutexGuard};
+
+/// Lock without caring about poisoning: the data is plain and every writer leaves it whole.
+pub fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Advice by vehicle id: `advice[id - base]` (ids on the road form a narrow, increasing
+/// window, so a vector beats a map). An id outside the table gets no advice.
+#[derive(Debug, Default)]
+pub struct AdviceTable {
+    base: u64,
+    advice: Vec<Advice>,
+}
+
+impl AdviceTable {
+    /// Replace the table: vehicle `ids[i]` is advised to join `lanes[i]` with `strengths[i]`;
+    /// a negative lane means no advice. Slices have equal lengths (checked by the caller).
+    pub fn set(&mut self, ids: &[u64], lanes: &[i64], strengths: &[f64]) {
+        self.advice.clear();
+        let Some(&lo) = ids.iter().min() else {
+            self.base = 0;
+            return;
+        };
+        let hi = ids.iter().copied().max().unwrap_or(lo);
+        self.base = lo;
+        self.advice.resize((hi - lo + 1) as usize, Advice::Free);
+        for ((&id, &lane), &strength) in ids.iter().zip(lanes).zip(strengths) {
+            if lane >= 0 {
+                self.advice[(id - lo) as usize] = Advice::Join {
+                    lane: lane as u32,
+                    strength,
+                };
+            }
+        }
+    }
+
+    fn get(&self, id: u64) -> Advice {
+        id.checked_sub(self.base)
+            .and_then(|i| self.advice.get(i as usize))
+            .copied()
+            .unwrap_or(Advice::Free)
+    }
+}
+
+/// A Python organizer as the engine sees it: the engine asks per vehicle and step, from the
+/// step-start state; the answer comes from the table Python filled before the step.
+#[derive(Debug)]
+pub struct TableOrganizer {
+    pub name: String,
+    pub humans: bool,
+    pub cavs: bool,
+    pub table: Arc<Mutex<AdviceTable>>,
+}
+
+impl Organizer for TableOrganizer {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn advises_cavs(&self) -> bool {
+        self.cavs
+    }
+    fn advises_humans(&self) -> bool {
+        self.humans
+    }
+    fn advise(&self, v: &Vehicle, _t_s: f64, _road: &Geometry) -> Advice {
+        lock(&self.table).get(v.id)
+    }
+}
+
+/// Every event of every step, kept until Python drains them.
+#[derive(Default)]
+pub struct EventBuffer {
+    pub events: Arc<Mutex<Vec<Event>>>,
+}
+
+impl Observer for EventBuffer {
+    fn on_step(&mut self, _sim: &Simulation, events: &[Event]) {
+        lock(&self.events).extend_from_slice(events);
+    }
+}
