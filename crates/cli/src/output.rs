@@ -370,6 +370,11 @@ pub fn detectors_csv(records: &[DetectorRecord]) -> Result<Vec<u8>> {
 }
 
 /// The one-paragraph human summary printed after a run.
+/// A statistic with `dec` decimals, or "n/a" where it does not apply (nothing to count).
+fn maybe(v: Option<f64>, dec: usize) -> String {
+    v.map_or("n/a".to_string(), |v| format!("{v:.dec$}"))
+}
+
 pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
     let detector = config
         .detectors
@@ -396,7 +401,7 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
             ),
         ),
         None => (
-            format!("{} veh/h/lane demand", s.demand_vphpl),
+            format!("{} veh/h/lane demand", config.demand.vph_per_lane),
             String::new(),
         ),
     };
@@ -406,8 +411,8 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
          Vehicles: {entered} entered, {exited} exited, {inside} still on the road, {waiting} \
          waiting at the entrance. Discharge at detector '{detector}': {q:.1} veh/h/lane over \
          the measurement window; highest {agg} s flow {qmax:.1} veh/h/lane.{network} Lane changes per \
-         vehicle {lc:.3} ({counted} vehicles; per CAV {lc_cav:.3}, per human {lc_human:.3}); \
-         average platoon length {lbar:.2} and platooning probability {pp:.3} ({cavs} CAVs). \
+         vehicle {lc} ({counted} vehicles; per CAV {lc_cav}, per human {lc_human}); \
+         average platoon length {lbar} and platooning probability {pp} ({cavs} CAVs). \
          Safety after the warm-up: {eb} emergency brakings ({eb_cav} CAV, {eb_human} human), \
          {conflicts} conflicts (TTC below {ttc_star} s), TET {tet:.1} s, TIT {tit:.1} s², \
          minimum TTC {min_ttc}; largest deceleration {max_decel:.2} m/s² over the whole run. \
@@ -427,12 +432,12 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
         q = s.discharge_flow_vphpl,
         agg = config.aggregation_s,
         qmax = s.max_sustained_flow_vphpl,
-        lc = s.lane_changes_per_vehicle,
-        lc_cav = s.lane_changes_per_cav,
-        lc_human = s.lane_changes_per_human,
+        lc = maybe(s.lane_changes_per_vehicle, 3),
+        lc_cav = maybe(s.lane_changes_per_cav, 3),
+        lc_human = maybe(s.lane_changes_per_human, 3),
         counted = s.vehicles_counted,
-        lbar = s.avg_platoon_length,
-        pp = s.platooning_probability,
+        lbar = maybe(s.avg_platoon_length, 2),
+        pp = maybe(s.platooning_probability, 3),
         cavs = s.cavs_counted,
         eb = s.emergency_brakings,
         eb_cav = s.emergency_brakings_cav,

@@ -284,7 +284,7 @@ fn sensitivity_files_have_the_expected_shape() {
             "ci_high",
             "paper",
             "difference",
-            "relative_difference",
+            "relative_difference_pct",
             "paper_source",
             "runs_with_collisions"
         ]

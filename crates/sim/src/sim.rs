@@ -470,7 +470,12 @@ impl Simulation {
         let summary = Summary {
             scenario: cfg.name.clone(),
             penetration: cfg.penetration,
-            demand_vphpl: cfg.demand.vph_per_lane,
+            demand_vphpl: cfg
+                .road
+                .network
+                .is_none()
+                .then_some(cfg.demand.vph_per_lane),
+            demand_scale: cfg.road.network.as_ref().map(|n| n.demand_scale),
             strategy: self.control.organizer.name().to_string(),
             seed: cfg.seed,
             dt_s: cfg.dt_s,

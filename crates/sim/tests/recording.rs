@@ -100,9 +100,9 @@ fn assert_trips_match_the_summary(out: &Output) {
     let n = s.vehicles_counted as f64;
     assert_eq!(
         lane_changes,
-        (s.lane_changes_per_vehicle * n).round() as u64
+        (s.lane_changes_per_vehicle.unwrap() * n).round() as u64
     );
-    assert_eq!(lane_changes as f64 / n, s.lane_changes_per_vehicle);
+    assert_eq!(lane_changes as f64 / n, s.lane_changes_per_vehicle.unwrap());
 
     let cavs: Vec<&Trip> = measured
         .iter()
@@ -112,12 +112,15 @@ fn assert_trips_match_the_summary(out: &Output) {
     assert_eq!(cavs.len() as u64, s.cavs_counted);
     let n = cavs.len() as f64;
     let sum = |f: fn(&Trip) -> u32| cavs.iter().map(|t| f(t) as u64).sum::<u64>() as f64;
-    assert_eq!(sum(|t| t.max_platoon) / n, s.avg_platoon_length);
-    assert_eq!(sum(|t| t.max_platoon_tg2) / n, s.avg_platoon_length_tg2);
+    assert_eq!(sum(|t| t.max_platoon) / n, s.avg_platoon_length.unwrap());
+    assert_eq!(
+        sum(|t| t.max_platoon_tg2) / n,
+        s.avg_platoon_length_tg2.unwrap()
+    );
     let platooned = cavs.iter().filter(|t| t.max_platoon > 1).count() as f64;
-    assert_eq!(platooned / n, s.platooning_probability);
+    assert_eq!(platooned / n, s.platooning_probability.unwrap());
     let cav_lc: u64 = cavs.iter().map(|t| t.lane_changes as u64).sum();
-    assert_eq!(cav_lc as f64 / n, s.lane_changes_per_cav);
+    assert_eq!(cav_lc as f64 / n, s.lane_changes_per_cav.unwrap());
     // Humans never platoon.
     assert!(trips
         .iter()

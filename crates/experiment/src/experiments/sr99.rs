@@ -276,7 +276,7 @@ fn triple(r: Option<&SummaryRow>, dec: usize, skip: bool) -> [String; 3] {
         return ["–".into(), "–".into(), "–".into()];
     };
     let paper = r.paper.map_or("–".into(), |p| fixed(p.value, dec));
-    let rel = r.relative_difference();
+    let rel = r.relative_difference_pct() / 100.0;
     let diff = if rel.is_finite() {
         format!("{} %", signed(100.0 * rel, 1))
     } else {
@@ -487,7 +487,7 @@ fn bottleneck_section(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> Stri
 /// "x % higher / lower than the paper's" for a row with a paper value.
 fn versus(r: Option<&SummaryRow>, dec: usize) -> String {
     let Some(r) = r else { return "–".into() };
-    let rel = 100.0 * r.relative_difference();
+    let rel = r.relative_difference_pct();
     if !rel.is_finite() {
         return "no paper value".into();
     }
