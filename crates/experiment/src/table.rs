@@ -330,12 +330,12 @@ pub fn decimals(metric: &str) -> usize {
 /// interval.
 pub fn paper_comparison(rows: &[SummaryRow], describe: impl Fn(&SummaryRow) -> String) -> String {
     let header: Vec<String> = [
-        "Quantity",
-        "Ours",
-        "95 % CI",
-        "Paper",
-        "Difference",
-        "Relative",
+        "Quantity (unit)",
+        "Ours (the row's unit)",
+        "95 % CI (the row's unit)",
+        "Paper (the row's unit)",
+        "Difference (the row's unit)",
+        "Relative (%)",
         "Paper value in our CI",
         "Source",
     ]

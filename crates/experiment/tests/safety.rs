@@ -96,7 +96,7 @@ fn the_safety_table_has_every_cell_side_by_side() {
     assert_eq!(
         lines,
         [
-            "| demand_vphpl | strategy | Runs with collisions | Emergency brakings | Conflicts (TTC < TTC*) | TET (s) | TIT (s²) | Min TTC (s) | Max deceleration (m/s²) |",
+            "| Demand (veh/h/lane) | Strategy | Runs with collisions (runs) | Emergency brakings (episodes) | Conflicts, TTC < TTC* (episodes) | TET (s) | TIT (s²) | Min TTC (s) | Max deceleration (m/s²) |",
             "|---|---|---|---|---|---|---|---|---|",
             // Min TTC: one run had none (null), left out of the mean.
             "| 1000 | none | 0 of 2 | 3.0 ± 0.0 | 2.0 ± 0.0 | 1.3 ± 0.0 | 0.5 ± 0.0 | 1.50 (n = 1) | 4.50 ± 0.00 |",
@@ -255,7 +255,7 @@ fn an_experiment_marks_the_cells_that_collided() {
     let outputs = [res];
     let input = ReportInput {
         outputs: &outputs,
-        notes: "",
+        provenance: Default::default(),
         command: "test",
         seeds: 2,
         network_seeds: None,
