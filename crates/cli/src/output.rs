@@ -199,13 +199,14 @@ pub fn off_ramp_name(config: &Config, k: usize) -> String {
 }
 
 /// The columns of `trips.csv`, in order.
-pub const TRIP_COLUMNS: [&str; 14] = [
+pub const TRIP_COLUMNS: [&str; 15] = [
     "id",
     "kind",
     "origin",
     "destination",
     "status",
     "entered_s",
+    "depart_delay_s",
     "left_s",
     "travel_time_s",
     "entry_x_m",
@@ -220,7 +221,9 @@ pub const TRIP_COLUMNS: [&str; 14] = [
 /// (the road end) or empty (still on the road); `status` is `exited`, `missed_exit_then_end`
 /// (it chose an off-ramp, was not in its lane there and drove on to the end), `in_network` or
 /// `collided` (it ran past the end of its lane and was removed, see `collisions.csv`);
-/// `left_s` and `travel_time_s` are empty for a vehicle still on the road.
+/// `left_s` and `travel_time_s` are empty for a vehicle still on the road; `depart_delay_s` is
+/// the time from its arrival at the entrance to its insertion on the road (the wait in the
+/// entrance queue, SUMO's `departDelay`).
 pub fn trips_csv(config: &Config, trips: &[Trip]) -> Result<Vec<u8>> {
     let mut w = csv::WriterBuilder::new()
         .has_headers(false)
@@ -242,6 +245,7 @@ pub fn trips_csv(config: &Config, trips: &[Trip]) -> Result<Vec<u8>> {
             destination,
             status.to_string(),
             format!("{}", t.entered_s),
+            format!("{}", t.depart_delay_s),
             num(t.left_s),
             num(t.travel_time_s),
             format!("{}", t.entry_x_m),
@@ -593,6 +597,7 @@ mod tests {
             origin: 7,
             status,
             entered_s: 12.3,
+            depart_delay_s: 0.25,
             left_s: left,
             travel_time_s: left.map(|l| l - 12.3),
             entry_x_m: 5734.0,
@@ -612,11 +617,11 @@ mod tests {
         assert_eq!(
             text.lines().collect::<Vec<_>>(),
             [
-                "id,kind,origin,destination,status,entered_s,left_s,travel_time_s,entry_x_m,last_x_m,lane_changes,max_platoon,max_platoon_tg2,measured",
-                "42,cav,OR7,FR3,exited,12.3,112.5,100.2,5734,9000.25,2,3,1,false",
-                "42,cav,OR7,end,exited,12.3,112.5,100.2,5734,9000.25,2,3,1,false",
-                "42,cav,OR7,end,missed_exit_then_end,12.3,112.5,100.2,5734,9000.25,2,3,1,false",
-                "42,cav,OR7,,in_network,12.3,,,5734,9000.25,2,3,1,false",
+                "id,kind,origin,destination,status,entered_s,depart_delay_s,left_s,travel_time_s,entry_x_m,last_x_m,lane_changes,max_platoon,max_platoon_tg2,measured",
+                "42,cav,OR7,FR3,exited,12.3,0.25,112.5,100.2,5734,9000.25,2,3,1,false",
+                "42,cav,OR7,end,exited,12.3,0.25,112.5,100.2,5734,9000.25,2,3,1,false",
+                "42,cav,OR7,end,missed_exit_then_end,12.3,0.25,112.5,100.2,5734,9000.25,2,3,1,false",
+                "42,cav,OR7,,in_network,12.3,0.25,,,5734,9000.25,2,3,1,false",
             ]
         );
         let homogeneous = Config::homogeneous(0.5, 2000.0, 60.0, 0.0, 1);

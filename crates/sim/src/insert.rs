@@ -211,6 +211,9 @@ impl Simulation {
                 };
                 let v = create(&self.cfg, self.traffic.next_id, x, t, e as u32);
                 self.traffic.next_id += 1;
+                if self.rec.trips.is_some() {
+                    self.rec.arrived(v.id, t);
+                }
                 let ent = &mut self.entrances[e];
                 ent.queue.push_back(v);
                 ent.next_arrival_s = ent.draw_after(t);

@@ -183,6 +183,7 @@ impl Simulation {
             entry_x: std::iter::once(0.0)
                 .chain(self.road.geom.on_ramps.iter().map(|r| r.x))
                 .collect(),
+            arrived_s: Vec::new(),
             origin_m: origin,
             dt: self.clock.dt,
         };
