@@ -365,7 +365,7 @@ fn section(o: &ExperimentOutput, depth: usize) -> String {
 const STYLE: &str =
     "body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;max-width:1200px;\
 margin:2em auto;padding:0 1em;line-height:1.45;color:#222}\
-table{border-collapse:collapse;margin:1em 0;font-size:0.88em}\
+table{border-collapse:collapse;margin:1em 0;font-size:0.88em;display:block;overflow-x:auto;max-width:100%}\
 th,td{border:1px solid #ccc;padding:0.25em 0.5em;text-align:left;vertical-align:top}\
 th{background:#f2f2f2}tr:nth-child(even) td{background:#fafafa}\
 img{max-width:100%;height:auto;border:1px solid #eee}\

@@ -65,26 +65,20 @@ fn citations(text: &str) -> Vec<String> {
         }
         out.push(first.to_string());
         let mut rest = &text[from + first.len()..];
-        loop {
-            let Some(after) = [", ", " and ", "/"]
-                .iter()
-                .find_map(|sep| rest.strip_prefix(sep))
-            else {
+        while let Some(after) = [", ", " and ", "/"]
+            .iter()
+            .find_map(|sep| rest.strip_prefix(sep))
+        {
+            // A list item has a dot and is not the start of a number like "2,000".
+            let Some(n) = number_at(after).filter(|n| n.contains('.')) else {
                 break;
             };
-            match number_at(after) {
-                Some(n)
-                    if n.contains('.')
-                        && !after[n.len()..].starts_with(|c: char| {
-                            c == ','
-                                && after[n.len() + 1..].starts_with(|d: char| d.is_ascii_digit())
-                        }) =>
-                {
-                    out.push(n.to_string());
-                    rest = &after[n.len()..];
-                }
-                _ => break,
+            let tail = &after[n.len()..];
+            if tail.starts_with(',') && tail[1..].starts_with(|d: char| d.is_ascii_digit()) {
+                break;
             }
+            out.push(n.to_string());
+            rest = tail;
         }
     }
     out
