@@ -116,9 +116,10 @@ fn runs_and_summary_csv_carry_the_safety_fields() {
         "demand_vphpl,strategy,seed,key,discharge_flow_vphpl,collisions,max_deceleration_mps2,\
          emergency_brakings,conflicts,tet_s,tit_s2,min_ttc_s"
     );
-    // The null minimum TTC is an empty cell (pandas reads NaN, the column stays float).
-    assert_eq!(lines[2], "1000,none,2,k02,1000,0,4.5,3,2,1.3,0.5,");
-    assert_eq!(lines[4], "1000,pd,2,k12,1000,2,4.5,7,2,1.3,0.5,1.5");
+    // The null minimum TTC is an empty cell (pandas reads NaN, the column stays float);
+    // counts are integers, every other number has a decimal point.
+    assert_eq!(lines[2], "1000,none,2,k02,1000.0,0,4.5,3,2,1.3,0.5,");
+    assert_eq!(lines[4], "1000,pd,2,k12,1000.0,2,4.5,7,2,1.3,0.5,1.5");
 
     let rows = table::summarize("sensitivity", &cells, &outcomes);
     let ttc = rows
