@@ -199,13 +199,14 @@ pub fn off_ramp_name(config: &Config, k: usize) -> String {
 }
 
 /// The columns of `trips.csv`, in order.
-pub const TRIP_COLUMNS: [&str; 14] = [
+pub const TRIP_COLUMNS: [&str; 15] = [
     "id",
     "kind",
     "origin",
     "destination",
     "status",
     "entered_s",
+    "depart_delay_s",
     "left_s",
     "travel_time_s",
     "entry_x_m",
@@ -225,7 +226,9 @@ pub const TRIP_ENERGY_COLUMNS: [&str; 3] = ["fuel_l", "energy_kwh", "drag_saving
 /// (the road end) or empty (still on the road); `status` is `exited`, `missed_exit_then_end`
 /// (it chose an off-ramp, was not in its lane there and drove on to the end), `in_network` or
 /// `collided` (it ran past the end of its lane and was removed, see `collisions.csv`);
-/// `left_s` and `travel_time_s` are empty for a vehicle still on the road.
+/// `left_s` and `travel_time_s` are empty for a vehicle still on the road; `depart_delay_s` is
+/// the time from its arrival at the entrance to its insertion on the road (the wait in the
+/// entrance queue, SUMO's `departDelay`).
 pub fn trips_csv(config: &Config, trips: &[Trip]) -> Result<Vec<u8>> {
     let mut w = csv::WriterBuilder::new()
         .has_headers(false)
@@ -253,6 +256,7 @@ pub fn trips_csv(config: &Config, trips: &[Trip]) -> Result<Vec<u8>> {
             destination,
             status.to_string(),
             format!("{}", t.entered_s),
+            format!("{}", t.depart_delay_s),
             num(t.left_s),
             num(t.travel_time_s),
             format!("{}", t.entry_x_m),
@@ -390,6 +394,11 @@ pub fn detectors_csv(records: &[DetectorRecord]) -> Result<Vec<u8>> {
 }
 
 /// The one-paragraph human summary printed after a run.
+/// A statistic with `dec` decimals, or "n/a" where it does not apply (nothing to count).
+fn maybe(v: Option<f64>, dec: usize) -> String {
+    v.map_or("n/a".to_string(), |v| format!("{v:.dec$}"))
+}
+
 pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
     let detector = config
         .detectors
@@ -416,7 +425,7 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
             ),
         ),
         None => (
-            format!("{} veh/h/lane demand", s.demand_vphpl),
+            format!("{} veh/h/lane demand", config.demand.vph_per_lane),
             String::new(),
         ),
     };
@@ -426,8 +435,8 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
          Vehicles: {entered} entered, {exited} exited, {inside} still on the road, {waiting} \
          waiting at the entrance. Discharge at detector '{detector}': {q:.1} veh/h/lane over \
          the measurement window; highest {agg} s flow {qmax:.1} veh/h/lane.{network} Lane changes per \
-         vehicle {lc:.3} ({counted} vehicles; per CAV {lc_cav:.3}, per human {lc_human:.3}); \
-         average platoon length {lbar:.2} and platooning probability {pp:.3} ({cavs} CAVs). \
+         vehicle {lc} ({counted} vehicles; per CAV {lc_cav}, per human {lc_human}); \
+         average platoon length {lbar} and platooning probability {pp} ({cavs} CAVs). \
          Safety after the warm-up: {eb} emergency brakings ({eb_cav} CAV, {eb_human} human), \
          {conflicts} conflicts (TTC below {ttc_star} s), TET {tet:.1} s, TIT {tit:.1} s², \
          minimum TTC {min_ttc}; largest deceleration {max_decel:.2} m/s² over the whole run. \
@@ -447,12 +456,12 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
         q = s.discharge_flow_vphpl,
         agg = config.aggregation_s,
         qmax = s.max_sustained_flow_vphpl,
-        lc = s.lane_changes_per_vehicle,
-        lc_cav = s.lane_changes_per_cav,
-        lc_human = s.lane_changes_per_human,
+        lc = maybe(s.lane_changes_per_vehicle, 3),
+        lc_cav = maybe(s.lane_changes_per_cav, 3),
+        lc_human = maybe(s.lane_changes_per_human, 3),
         counted = s.vehicles_counted,
-        lbar = s.avg_platoon_length,
-        pp = s.platooning_probability,
+        lbar = maybe(s.avg_platoon_length, 2),
+        pp = maybe(s.platooning_probability, 3),
         cavs = s.cavs_counted,
         eb = s.emergency_brakings,
         eb_cav = s.emergency_brakings_cav,
@@ -608,6 +617,7 @@ mod tests {
             origin: 7,
             status,
             entered_s: 12.3,
+            depart_delay_s: 0.25,
             left_s: left,
             travel_time_s: left.map(|l| l - 12.3),
             entry_x_m: 5734.0,
@@ -628,11 +638,11 @@ mod tests {
         assert_eq!(
             text.lines().collect::<Vec<_>>(),
             [
-                "id,kind,origin,destination,status,entered_s,left_s,travel_time_s,entry_x_m,last_x_m,lane_changes,max_platoon,max_platoon_tg2,measured",
-                "42,cav,OR7,FR3,exited,12.3,112.5,100.2,5734,9000.25,2,3,1,false",
-                "42,cav,OR7,end,exited,12.3,112.5,100.2,5734,9000.25,2,3,1,false",
-                "42,cav,OR7,end,missed_exit_then_end,12.3,112.5,100.2,5734,9000.25,2,3,1,false",
-                "42,cav,OR7,,in_network,12.3,,,5734,9000.25,2,3,1,false",
+                "id,kind,origin,destination,status,entered_s,depart_delay_s,left_s,travel_time_s,entry_x_m,last_x_m,lane_changes,max_platoon,max_platoon_tg2,measured",
+                "42,cav,OR7,FR3,exited,12.3,0.25,112.5,100.2,5734,9000.25,2,3,1,false",
+                "42,cav,OR7,end,exited,12.3,0.25,112.5,100.2,5734,9000.25,2,3,1,false",
+                "42,cav,OR7,end,missed_exit_then_end,12.3,0.25,112.5,100.2,5734,9000.25,2,3,1,false",
+                "42,cav,OR7,,in_network,12.3,0.25,,,5734,9000.25,2,3,1,false",
             ]
         );
         let homogeneous = Config::homogeneous(0.5, 2000.0, 60.0, 0.0, 1);

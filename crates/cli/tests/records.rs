@@ -51,7 +51,7 @@ fn sr99_trips_agree_with_the_summary_and_the_off_ramp_detectors() {
     let trips = read_csv(&out.join("trips.csv"));
     let header = std::fs::read_to_string(out.join("trips.csv")).unwrap();
     assert!(header.starts_with(
-        "id,kind,origin,destination,status,entered_s,left_s,travel_time_s,entry_x_m,last_x_m,\
+        "id,kind,origin,destination,status,entered_s,depart_delay_s,left_s,travel_time_s,entry_x_m,last_x_m,\
          lane_changes,max_platoon,max_platoon_tg2,measured\n"
     ));
     assert_eq!(trips.len() as u64, n("vehicles_entered"));

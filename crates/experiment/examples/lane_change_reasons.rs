@@ -105,12 +105,18 @@ fn main() {
     println!(
         "per vehicle: events {:.4}, summary {:.4}",
         counter.per_vehicle(None),
-        s.lane_changes_per_vehicle
+        s.lane_changes_per_vehicle.unwrap()
     );
-    assert_eq!(counter.per_vehicle(None), s.lane_changes_per_vehicle);
-    assert_eq!(counter.per_vehicle(Some(Kind::Cav)), s.lane_changes_per_cav);
+    assert_eq!(
+        counter.per_vehicle(None),
+        s.lane_changes_per_vehicle.unwrap()
+    );
+    assert_eq!(
+        counter.per_vehicle(Some(Kind::Cav)),
+        s.lane_changes_per_cav.unwrap()
+    );
     assert_eq!(
         counter.per_vehicle(Some(Kind::Human)),
-        s.lane_changes_per_human
+        s.lane_changes_per_human.unwrap()
     );
 }

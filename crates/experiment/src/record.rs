@@ -24,16 +24,40 @@ use std::fmt;
 /// Summary fields that echo the configuration (they are cell labels or the seed) or that
 /// differ between identical runs (`wall_seconds`): kept in the run file, not counted as
 /// metrics.
-pub const NOT_METRICS: [&str; 9] = [
+pub const NOT_METRICS: [&str; 10] = [
     "scenario",
     "strategy",
     "penetration",
     "demand_vphpl",
+    "demand_scale",
     "seed",
     "dt_s",
     "duration_s",
     "warmup_s",
     "wall_seconds",
+];
+
+/// The summary's metrics that count things (integers in `summary.json`); `runs.csv` writes
+/// them without a decimal point, every other metric with one (`crate::table`).
+pub const COUNTS: [&str; 18] = [
+    "vehicles_entered",
+    "vehicles_exited",
+    "vehicles_in_network",
+    "vehicles_waiting",
+    "cavs_counted",
+    "vehicles_counted",
+    "missed_exits",
+    "collisions",
+    "emergency_brakings",
+    "emergency_brakings_cav",
+    "emergency_brakings_human",
+    "conflicts",
+    "conflicts_cav",
+    "conflicts_human",
+    "vehicle_updates",
+    "steps",
+    "runs_with_collisions",
+    "seed",
 ];
 
 /// Named numbers in a fixed order: a run's metrics (the summary's numeric fields, in the
@@ -281,9 +305,29 @@ mod tests {
     }
 
     #[test]
+    fn the_counts_are_the_integer_fields_of_the_summary() {
+        let json = serde_json::to_value(summary()).unwrap();
+        let mut ints: Vec<&str> = json
+            .as_object()
+            .unwrap()
+            .iter()
+            .filter(|(k, v)| v.is_u64() && !NOT_METRICS.contains(&k.as_str()))
+            .map(|(k, _)| k.as_str())
+            .collect();
+        let mut listed: Vec<&str> = COUNTS
+            .iter()
+            .copied()
+            .filter(|c| !["runs_with_collisions", "seed"].contains(c))
+            .collect();
+        ints.sort_unstable();
+        listed.sort_unstable();
+        assert_eq!(ints, listed);
+    }
+
+    #[test]
     fn nan_reads_back_as_nan() {
         let mut s = summary();
-        s.avg_platoon_length = f64::NAN;
+        s.avg_platoon_length = None;
         let f = decode(&encode("k", 4, engine_id(), &s), "k", 4, Some(engine_id())).unwrap();
         assert!(f.get("avg_platoon_length").unwrap().is_nan());
     }

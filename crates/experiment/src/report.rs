@@ -1,23 +1,37 @@
 //! The reproduction report over several experiments: `REPORT.md` and a self-contained
 //! `report.html` (the same text; figures inlined as base64 data URIs, style inline).
 //!
-//! The homogeneous-road experiments get one numbered section each; the SR-99 experiments
-//! share one section ("SR-99 corridor"), which ends with the `## SR-99 corridor` section of
-//! the notes (the rest of the notes closes the report).
+//! It holds this run's results only: a header (date, version, commit, seeds, host, wall time),
+//! a table of contents, the checks at a glance (✓ holds / ✗ does not hold), then one numbered
+//! section per homogeneous-road experiment and one for the SR-99 experiments, each with our
+//! numbers beside the paper's and the difference. The project's lab notebook (measurements of
+//! earlier runs, why the figures differ from the paper's) stays in `docs/` and is linked,
+//! never copied: its figures come from other runs.
 
 use crate::atomic::write_atomic;
 use crate::experiments::{ExperimentName, ExperimentOutput, Figure};
 use crate::safety;
 use crate::table::md_table;
 use crate::{Error, VERSION};
-use pulldown_cmark::{html, CowStr, Event, Options, Parser, Tag};
+use pulldown_cmark::{html, CowStr, Event, Options, Parser, Tag, TagEnd};
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+
+/// Where and when the report was made (the header's provenance).
+#[derive(Clone, Debug, Default)]
+pub struct Provenance {
+    /// UTC date and time, e.g. `2026-12-02 07:10 UTC`.
+    pub date: String,
+    /// `git describe` of the source tree, or "unknown".
+    pub commit: String,
+    /// Host name, operating system, architecture and core count.
+    pub host: String,
+}
 
 /// What the report is made of.
 pub struct ReportInput<'a> {
     pub outputs: &'a [ExperimentOutput],
-    /// Markdown of the "Notes on differences" section.
-    pub notes: &'a str,
+    pub provenance: Provenance,
     /// The command that produced it, e.g. `platoonsim reproduce --quick`.
     pub command: &'a str,
     /// Seeds per cell on the homogeneous road …
@@ -29,6 +43,10 @@ pub struct ReportInput<'a> {
     pub jobs: Option<usize>,
     pub wall_seconds: f64,
 }
+
+/// The lab notebook of the homogeneous road and of SR-99 (paths in the repository).
+pub const NOTEBOOK: &str = "docs/reproduction-notes.md";
+pub const NOTEBOOK_SR99: &str = "docs/reproduction-notes-sr99.md";
 
 /// Push every Markdown heading one level down (`#` → `##`).
 pub fn demote(md: &str) -> String {
@@ -43,94 +61,180 @@ pub fn demote(md: &str) -> String {
     s
 }
 
-/// The notes as a section of the report: a level-2 heading first (added if missing; level-1
-/// headings are pushed down).
-pub fn notes_section(notes: &str) -> String {
-    let t = notes.trim();
-    if t.starts_with("# ") {
-        demote(t)
-    } else if t.starts_with('#') {
-        format!("{t}\n")
-    } else {
-        format!("## Notes on differences\n\n{t}\n")
-    }
-}
-
-/// The heading of the notes' SR-99 section.
-pub const NETWORK_NOTES: &str = "## SR-99 corridor";
-
-/// The notes without their `## SR-99 corridor` section, and that section's text (without its
-/// heading; empty if there is none). The section runs to the next level-2 heading.
-pub fn split_notes(notes: &str) -> (String, String) {
-    let mut rest = String::new();
-    let mut network = String::new();
-    let mut inside = false;
-    for line in notes.lines() {
-        if line.starts_with("## ") || line.starts_with("# ") {
-            inside = line.trim_end() == NETWORK_NOTES;
-            if inside {
-                continue;
-            }
-        }
-        let out = if inside { &mut network } else { &mut rest };
-        out.push_str(line);
-        out.push('\n');
-    }
-    (rest, network.trim().to_string())
-}
-
 /// Whether an output belongs to the SR-99 section.
 fn is_network(o: &ExperimentOutput) -> bool {
     ExperimentName::NETWORK.contains(&o.name)
+}
+
+/// A check's verdict, visible at a glance: a symbol and the words (the HTML page colours it).
+pub fn verdict(passed: bool) -> &'static str {
+    if passed {
+        "✓ **holds**"
+    } else {
+        "✗ **does not hold**"
+    }
+}
+
+/// The experiments' own check lists say `**holds**` / `**does not hold**`; the report puts
+/// the symbol in front.
+fn mark_verdicts(md: &str) -> String {
+    md.replace("**does not hold**", "✗ **does not hold**")
+        .replace("- **holds**", "- ✓ **holds**")
+}
+
+/// GitHub's heading anchors: lower case, letters (with combining accents), digits, `-` and
+/// `_` kept, spaces to `-`, the rest dropped; a repeated anchor gets `-1`, `-2`, ….
+#[derive(Default)]
+pub struct Anchors(HashMap<String, usize>);
+
+impl Anchors {
+    pub fn next(&mut self, heading: &str) -> String {
+        let base: String = heading
+            .trim()
+            .to_lowercase()
+            .chars()
+            .filter_map(|c| match c {
+                ' ' => Some('-'),
+                // Letters with their combining marks (L̄), digits, `-`, `_`.
+                c if c.is_alphanumeric()
+                    || c == '-'
+                    || c == '_'
+                    || ('\u{300}'..='\u{36f}').contains(&c) =>
+                {
+                    Some(c)
+                }
+                _ => None,
+            })
+            .collect();
+        let n = self.0.entry(base.clone()).or_insert(0);
+        let id = if *n == 0 { base } else { format!("{base}-{n}") };
+        *n += 1;
+        id
+    }
+}
+
+/// The text a reader sees in a Markdown heading (code spans and emphasis markers removed).
+fn heading_text(line: &str) -> String {
+    line.trim_start_matches('#').trim().replace(['`', '*'], "")
+}
+
+/// A table of contents of the level-2 and level-3 headings of `md` (after the title), linked
+/// to their anchors; `md` is the whole document so that repeated headings are numbered as a
+/// renderer numbers them.
+pub fn contents(md: &str) -> String {
+    let mut anchors = Anchors::default();
+    let mut toc = String::new();
+    let mut fenced = false;
+    for line in md.lines() {
+        if line.starts_with("```") {
+            fenced = !fenced;
+        }
+        if fenced || !line.starts_with('#') {
+            continue;
+        }
+        let text = heading_text(line);
+        let id = anchors.next(&text);
+        let level = line.chars().take_while(|&c| c == '#').count();
+        if (2..=3).contains(&level) && text != "Contents" {
+            let indent = if level == 3 { "  " } else { "" };
+            toc.push_str(&format!("{indent}- [{text}](#{id})\n"));
+        }
+    }
+    toc
+}
+
+/// Civil date and time (UTC) of a Unix time, `YYYY-MM-DD HH:MM UTC`.
+pub fn utc(unix_s: u64) -> String {
+    let days = (unix_s / 86_400) as i64;
+    let secs = unix_s % 86_400;
+    // Days since 1970-01-01 to a civil date (the proleptic Gregorian calendar).
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1_460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!(
+        "{y:04}-{m:02}-{d:02} {:02}:{:02} UTC",
+        secs / 3_600,
+        secs % 3_600 / 60
+    )
 }
 
 /// `REPORT.md`.
 pub fn markdown(input: &ReportInput<'_>) -> String {
     let computed: usize = input.outputs.iter().map(|o| o.computed).sum();
     let reused: usize = input.outputs.iter().map(|o| o.reused).sum();
-    let mut md = String::from(
-        "# platoonsim: reproduction of Woo & Skabardonis, \"Flow-Aware Platoon Formation of \
-         CAVs in Mixed Traffic\"\n\n",
+    let p = &input.provenance;
+    let threads = input
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let seeds = match input.network_seeds {
+        Some(n) if n != input.seeds => format!(
+            "{} per cell on the homogeneous road, {n} per cell on SR-99",
+            input.seeds
+        ),
+        _ => format!("{} per cell", input.seeds),
+    };
+    let mut head = String::from(
+        "# platoonsim reproduction report: Woo & Skabardonis, \"Flow-Aware Platoon Formation \
+         of CAVs in Mixed Traffic\"\n\n",
     );
-    md.push_str(&format!(
-        "Made by `{}` (platoonsim {VERSION}) with {} seeds per cell{} on {}. Total wall time \
-         **{:.0} s** ({:.1} min): {computed} runs computed, {reused} reused from earlier run \
-         files. Every number below is the mean over the seeds with the half-width of its 95 % \
-         confidence interval (Student t); the paper reports single values without intervals. \
-         Each experiment's files (every run, the statistics, provenance) are in its \
-         directory beside this report.\n\n",
-        input.command,
-        input.seeds,
-        match input.network_seeds {
-            Some(n) if n != input.seeds => format!(" ({n} on SR-99)"),
-            _ => String::new(),
-        },
-        match input.jobs {
-            Some(n) => format!("{n} worker thread(s)"),
-            None => format!(
-                "{} worker thread(s)",
-                std::thread::available_parallelism().map_or(1, |n| n.get())
+    let rows = vec![
+        vec!["Date".to_string(), p.date.clone()],
+        vec![
+            "Version".into(),
+            format!("platoonsim {VERSION}, commit `{}`", p.commit),
+        ],
+        vec!["Command".into(), format!("`{}`", input.command)],
+        vec!["Seeds".into(), seeds],
+        vec![
+            "Host".into(),
+            format!("{}; {threads} worker thread(s)", p.host),
+        ],
+        vec![
+            "Wall time".into(),
+            format!(
+                "{:.0} s ({:.1} min): {computed} runs computed, {reused} reused from earlier run \
+                 files",
+                input.wall_seconds,
+                input.wall_seconds / 60.0
             ),
-        },
-        input.wall_seconds,
-        input.wall_seconds / 60.0
+        ],
+    ];
+    head.push_str(&md_table(&["Run".to_string(), "".to_string()], &rows));
+    head.push_str(&format!(
+        "\nEvery number is this run's: the mean over the seeds with the half-width of its 95 % \
+         confidence interval (Student t), beside the paper's value (single values without \
+         intervals) and the difference. A check reads ✓ **holds** or ✗ **does not hold**. Why \
+         our figures differ from the paper's, with the measurements behind each explanation, is \
+         in the project's lab notebook, `{NOTEBOOK}` (homogeneous road) and `{NOTEBOOK_SR99}` \
+         (SR-99 corridor), dated entries grouped by topic; its figures come from earlier runs \
+         and are not repeated here. Each experiment's files (every run, the statistics, \
+         provenance) are in its directory beside this report.\n\n"
     ));
 
-    md.push_str(&collisions_warning(input.outputs));
+    let mut md = collisions_warning(input.outputs);
     md.push_str("## At a glance: the checks\n\n");
+    let mut glance = Vec::new();
     for o in input.outputs {
         for c in &o.checks {
-            md.push_str(&format!(
-                "- {} — **{}**: {}\n",
-                o.name.as_str(),
-                if c.passed { "holds" } else { "does not hold" },
-                c.statement
-            ));
+            glance.push(vec![
+                verdict(c.passed).to_string(),
+                o.name.as_str().to_string(),
+                c.statement.clone(),
+            ]);
         }
     }
+    md.push_str(&md_table(
+        &["Result".into(), "Experiment".into(), "Check".into()],
+        &glance,
+    ));
     md.push('\n');
 
-    let (notes, network_notes) = split_notes(input.notes);
     let mut n = 0;
     let beyond = |o: &&ExperimentOutput| ExperimentName::BEYOND.contains(&o.name);
     for o in input
@@ -140,23 +244,24 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
     {
         n += 1;
         md.push_str(&format!("## {n}. {}\n\n", o.name.title()));
+        md.push_str(&format!(
+            "Why these figures differ from the paper's: `{NOTEBOOK}` in the repository \
+             (measurements session by session, newest first).\n\n"
+        ));
         md.push_str(&section(o, 1));
     }
     let network: Vec<&ExperimentOutput> = input.outputs.iter().filter(|o| is_network(o)).collect();
     if !network.is_empty() {
         n += 1;
         md.push_str(&format!(
-            "## {n}. SR-99 corridor (paper Table 4, Figs. 6-8)\n\n{}\n\n",
+            "## {n}. SR-99 corridor (paper Table 4, Figs. 6-8)\n\n{}\n\nWhy these figures differ \
+             from the paper's: `{NOTEBOOK_SR99}` in the repository; how the corridor and its \
+             demand were built: `docs/sr99-data.md`.\n\n",
             input.network_note.trim()
         ));
         for o in network {
             md.push_str(&format!("### {}\n\n", o.name.title()));
             md.push_str(&section(o, 2));
-        }
-        if !network_notes.is_empty() {
-            md.push_str("### Notes on the SR-99 results\n\n");
-            md.push_str(&demote(&network_notes));
-            md.push('\n');
         }
     }
     // Beyond the paper (issue 23's energy), after the paper's experiments.
@@ -167,10 +272,16 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
     }
 
     md.push_str("## Run time\n\n");
-    let header: Vec<String> = ["Experiment", "Runs", "Computed", "Reused", "Wall time (s)"]
-        .iter()
-        .map(|h| h.to_string())
-        .collect();
+    let header: Vec<String> = [
+        "Experiment",
+        "Runs (count)",
+        "Computed (count)",
+        "Reused (count)",
+        "Wall time (s)",
+    ]
+    .iter()
+    .map(|h| h.to_string())
+    .collect();
     let mut rows: Vec<Vec<String>> = input
         .outputs
         .iter()
@@ -197,9 +308,18 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
         format!("{:.1}", input.wall_seconds),
     ]);
     md.push_str(&md_table(&header, &rows));
-    md.push('\n');
-    md.push_str(&notes_section(&notes));
-    md
+    let md = mark_verdicts_outside_glance(&md);
+    let whole = format!("{head}## Contents\n\n{md}");
+    let toc = contents(&whole);
+    format!("{head}## Contents\n\n{toc}\n{md}")
+}
+
+/// [`mark_verdicts`] on the sections (the glance table has its symbols already).
+fn mark_verdicts_outside_glance(md: &str) -> String {
+    match md.find("\n## 1. ") {
+        Some(i) => format!("{}{}", &md[..i], mark_verdicts(&md[i..])),
+        None => md.to_string(),
+    }
 }
 
 /// The warning at the top of the report when runs collided (empty if none): how many, and
@@ -256,12 +376,14 @@ fn section(o: &ExperimentOutput, depth: usize) -> String {
 const STYLE: &str =
     "body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;max-width:1200px;\
 margin:2em auto;padding:0 1em;line-height:1.45;color:#222}\
-table{border-collapse:collapse;margin:1em 0;font-size:0.88em}\
+table{border-collapse:collapse;margin:1em 0;font-size:0.88em;display:block;overflow-x:auto;max-width:100%}\
 th,td{border:1px solid #ccc;padding:0.25em 0.5em;text-align:left;vertical-align:top}\
 th{background:#f2f2f2}tr:nth-child(even) td{background:#fafafa}\
 img{max-width:100%;height:auto;border:1px solid #eee}\
 code{background:#f5f5f5;padding:0 0.2em}\
-blockquote{border-left:4px solid #c00;background:#fff4f4;margin:1em 0;padding:0.3em 1em}h1{font-size:1.6em}h2{border-bottom:1px solid #ddd}";
+blockquote{border-left:4px solid #c00;background:#fff4f4;margin:1em 0;padding:0.3em 1em}h1{font-size:1.6em}h2{border-bottom:1px solid #ddd}\
+.fail{color:#b00000;background:#fde8e8;font-weight:bold;padding:0 0.25em;white-space:nowrap}\
+.pass{color:#1a6b1a;font-weight:bold;white-space:nowrap}";
 
 /// Standard base64 with padding.
 pub fn base64(bytes: &[u8]) -> String {
@@ -307,27 +429,60 @@ fn data_uri(base: &Path, url: &str) -> Option<String> {
 }
 
 /// The Markdown as a self-contained HTML page: images under `base` are inlined; links to
-/// local files are kept (they work when the page sits beside the output directories).
+/// local files are kept (they work when the page sits beside the output directories); every
+/// heading gets its GitHub anchor as `id` (the table of contents links to them); a verdict is
+/// coloured (red for ✗ does not hold, green for ✓ holds).
 pub fn html(md: &str, base: &Path, title: &str) -> String {
-    let parser = Parser::new_ext(md, Options::ENABLE_TABLES).map(|ev| match ev {
-        Event::Start(Tag::Image {
-            link_type,
-            dest_url,
-            title,
-            id,
-        }) => {
-            let dest_url = data_uri(base, &dest_url).map_or(dest_url, CowStr::from);
+    let mut events: Vec<Event> = Parser::new_ext(md, Options::ENABLE_TABLES)
+        .map(|ev| match ev {
             Event::Start(Tag::Image {
                 link_type,
                 dest_url,
                 title,
                 id,
-            })
+            }) => {
+                let dest_url = data_uri(base, &dest_url).map_or(dest_url, CowStr::from);
+                Event::Start(Tag::Image {
+                    link_type,
+                    dest_url,
+                    title,
+                    id,
+                })
+            }
+            other => other,
+        })
+        .collect();
+    let mut anchors = Anchors::default();
+    let mut i = 0;
+    while i < events.len() {
+        if matches!(events[i], Event::Start(Tag::Heading { .. })) {
+            let mut text = String::new();
+            let mut j = i + 1;
+            while j < events.len() && !matches!(events[j], Event::End(TagEnd::Heading(_))) {
+                if let Event::Text(t) | Event::Code(t) = &events[j] {
+                    text.push_str(t);
+                }
+                j += 1;
+            }
+            let anchor = anchors.next(&text);
+            if let Event::Start(Tag::Heading { id, .. }) = &mut events[i] {
+                *id = Some(CowStr::from(anchor));
+            }
+            i = j;
         }
-        other => other,
-    });
+        i += 1;
+    }
     let mut body = String::new();
-    html::push_html(&mut body, parser);
+    html::push_html(&mut body, events.into_iter());
+    let body = body
+        .replace(
+            "✗ <strong>does not hold</strong>",
+            "<span class=\"fail\">✗ does not hold</span>",
+        )
+        .replace(
+            "✓ <strong>holds</strong>",
+            "<span class=\"pass\">✓ holds</span>",
+        );
     format!(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
          <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
@@ -396,23 +551,47 @@ mod tests {
     }
 
     #[test]
-    fn the_sr99_notes_are_split_off() {
-        let notes = "## Notes on differences\n\nA.\n\n## SR-99 corridor\n\nB.\n\n### Sub\n\nC.\n\n## Later\n\nD.\n";
-        let (rest, net) = split_notes(notes);
-        assert_eq!(rest, "## Notes on differences\n\nA.\n\n## Later\n\nD.\n");
-        assert_eq!(net, "B.\n\n### Sub\n\nC.");
-        let (rest, net) = split_notes("plain");
-        assert_eq!((rest.as_str(), net.as_str()), ("plain\n", ""));
+    fn anchors_follow_github_and_the_contents_link_them() {
+        let mut a = Anchors::default();
+        assert_eq!(
+            a.next("1. Capacity with and without the PD lane (paper Fig. 4)"),
+            "1-capacity-with-and-without-the-pd-lane-paper-fig-4"
+        );
+        assert_eq!(a.next("Safety"), "safety");
+        assert_eq!(a.next("Safety"), "safety-1");
+        assert_eq!(a.next("L̄ & P_P"), "l̄--p_p");
+        let md = "# T\n\n## Contents\n\n## 1. A `b`\n\n### Safety\n\n#### Deep\n\n## 2. C\n\n### Safety\n";
+        assert_eq!(
+            contents(md),
+            "- [1. A b](#1-a-b)\n  - [Safety](#safety)\n- [2. C](#2-c)\n  - [Safety](#safety-1)\n"
+        );
+        let page = html(md, Path::new("."), "t");
+        assert!(page.contains("<h2 id=\"1-a-b\">"), "{page}");
+        assert!(page.contains("<h3 id=\"safety-1\">"), "{page}");
     }
 
     #[test]
-    fn headings_are_demoted_and_notes_get_a_heading() {
-        assert_eq!(demote("# A\ntext\n## B"), "## A\ntext\n### B\n");
-        assert_eq!(notes_section("plain"), "## Notes on differences\n\nplain\n");
+    fn verdicts_carry_a_symbol_and_a_colour() {
+        let md = format!("- {}: x\n- {}: y\n", verdict(true), verdict(false));
+        assert_eq!(md, "- ✓ **holds**: x\n- ✗ **does not hold**: y\n");
+        let page = html(&md, Path::new("."), "t");
+        assert!(page.contains("<span class=\"fail\">✗ does not hold</span>: y"));
+        assert!(page.contains("<span class=\"pass\">✓ holds</span>: x"));
         assert_eq!(
-            notes_section("## Notes on differences\n\nx"),
-            "## Notes on differences\n\nx\n"
+            mark_verdicts("- **holds**: a\n- **does not hold**: b\n"),
+            "- ✓ **holds**: a\n- ✗ **does not hold**: b\n"
         );
-        assert!(notes_section("# Notes\n\n## Sub").starts_with("## Notes\n\n### Sub"));
+    }
+
+    #[test]
+    fn utc_dates() {
+        assert_eq!(utc(0), "1970-01-01 00:00 UTC");
+        assert_eq!(utc(951_782_400), "2000-02-29 00:00 UTC");
+        assert_eq!(utc(1_796_184_000 + 2_460), "2026-12-02 04:41 UTC");
+    }
+
+    #[test]
+    fn headings_are_demoted() {
+        assert_eq!(demote("# A\ntext\n## B"), "## A\ntext\n### B\n");
     }
 }

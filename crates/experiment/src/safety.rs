@@ -14,8 +14,8 @@ use crate::table::{self, md_table, pm};
 
 /// The safety columns: (metric of the summary, column title, decimals).
 pub const METRICS: [(&str, &str, usize); 6] = [
-    ("emergency_brakings", "Emergency brakings", 1),
-    ("conflicts", "Conflicts (TTC < TTC*)", 1),
+    ("emergency_brakings", "Emergency brakings (episodes)", 1),
+    ("conflicts", "Conflicts, TTC < TTC* (episodes)", 1),
     ("tet_s", "TET (s)", 1),
     ("tit_s2", "TIT (s²)", 1),
     ("min_ttc_s", "Min TTC (s)", 2),
@@ -143,8 +143,8 @@ fn grouped(cells: &[Cell], group: &[&str]) -> Vec<usize> {
 /// averaged over the runs in which a follower closed in (`n` given when some did not).
 pub fn section_md(cells: &[Cell], outcomes: &[Outcome], group: &[&str]) -> String {
     let labels = table::label_columns(cells);
-    let mut header = labels.clone();
-    header.push("Runs with collisions".into());
+    let mut header: Vec<String> = labels.iter().map(|l| table::label_header(l)).collect();
+    header.push("Runs with collisions (runs)".into());
     header.extend(METRICS.iter().map(|m| m.1.to_string()));
     let mut rows = Vec::new();
     for c in grouped(cells, group) {

@@ -8,10 +8,15 @@
 //! `discharge_change_pct`, empty where they do not apply).
 //!
 //! `summary.csv` columns: the cell labels, `metric`, `mean`, `sd`, `n`, `ci_low`, `ci_high`,
-//! `paper`, `difference` (mean − paper), `relative_difference` ((mean − paper) / |paper|),
-//! `paper_source`, `runs_with_collisions` (the cell's runs that had a collision: a failed run,
-//! see [`crate::safety`]; 0 in a valid cell). Cells without a value (no paper value, n < 2 for
-//! sd and the interval) are empty.
+//! `paper`, `difference` (mean − paper), `relative_difference_pct` (100 (mean − paper) /
+//! |paper|, percent), `paper_source`, `runs_with_collisions` (the cell's runs that had a
+//! collision: a failed run, see [`crate::safety`]; 0 in a valid cell). Cells without a value
+//! (no paper value, n < 2 for sd and the interval, a metric that does not apply to a run) are
+//! empty; `n` counts the runs that have a value.
+//!
+//! Number format: a count ([`crate::record::COUNTS`], and `n`, `seed`) is an integer; every
+//! other number has a decimal point (`2040.0`, not `2040`), so that a column has one type
+//! whatever its values, as in `summary.json`.
 
 use crate::design::{Cell, Labels};
 use crate::paper::{self, PaperValue};
@@ -37,10 +42,10 @@ impl SummaryRow {
         self.paper.map_or(f64::NAN, |p| self.stats.mean - p.value)
     }
 
-    /// (mean − paper) / |paper| (NaN without a paper value or if it is 0).
-    pub fn relative_difference(&self) -> f64 {
+    /// 100 (mean − paper) / |paper|, in percent (NaN without a paper value or if it is 0).
+    pub fn relative_difference_pct(&self) -> f64 {
         match self.paper {
-            Some(p) if p.value != 0.0 => (self.stats.mean - p.value) / p.value.abs(),
+            Some(p) if p.value != 0.0 => 100.0 * (self.stats.mean - p.value) / p.value.abs(),
             _ => f64::NAN,
         }
     }
@@ -72,17 +77,41 @@ pub fn metric_columns(outcomes: &[Outcome]) -> Vec<String> {
     cols
 }
 
-/// A number for a CSV cell: shortest round-trip text; empty for NaN or infinite.
+/// A number for a CSV cell: shortest round-trip text, with a decimal point also when the
+/// value is integral (`2040.0`); empty for NaN or infinite.
 pub fn csv_num(v: f64) -> String {
-    if v.is_finite() {
+    if !v.is_finite() {
+        String::new()
+    } else if v.fract() == 0.0 && v.abs() < 1e15 {
+        format!("{v:.1}")
+    } else {
+        format!("{v}")
+    }
+}
+
+/// A metric's value in `runs.csv`: counts as integers, everything else as [`csv_num`].
+fn metric_num(name: &str, v: f64) -> String {
+    if crate::record::COUNTS.contains(&name) && v.is_finite() {
         format!("{v}")
     } else {
-        String::new()
+        csv_num(v)
     }
 }
 
 fn csv_error(e: impl std::fmt::Display) -> Error {
     Error::Other(format!("cannot encode CSV: {e}"))
+}
+
+/// A cell label as a column header of the Markdown tables, with its unit.
+pub fn label_header(label: &str) -> String {
+    match label {
+        "penetration" => "CAV penetration (fraction)".into(),
+        "demand_vphpl" => "Demand (veh/h/lane)".into(),
+        "demand_scale" => "Demand scale (×)".into(),
+        "strategy" => "Strategy".into(),
+        "stage" => "Stage".into(),
+        other => other.to_string(),
+    }
 }
 
 /// `runs.csv`; see the module documentation.
@@ -105,11 +134,12 @@ pub fn runs_csv(cells: &[Cell], outcomes: &[Outcome]) -> Result<Vec<u8>, Error> 
             .collect();
         row.push(o.seed.to_string());
         row.push(o.key.clone());
-        row.extend(
-            metrics
-                .iter()
-                .map(|m| o.fields.get(m).map(csv_num).unwrap_or_default()),
-        );
+        row.extend(metrics.iter().map(|m| {
+            o.fields
+                .get(m)
+                .map(|v| metric_num(m, v))
+                .unwrap_or_default()
+        }));
         w.write_record(&row).map_err(csv_error)?;
     }
     w.into_inner().map_err(csv_error)
@@ -169,7 +199,7 @@ pub fn summary_csv(cells: &[Cell], rows: &[SummaryRow]) -> Result<Vec<u8>, Error
         "ci_high",
         "paper",
         "difference",
-        "relative_difference",
+        "relative_difference_pct",
         "paper_source",
         "runs_with_collisions",
     ] {
@@ -189,7 +219,7 @@ pub fn summary_csv(cells: &[Cell], rows: &[SummaryRow]) -> Result<Vec<u8>, Error
         row.push(csv_num(r.stats.ci_high));
         row.push(r.paper.map(|p| csv_num(p.value)).unwrap_or_default());
         row.push(csv_num(r.difference()));
-        row.push(csv_num(r.relative_difference()));
+        row.push(csv_num(r.relative_difference_pct()));
         row.push(r.paper.map(|p| p.source.to_string()).unwrap_or_default());
         row.push(r.collided.to_string());
         w.write_record(&row).map_err(csv_error)?;
@@ -300,12 +330,12 @@ pub fn decimals(metric: &str) -> usize {
 /// interval.
 pub fn paper_comparison(rows: &[SummaryRow], describe: impl Fn(&SummaryRow) -> String) -> String {
     let header: Vec<String> = [
-        "Quantity",
-        "Ours",
-        "95 % CI",
-        "Paper",
-        "Difference",
-        "Relative",
+        "Quantity (unit)",
+        "Ours (the row's unit)",
+        "95 % CI (the row's unit)",
+        "Paper (the row's unit)",
+        "Difference (the row's unit)",
+        "Relative (%)",
         "Paper value in our CI",
         "Source",
     ]
@@ -323,7 +353,7 @@ pub fn paper_comparison(rows: &[SummaryRow], describe: impl Fn(&SummaryRow) -> S
         } else {
             "no"
         };
-        let rel = r.relative_difference();
+        let rel = r.relative_difference_pct() / 100.0;
         out.push(vec![
             describe(r),
             fixed(r.stats.mean, dec),
@@ -406,9 +436,10 @@ mod tests {
             "demand_vphpl,strategy,seed,key,discharge_flow_vphpl,avg_platoon_length,discharge_change_pct"
         );
         assert_eq!(lines.len(), 1 + 4);
-        assert_eq!(lines[2], "1000,none,2,k02,1010,,");
-        assert_eq!(lines[3], "1000,pd,1,k11,990,5,-1");
-        assert_eq!(lines[4], "1000,pd,2,k12,1010,5.2,0");
+        // Not counts: always a decimal point, so each column has one type.
+        assert_eq!(lines[2], "1000,none,2,k02,1010.0,,");
+        assert_eq!(lines[3], "1000,pd,1,k11,990.0,5.0,-1.0");
+        assert_eq!(lines[4], "1000,pd,2,k12,1010.0,5.2,0.0");
         for l in &lines {
             assert_eq!(l.split(',').count(), 7, "{l}");
         }
@@ -436,7 +467,7 @@ mod tests {
         let lines: Vec<&str> = summary.lines().collect();
         assert_eq!(
             lines[0],
-            "demand_vphpl,strategy,metric,mean,sd,n,ci_low,ci_high,paper,difference,relative_difference,paper_source,runs_with_collisions"
+            "demand_vphpl,strategy,metric,mean,sd,n,ci_low,ci_high,paper,difference,relative_difference_pct,paper_source,runs_with_collisions"
         );
         assert_eq!(lines.len(), 1 + 5);
         let mut r = csv::Reader::from_reader(summary.as_bytes());
@@ -444,6 +475,8 @@ mod tests {
             assert_eq!(rec.unwrap().len(), 13);
         }
         assert!(lines[2].starts_with("1000,none,avg_platoon_length,2.5,,1,,,2.6,"));
+        // (2.5 − 2.6) / 2.6 in percent.
+        assert!(lines[2].contains(",-3.84615384615384"), "{}", lines[2]);
     }
 
     #[test]

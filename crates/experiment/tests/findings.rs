@@ -113,14 +113,14 @@ fn pd_effect(demand: f64) -> (f64, f64, f64) {
             b.discharge_flow_vphpl,
             p.discharge_flow_vphpl,
             100.0 * (p.discharge_flow_vphpl / b.discharge_flow_vphpl - 1.0),
-            b.avg_platoon_length,
-            p.avg_platoon_length
+            b.avg_platoon_length.unwrap(),
+            p.avg_platoon_length.unwrap()
         );
     }
     let q_base = mean(pairs.iter().map(|(b, _)| b.discharge_flow_vphpl));
     let q_pd = mean(pairs.iter().map(|(_, p)| p.discharge_flow_vphpl));
-    let l_base = mean(pairs.iter().map(|(b, _)| b.avg_platoon_length));
-    let l_pd = mean(pairs.iter().map(|(_, p)| p.avg_platoon_length));
+    let l_base = mean(pairs.iter().map(|(b, _)| b.avg_platoon_length.unwrap()));
+    let l_pd = mean(pairs.iter().map(|(_, p)| p.avg_platoon_length.unwrap()));
     let change = q_pd / q_base - 1.0;
     eprintln!(
         "  mean: discharge {q_base:.1} -> {q_pd:.1} ({:+.2} %), L̄ {l_base:.3} -> {l_pd:.3}",
@@ -248,7 +248,8 @@ fn flow_aware_gate_is_exactly_pd_when_always_met_and_exactly_baseline_when_never
     assert_eq!(o[3].summary.strategy, "flow-aware");
     // Not vacuous: PD changes this run.
     assert_ne!(
-        o[0].summary.avg_platoon_length, o[2].summary.avg_platoon_length,
+        o[0].summary.avg_platoon_length.unwrap(),
+        o[2].summary.avg_platoon_length.unwrap(),
         "PD and the baseline give the same L̄: the gate test would prove nothing"
     );
     assert_ne!(o[0].detectors, o[2].detectors);

@@ -65,8 +65,8 @@ fn the_dedicated_lane_keeps_humans_out_and_lengthens_platoons() {
         let humans = share_in_lane(&ded, Kind::Human, 2);
         let cavs = share_in_lane(&ded, Kind::Cav, 2);
         let (lb, ld) = (
-            base.summary.avg_platoon_length,
-            ded.summary.avg_platoon_length,
+            base.summary.avg_platoon_length.unwrap(),
+            ded.summary.avg_platoon_length.unwrap(),
         );
         println!(
             "seed {seed}: humans in the lane {:.2} % (baseline {:.1} %), CAVs {:.1} %, \
@@ -192,9 +192,12 @@ fn lane_changes_counted_from_events_agree_with_the_summary() {
         assert_eq!(same(&out.summary), same(&plain));
         let s = &out.summary;
         println!("{}: {:?}", c.name, n.by_reason);
-        assert_eq!(n.per_vehicle(None), s.lane_changes_per_vehicle);
-        assert_eq!(n.per_vehicle(Some(K::Cav)), s.lane_changes_per_cav);
-        assert_eq!(n.per_vehicle(Some(K::Human)), s.lane_changes_per_human);
+        assert_eq!(n.per_vehicle(None), s.lane_changes_per_vehicle.unwrap());
+        assert_eq!(n.per_vehicle(Some(K::Cav)), s.lane_changes_per_cav.unwrap());
+        assert_eq!(
+            n.per_vehicle(Some(K::Human)),
+            s.lane_changes_per_human.unwrap()
+        );
         let reason = |kind: &str, r: &str| n.by_reason.get(&(kind, r)).copied().unwrap_or(0);
         assert!(reason("cav", "organizing") > 50, "{:?}", n.by_reason);
         assert_eq!(reason("human", "organizing"), 0);

@@ -96,7 +96,7 @@ fn the_safety_table_has_every_cell_side_by_side() {
     assert_eq!(
         lines,
         [
-            "| demand_vphpl | strategy | Runs with collisions | Emergency brakings | Conflicts (TTC < TTC*) | TET (s) | TIT (s²) | Min TTC (s) | Max deceleration (m/s²) |",
+            "| Demand (veh/h/lane) | Strategy | Runs with collisions (runs) | Emergency brakings (episodes) | Conflicts, TTC < TTC* (episodes) | TET (s) | TIT (s²) | Min TTC (s) | Max deceleration (m/s²) |",
             "|---|---|---|---|---|---|---|---|---|",
             // Min TTC: one run had none (null), left out of the mean.
             "| 1000 | none | 0 of 2 | 3.0 ± 0.0 | 2.0 ± 0.0 | 1.3 ± 0.0 | 0.5 ± 0.0 | 1.50 (n = 1) | 4.50 ± 0.00 |",
@@ -116,9 +116,10 @@ fn runs_and_summary_csv_carry_the_safety_fields() {
         "demand_vphpl,strategy,seed,key,discharge_flow_vphpl,collisions,max_deceleration_mps2,\
          emergency_brakings,conflicts,tet_s,tit_s2,min_ttc_s"
     );
-    // The null minimum TTC is an empty cell (pandas reads NaN, the column stays float).
-    assert_eq!(lines[2], "1000,none,2,k02,1000,0,4.5,3,2,1.3,0.5,");
-    assert_eq!(lines[4], "1000,pd,2,k12,1000,2,4.5,7,2,1.3,0.5,1.5");
+    // The null minimum TTC is an empty cell (pandas reads NaN, the column stays float);
+    // counts are integers, every other number has a decimal point.
+    assert_eq!(lines[2], "1000,none,2,k02,1000.0,0,4.5,3,2,1.3,0.5,");
+    assert_eq!(lines[4], "1000,pd,2,k12,1000.0,2,4.5,7,2,1.3,0.5,1.5");
 
     let rows = table::summarize("sensitivity", &cells, &outcomes);
     let ttc = rows
@@ -255,7 +256,7 @@ fn an_experiment_marks_the_cells_that_collided() {
     let outputs = [res];
     let input = ReportInput {
         outputs: &outputs,
-        notes: "",
+        provenance: Default::default(),
         command: "test",
         seeds: 2,
         network_seeds: None,

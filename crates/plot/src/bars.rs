@@ -129,7 +129,8 @@ impl Figure<'_> {
             let e = r.error.unwrap_or(0.0);
             [r.value - e, r.value + e]
         });
-        let (lo, hi) = extent(ends.chain([0.0])).unwrap_or((0.0, 1.0));
+        let include = b.y_include.iter().copied().filter(|v| v.is_finite());
+        let (lo, hi) = extent(ends.chain(include).chain([0.0])).unwrap_or((0.0, 1.0));
         let (lo, hi) = if hi > lo { (lo, hi) } else { (0.0, 1.0) };
         let pad = (hi - lo) * 0.08;
         // Room above the bars for the legend, so it covers none of them.

@@ -168,6 +168,22 @@ pub(crate) fn legend_size(names: &[&str], font_px: f64, area_px: (u32, u32)) -> 
 /// covers the fewest samples of `lines`. Ties prefer upper right, upper left, lower right,
 /// lower left.
 pub(crate) fn legend_corner(lines: &[Vec<P>], r: &Rect, size: (f64, f64)) -> SeriesLabelPosition {
+    best_corner(lines, r, size).0
+}
+
+/// The y range of `r`, raised at the top when a legend of `size` would cover samples of
+/// `lines` in every corner: the data then fill the lower 1 − h − 3 % of the height, and the
+/// upper corners are free for the legend.
+pub(crate) fn legend_headroom(lines: &[Vec<P>], r: &Rect, size: (f64, f64)) -> (f64, f64) {
+    if best_corner(lines, r, size).1 == 0 {
+        return (r.y0, r.y1);
+    }
+    let h = size.1.clamp(0.05, 0.6);
+    (r.y0, r.y0 + (r.y1 - r.y0) / (1.0 - h - 0.03))
+}
+
+/// [`legend_corner`] and the number of samples the legend covers there.
+fn best_corner(lines: &[Vec<P>], r: &Rect, size: (f64, f64)) -> (SeriesLabelPosition, usize) {
     let (w, h) = (size.0.clamp(0.05, 1.0), size.1.clamp(0.05, 1.0));
     let corners = [
         (SeriesLabelPosition::UpperRight, 1.0 - w, 1.0, 1.0 - h, 1.0),
@@ -199,7 +215,7 @@ pub(crate) fn legend_corner(lines: &[Vec<P>], r: &Rect, size: (f64, f64)) -> Ser
         }
     }
     let best = (0..4).min_by_key(|&k| (hits[k], k)).unwrap_or(0);
-    corners[best].0.clone()
+    (corners[best].0.clone(), hits[best])
 }
 
 #[cfg(test)]
@@ -257,6 +273,20 @@ mod tests {
             / 2.0;
         assert!((area.abs() - 25.0).abs() < 1e-9);
         assert!(clip_polygon(&[(20.0, 20.0), (30.0, 20.0), (30.0, 30.0)], &R).is_empty());
+    }
+
+    #[test]
+    fn a_legend_with_no_free_corner_gets_room_at_the_top() {
+        // A line through all four corners: no corner is free.
+        let zigzag = vec![vec![(0.0, 0.0), (10.0, 10.0), (0.0, 10.0), (10.0, 0.0)]];
+        let (y0, y1) = legend_headroom(&zigzag, &R, (0.3, 0.2));
+        assert_eq!(y0, 0.0);
+        assert!((y1 - 10.0 / 0.77).abs() < 1e-9, "{y1}");
+        let raised = Rect { y1, ..R };
+        assert_eq!(best_corner(&zigzag, &raised, (0.3, 0.2)).1, 0);
+        // A free corner: the range stays.
+        let rising = vec![vec![(0.0, 0.0), (10.0, 10.0)]];
+        assert_eq!(legend_headroom(&rising, &R, (0.3, 0.2)), (0.0, 10.0));
     }
 
     #[test]

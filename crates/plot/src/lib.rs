@@ -144,6 +144,9 @@ pub struct Bars {
     pub groups: Vec<String>,
     /// `(name, values per group, optional error half-lengths per group)`.
     pub series: Vec<(String, Vec<f64>, Option<Vec<f64>>)>,
+    /// Values the y axis must also cover (non-finite ones are ignored): charts given the same
+    /// values and data within them get the same y range, e.g. ours and the paper's panels.
+    pub y_include: Vec<f64>,
 }
 
 /// The fixed speed scale of [`time_space`] (km/h): 0 (red) through yellow to 120 (green);

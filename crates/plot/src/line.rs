@@ -5,7 +5,9 @@ use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::geom::{clip_polygon, clip_polyline, finite_runs, legend_corner, legend_size, Rect, P};
+use crate::geom::{
+    clip_polygon, clip_polyline, finite_runs, legend_corner, legend_headroom, legend_size, Rect, P,
+};
 use crate::output::{msg, DrawResult, Figure};
 use crate::theme::{self, bold, colour, extent, padded, text, tick_label, valid_range, Sizes};
 use crate::{Chart, Series, Style};
@@ -129,11 +131,49 @@ pub(crate) fn draw_chart<DB: DrawingBackend>(
     sz: &Sizes,
 ) -> DrawResult {
     let prepared: Vec<Prepared> = chart.series.iter().map(Prepared::new).collect();
-    let (x0, x1) = padded(extent(prepared.iter().flat_map(Prepared::xs)), 0.02);
+    // 4 % on each side of x: a marker at the first or last x is drawn whole.
+    let (x0, x1) = padded(extent(prepared.iter().flat_map(Prepared::xs)), 0.04);
     let (y0, y1) = chart
         .y_range
         .and_then(valid_range)
         .unwrap_or_else(|| padded(extent(prepared.iter().flat_map(Prepared::ys)), 0.06));
+    let names: Vec<&str> = chart
+        .series
+        .iter()
+        .map(|s| s.name.as_str())
+        .filter(|n| !n.is_empty())
+        .collect();
+    // A legend never covers data: where no corner is free, the y axis is raised to make one.
+    let (y0, y1) = if names.is_empty() {
+        (y0, y1)
+    } else {
+        let data: Vec<Vec<P>> = prepared
+            .iter()
+            .flat_map(|p| {
+                let upper = p
+                    .bands
+                    .iter()
+                    .map(|b| b.iter().map(|&(x, _, h)| (x, h)).collect());
+                let lower = p
+                    .bands
+                    .iter()
+                    .map(|b| b.iter().map(|&(x, l, _)| (x, l)).collect());
+                p.runs.iter().cloned().chain(upper).chain(lower)
+            })
+            .collect();
+        let (aw, ah) = area.dim_in_pixel();
+        let title = if chart.title.is_empty() {
+            0
+        } else {
+            sz.title + 12
+        };
+        let plot_px = (
+            aw.saturating_sub(sz.y_area + 40),
+            ah.saturating_sub(sz.x_area + 24 + title),
+        );
+        let size = legend_size(&names, sz.legend as f64, plot_px);
+        legend_headroom(&data, &Rect { x0, x1, y0, y1 }, size)
+    };
     let rect = Rect { x0, x1, y0, y1 };
 
     let mut builder = ChartBuilder::on(area);
@@ -253,8 +293,8 @@ pub(crate) fn draw_chart<DB: DrawingBackend>(
             };
             let none = ShapeStyle::from(TRANSPARENT);
             let (first, second, dot, ring) = match style {
-                Style::Line => (c.stroke_width(3), c.stroke_width(3), none, none),
-                Style::Dashed => (c.stroke_width(3), none, none, none),
+                Style::Line => (c.stroke_width(sz.line), c.stroke_width(sz.line), none, none),
+                Style::Dashed => (c.stroke_width(sz.line), none, none, none),
                 Style::Markers => (none, none, c.filled(), BLACK.stroke_width(1)),
             };
             anno.label(series.name.as_str()).legend(move |at| {
@@ -269,12 +309,6 @@ pub(crate) fn draw_chart<DB: DrawingBackend>(
         }
     }
 
-    let names: Vec<&str> = chart
-        .series
-        .iter()
-        .map(|s| s.name.as_str())
-        .filter(|n| !n.is_empty())
-        .collect();
     if !names.is_empty() {
         let (pw, ph) = ctx.plotting_area().dim_in_pixel();
         let (w, h) = legend_size(&names, sz.legend as f64, (pw, ph));

@@ -12,7 +12,7 @@ use crate::{TimeSpace, TRACK_SPEED_BIN_KMH, TRACK_SPEED_RANGE_KMH};
 /// Width of the colour bar area at the right.
 const BAR_AREA: u32 = 170;
 /// Margin above the plot, shared with the colour bar so they line up.
-const TOP: u32 = 16;
+const TOP: u32 = 46;
 /// Line widths of CAVs and humans (px).
 const CAV_WIDTH: u32 = 2;
 const HUMAN_WIDTH: u32 = 1;
@@ -180,11 +180,10 @@ impl Figure<'_> {
             }
         }
 
-        // Line-width key in the top-left corner of the plot.
+        // Line-width key above the plot (in the top margin), so it covers no trajectory.
         let (px0, py0) = ctx.backend_coord(&(t0, x1));
-        let key = |dy: i32, width: u32, label: &str| {
-            EmptyElement::at((px0 + 12, py0 + dy))
-                + Rectangle::new([(-6, -14), (200, 14)], WHITE.mix(0.85).filled())
+        let key = |dx: i32, width: u32, label: &str| {
+            EmptyElement::at((px0 + dx, py0 - 24))
                 + PathElement::new(vec![(0, 0), (36, 0)], BLACK.stroke_width(width))
                 + Text::new(
                     label.to_string(),
@@ -192,8 +191,8 @@ impl Figure<'_> {
                     text(sz.legend).pos(Pos::new(HPos::Left, VPos::Center)),
                 )
         };
-        area.draw(&key(20, CAV_WIDTH, "CAV (thick)")).map_err(msg)?;
-        area.draw(&key(48, HUMAN_WIDTH, "human (thin)"))
+        area.draw(&key(4, CAV_WIDTH, "CAV (thick)")).map_err(msg)?;
+        area.draw(&key(220, HUMAN_WIDTH, "human (thin)"))
             .map_err(msg)?;
         Ok(())
     }

@@ -306,6 +306,7 @@ fn heatmap_survives_empty_nan_and_rejects_bad_shapes() {
 
 fn fig8() -> Bars {
     Bars {
+        y_include: Vec::new(),
         title: "Lane changes per vehicle".into(),
         y_label: "Lane changes (1/veh)".into(),
         groups: vec!["0 %".into(), "40 %".into(), "80 %".into(), "100 %".into()],
@@ -404,6 +405,7 @@ fn bar_chart_survives_empty_nan_and_negative_input() {
     check_files(&bar_chart(&Bars::default(), &stem).unwrap(), &stem);
 
     let odd = Bars {
+        y_include: Vec::new(),
         title: "Change in delay".into(),
         y_label: "Δ delay (s/veh)".into(),
         groups: vec!["a".into(), "b".into()],
@@ -418,6 +420,7 @@ fn bar_chart_survives_empty_nan_and_negative_input() {
     check_files(&bar_chart(&odd, &stem).unwrap(), &stem);
 
     let groups_only = Bars {
+        y_include: Vec::new(),
         groups: vec!["x".into()],
         ..Bars::default()
     };
@@ -468,6 +471,7 @@ fn extreme_values_do_not_panic() {
         check_files_min(&line_chart(&chart, &stem).unwrap(), &stem, 1_000);
 
         let bars = Bars {
+            y_include: Vec::new(),
             groups: vec!["g".into(), "h".into()],
             series: vec![("s".into(), ys.clone(), Some(ys.clone()))],
             ..Bars::default()

@@ -16,6 +16,7 @@
 use crate::config::Config;
 use crate::events::Event;
 use crate::network::NO_LANE;
+use crate::record::Recorder;
 use crate::rng::{Purpose, Stream};
 use crate::sense::Sensed;
 use crate::state::{Clock, RoadState, Traffic, Watch};
@@ -224,6 +225,8 @@ pub(crate) struct Inserting<'a> {
     pub traffic: &'a mut Traffic,
     /// The statistics' count of vehicles entered.
     pub entered: &'a mut u64,
+    /// The trip record (the arrival time at the entrance, for the queue delay).
+    pub rec: &'a mut Recorder,
     pub watch: &'a mut Watch,
 }
 
@@ -240,6 +243,9 @@ impl Inserting<'_> {
                 };
                 let v = create(self.cfg, self.traffic.next_id, x, t, e as u32);
                 self.traffic.next_id += 1;
+                if self.rec.trips.is_some() {
+                    self.rec.arrived(v.id, t);
+                }
                 let ent = &mut self.entrances[e];
                 ent.queue.push_back(v);
                 ent.next_arrival_s = ent.draw_after(t);

@@ -52,12 +52,12 @@ impl Metrics {
     }
 
     /// All lane changes / all vehicles (seed Sec. 4.1).
-    pub fn lane_changes_per_vehicle(&self) -> f64 {
+    pub fn lane_changes_per_vehicle(&self) -> Option<f64> {
         ratio(self.lane_changes as f64, self.vehicles_counted)
     }
 
     /// Lane changes per CAV and per human-driven vehicle (the paper's Table 3 note: both rise).
-    pub fn lane_changes_by_type(&self) -> (f64, f64) {
+    pub fn lane_changes_by_type(&self) -> (Option<f64>, Option<f64>) {
         let humans = self.vehicles_counted - self.cavs_counted;
         (
             ratio(self.lane_changes_cav as f64, self.cavs_counted),
@@ -65,21 +65,21 @@ impl Metrics {
         )
     }
 
-    /// L̄ (seed eq. 1); 0 if no CAV was counted.
-    pub fn avg_platoon_length(&self) -> f64 {
+    /// L̄ (seed eq. 1); `None` if no CAV was counted.
+    pub fn avg_platoon_length(&self) -> Option<f64> {
         ratio(self.platoon_length_sum as f64, self.cavs_counted)
     }
 
     /// L̄ and P_P with the strict link criterion of spec 6.15 (tg ≤ 2 s).
-    pub fn platoon_stats_tg2(&self) -> (f64, f64) {
+    pub fn platoon_stats_tg2(&self) -> (Option<f64>, Option<f64>) {
         (
             ratio(self.platoon_length_sum_tg2 as f64, self.cavs_counted),
             ratio(self.cavs_platooned_tg2 as f64, self.cavs_counted),
         )
     }
 
-    /// P_P (seed eq. 2); 0 if no CAV was counted.
-    pub fn platooning_probability(&self) -> f64 {
+    /// P_P (seed eq. 2); `None` if no CAV was counted.
+    pub fn platooning_probability(&self) -> Option<f64> {
         ratio(self.cavs_platooned as f64, self.cavs_counted)
     }
 }
@@ -96,10 +96,7 @@ impl Observer for Metrics {
     }
 }
 
-fn ratio(a: f64, n: u64) -> f64 {
-    if n == 0 {
-        0.0
-    } else {
-        a / n as f64
-    }
+/// a / n; `None` when nothing was counted (the statistic does not apply).
+fn ratio(a: f64, n: u64) -> Option<f64> {
+    (n > 0).then(|| a / n as f64)
 }

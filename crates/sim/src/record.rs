@@ -141,6 +141,9 @@ pub struct Trip {
     pub status: TripStatus,
     /// Time at which it entered the road (s).
     pub entered_s: f64,
+    /// Time it waited in its entrance's queue: from its arrival at the entrance to its
+    /// insertion on the road (s; SUMO's `departDelay`). Never negative.
+    pub depart_delay_s: f64,
     /// Time at which it left (s); `None` if still on the road.
     pub left_s: Option<f64>,
     /// left − entered, from the step counts (s); `None` if still on the road.
@@ -200,8 +203,22 @@ pub(crate) struct Recorder {
     pub trajectories: Option<TrajectoryRecorder>,
     /// Entry position (engine) per entrance: 0 the mainline, i + 1 on-ramp i.
     pub entry_x: Vec<f64>,
+    /// With trips: each vehicle's arrival time at its entrance (s), by id (ids are dense).
+    pub arrived_s: Vec<f64>,
     pub origin_m: f64,
     pub dt: f64,
+}
+
+impl Recorder {
+    /// Vehicle `id` arrived at its entrance at `t_s` (it may wait in the queue before it
+    /// enters the road).
+    pub fn arrived(&mut self, id: u64, t_s: f64) {
+        let i = id as usize;
+        if self.arrived_s.len() <= i {
+            self.arrived_s.resize(i + 1, f64::NAN);
+        }
+        self.arrived_s[i] = t_s;
+    }
 }
 
 impl Observer for Recorder {
@@ -220,7 +237,11 @@ impl Observer for Recorder {
         // The step that ends at t_s (`step_time` inverted: exact for any run length).
         let left_step = (how != Departure::OnRoad).then(|| (t_s / self.dt).round() as u64);
         let entry_x = self.entry_x[v.route.origin as usize];
-        trips.push(trip_of(v, how, left_step, entry_x, self.origin_m, self.dt));
+        let mut trip = trip_of(v, how, left_step, entry_x, self.origin_m, self.dt);
+        if let Some(&a) = self.arrived_s.get(v.id as usize) {
+            trip.depart_delay_s = (trip.entered_s - a).max(0.0);
+        }
+        trips.push(trip);
     }
 }
 
@@ -343,6 +364,8 @@ pub(crate) fn trip_of(
         origin: v.route.origin as usize,
         status,
         entered_s: step_time(v.stats.entered_step, dt),
+        // Set by the recorder, which knows the arrival time.
+        depart_delay_s: 0.0,
         left_s: left_step.map(|s| step_time(s, dt)),
         travel_time_s: left_step.map(|s| step_time(s - v.stats.entered_step, dt)),
         entry_x_m: entry_x + origin_m,

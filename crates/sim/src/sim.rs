@@ -188,6 +188,7 @@ impl Simulation {
             entry_x: std::iter::once(0.0)
                 .chain(self.road.geom.on_ramps.iter().map(|r| r.x))
                 .collect(),
+            arrived_s: Vec::new(),
             origin_m: origin,
             dt: self.clock.dt,
         };
@@ -345,6 +346,7 @@ impl Simulation {
             entrances: &mut self.entrances,
             traffic: &mut self.traffic,
             entered: &mut self.measures.metrics.entered,
+            rec: &mut self.rec,
             watch: &mut self.watch,
         }
         .insert();
@@ -449,7 +451,12 @@ impl Simulation {
         let summary = Summary {
             scenario: cfg.name.clone(),
             penetration: cfg.penetration,
-            demand_vphpl: cfg.demand.vph_per_lane,
+            demand_vphpl: cfg
+                .road
+                .network
+                .is_none()
+                .then_some(cfg.demand.vph_per_lane),
+            demand_scale: cfg.road.network.as_ref().map(|n| n.demand_scale),
             strategy: self.control.organizer.name().to_string(),
             seed: cfg.seed,
             dt_s: cfg.dt_s,

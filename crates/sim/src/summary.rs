@@ -8,7 +8,13 @@ use serde::Serialize;
 pub struct Summary {
     pub scenario: String,
     pub penetration: f64,
-    pub demand_vphpl: f64,
+    /// Demand of a plain road (veh/h/lane); `None` (null) on a network, whose entrances have
+    /// their own demand series.
+    pub demand_vphpl: Option<f64>,
+    /// Network scenarios: the multiplier applied to every entrance demand series of the
+    /// scenario file (`network.base_demand_multiplier` × `network.demand_scale`, the latter
+    /// from the scenario's table at the run's penetration). `None` (null) on a plain road.
+    pub demand_scale: Option<f64>,
     pub strategy: String,
     pub seed: u64,
     pub dt_s: f64,
@@ -19,20 +25,22 @@ pub struct Summary {
     pub vehicles_in_network: u64,
     /// Vehicles still in the virtual entry queue at the end.
     pub vehicles_waiting: u64,
-    /// Lane changes of vehicles that entered in the window / those vehicles.
-    pub lane_changes_per_vehicle: f64,
+    /// Lane changes of vehicles that entered in the window / those vehicles. A statistic
+    /// that does not apply (no vehicle of its kind counted, e.g. the CAV and platoon fields
+    /// at 0 % CAV) is `None`, written as `null`, never 0: a 0 would pull averages down.
+    pub lane_changes_per_vehicle: Option<f64>,
     /// The same per CAV and per human-driven vehicle.
-    pub lane_changes_per_cav: f64,
-    pub lane_changes_per_human: f64,
+    pub lane_changes_per_cav: Option<f64>,
+    pub lane_changes_per_human: Option<f64>,
     /// L̄: mean over CAVs (entered in the window) of the largest platoon each was in.
-    pub avg_platoon_length: f64,
+    pub avg_platoon_length: Option<f64>,
     /// P_P: share of those CAVs ever in a platoon of 2 or more.
-    pub platooning_probability: f64,
+    pub platooning_probability: Option<f64>,
     /// L̄ and P_P counting a link only while the follower is not in speed regulation (time gap
     /// ≤ 2 s, spec 6.15); the two fields above use the paper's definition (a CAV directly
     /// behind a CAV under CACC, within sensor range).
-    pub avg_platoon_length_tg2: f64,
-    pub platooning_probability_tg2: f64,
+    pub avg_platoon_length_tg2: Option<f64>,
+    pub platooning_probability_tg2: Option<f64>,
     /// CAVs counted in the platoon statistics.
     pub cavs_counted: u64,
     /// Vehicles counted in the lane-change statistic.

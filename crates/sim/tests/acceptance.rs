@@ -32,11 +32,11 @@ fn fifty_percent_cav_at_1000_platoons_like_the_paper() {
         .map(|&s| run(&cfg(s), None).unwrap().summary)
         .collect();
     let mean = |f: fn(&Summary) -> f64| runs.iter().map(f).sum::<f64>() / runs.len() as f64;
-    let pp = mean(|s| s.platooning_probability);
-    let lbar = mean(|s| s.avg_platoon_length);
-    let pp_tg2 = mean(|s| s.platooning_probability_tg2);
-    let lbar_tg2 = mean(|s| s.avg_platoon_length_tg2);
-    let lc = mean(|s| s.lane_changes_per_vehicle);
+    let pp = mean(|s| s.platooning_probability.unwrap());
+    let lbar = mean(|s| s.avg_platoon_length.unwrap());
+    let pp_tg2 = mean(|s| s.platooning_probability_tg2.unwrap());
+    let lbar_tg2 = mean(|s| s.avg_platoon_length_tg2.unwrap());
+    let lc = mean(|s| s.lane_changes_per_vehicle.unwrap());
     println!(
         "P_P {pp:.3} (strict {pp_tg2:.3})  L {lbar:.2} (strict {lbar_tg2:.2})  LC/veh {lc:.3}"
     );

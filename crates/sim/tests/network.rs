@@ -477,8 +477,8 @@ fn lane_speed_caps_above_every_desired_speed_change_nothing() {
     assert_eq!(a.detectors, b.detectors);
     assert_eq!(a.summary.vehicle_updates, b.summary.vehicle_updates);
     assert_eq!(
-        a.summary.lane_changes_per_vehicle,
-        b.summary.lane_changes_per_vehicle
+        a.summary.lane_changes_per_vehicle.unwrap(),
+        b.summary.lane_changes_per_vehicle.unwrap()
     );
 }
 

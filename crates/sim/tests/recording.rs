@@ -100,9 +100,9 @@ fn assert_trips_match_the_summary(out: &Output) {
     let n = s.vehicles_counted as f64;
     assert_eq!(
         lane_changes,
-        (s.lane_changes_per_vehicle * n).round() as u64
+        (s.lane_changes_per_vehicle.unwrap() * n).round() as u64
     );
-    assert_eq!(lane_changes as f64 / n, s.lane_changes_per_vehicle);
+    assert_eq!(lane_changes as f64 / n, s.lane_changes_per_vehicle.unwrap());
 
     let cavs: Vec<&Trip> = measured
         .iter()
@@ -112,12 +112,15 @@ fn assert_trips_match_the_summary(out: &Output) {
     assert_eq!(cavs.len() as u64, s.cavs_counted);
     let n = cavs.len() as f64;
     let sum = |f: fn(&Trip) -> u32| cavs.iter().map(|t| f(t) as u64).sum::<u64>() as f64;
-    assert_eq!(sum(|t| t.max_platoon) / n, s.avg_platoon_length);
-    assert_eq!(sum(|t| t.max_platoon_tg2) / n, s.avg_platoon_length_tg2);
+    assert_eq!(sum(|t| t.max_platoon) / n, s.avg_platoon_length.unwrap());
+    assert_eq!(
+        sum(|t| t.max_platoon_tg2) / n,
+        s.avg_platoon_length_tg2.unwrap()
+    );
     let platooned = cavs.iter().filter(|t| t.max_platoon > 1).count() as f64;
-    assert_eq!(platooned / n, s.platooning_probability);
+    assert_eq!(platooned / n, s.platooning_probability.unwrap());
     let cav_lc: u64 = cavs.iter().map(|t| t.lane_changes as u64).sum();
-    assert_eq!(cav_lc as f64 / n, s.lane_changes_per_cav);
+    assert_eq!(cav_lc as f64 / n, s.lane_changes_per_cav.unwrap());
     // Humans never platoon.
     assert!(trips
         .iter()
@@ -138,7 +141,37 @@ fn assert_trips_match_the_summary(out: &Output) {
             _ => panic!("left_s and travel_time_s disagree: {t:?}"),
         }
         assert!(t.last_x_m >= t.entry_x_m, "{t:?}");
+        // Inserted at the end of a step, never before its arrival at the entrance.
+        assert!(
+            t.depart_delay_s >= 0.0 && t.depart_delay_s <= t.entered_s,
+            "{t:?}"
+        );
     }
+}
+
+#[test]
+fn an_overloaded_entrance_makes_vehicles_wait_to_depart() {
+    // 1,000 veh/h/lane enters at once; 4,500 veh/h/lane (above capacity) queues at the entrance,
+    // and the wait grows along the run as the queue does.
+    let delays = |demand: f64| {
+        let cfg = Config::homogeneous(0.0, demand, 600.0, 0.0, 3);
+        let out = run_recording(&cfg, &trips_only(), None).unwrap();
+        let trips = out.trips.unwrap();
+        let mean = |ts: &[&platoonsim_sim::Trip]| {
+            ts.iter().map(|t| t.depart_delay_s).sum::<f64>() / ts.len() as f64
+        };
+        let early: Vec<_> = trips.iter().filter(|t| t.entered_s < 200.0).collect();
+        let late: Vec<_> = trips.iter().filter(|t| t.entered_s >= 400.0).collect();
+        (mean(&early), mean(&late), out.summary.vehicles_waiting)
+    };
+    let (early, late, waiting) = delays(1000.0);
+    assert!(
+        early < 0.5 && late < 0.5 && waiting < 5,
+        "{early} {late} {waiting}"
+    );
+    let (early, late, waiting) = delays(4500.0);
+    assert!(waiting > 100, "{waiting}");
+    assert!(late > 60.0 && late > 3.0 * early, "{early} {late}");
 }
 
 #[test]

@@ -4,16 +4,9 @@
 use crate::args::ReproduceArgs;
 use crate::commands::experiment::{describe, settings};
 use anyhow::{Context, Result};
-use platoonsim_experiment::report::{self, ReportInput};
+use platoonsim_experiment::report::{self, Provenance, ReportInput};
 use platoonsim_experiment::{run_experiment, ExperimentName, Settings};
 use std::time::Instant;
-
-/// The report's "Notes on differences", written by hand in the repository: the summary and
-/// the homogeneous road, then the SR-99 corridor (two files, one text).
-const NOTES: &str = concat!(
-    include_str!("../../../../docs/reproduction-notes.md"),
-    include_str!("../../../../docs/reproduction-notes-sr99.md")
-);
 
 /// Seeds per cell on the homogeneous road with --quick.
 pub const QUICK_SEEDS: u32 = 3;
@@ -91,6 +84,41 @@ fn network_note(args: &ReproduceArgs, sr99: &Settings) -> String {
     }
 }
 
+/// The report's provenance: now (UTC), `git describe --always --dirty` of the working
+/// directory's repository ("unknown" without git or outside a repository), and the host.
+fn provenance() -> Provenance {
+    let now = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let commit = std::process::Command::new("git")
+        .args(["describe", "--always", "--dirty", "--tags"])
+        .stderr(std::process::Stdio::null())
+        .output()
+        .ok()
+        .filter(|o| o.status.success())
+        .and_then(|o| String::from_utf8(o.stdout).ok())
+        .map(|s| s.trim().to_string())
+        .filter(|s| !s.is_empty())
+        .unwrap_or_else(|| "unknown".into());
+    let name = std::fs::read_to_string("/proc/sys/kernel/hostname")
+        .ok()
+        .or_else(|| std::env::var("HOSTNAME").ok())
+        .or_else(|| std::env::var("COMPUTERNAME").ok())
+        .map(|s| s.trim().to_string())
+        .filter(|s| !s.is_empty())
+        .unwrap_or_else(|| "unknown".into());
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    Provenance {
+        date: report::utc(now),
+        commit,
+        host: format!(
+            "{name} ({} {}, {cores} cores)",
+            std::env::consts::OS,
+            std::env::consts::ARCH
+        ),
+    }
+}
+
 pub fn reproduce(args: &ReproduceArgs, quiet: bool) -> Result<()> {
     let start = Instant::now();
     let seeds = args
@@ -139,7 +167,7 @@ pub fn reproduce(args: &ReproduceArgs, quiet: bool) -> Result<()> {
     let note = network_note(args, &sr99);
     let input = ReportInput {
         outputs: &outputs,
-        notes: NOTES,
+        provenance: provenance(),
         command: &command,
         seeds,
         network_seeds: Some(sr99.seeds),

@@ -85,20 +85,20 @@ pub(super) fn markdown(
         s.seeds
     );
     let header: Vec<String> = [
-        "CAV penetration",
-        "Baseline capacity (ours)",
-        "paper",
-        "difference",
-        "PD input demand",
-        "PD capacity (ours)",
-        "paper",
-        "difference",
-        "PD vs baseline",
-        "Dedicated-lane capacity (ours)",
-        "dedicated vs baseline",
-        "Baseline mean discharge",
-        "PD mean discharge",
-        "Dedicated mean discharge",
+        "CAV penetration (%)",
+        "Baseline capacity, ours (veh/h/lane)",
+        "paper (veh/h/lane)",
+        "difference (veh/h/lane)",
+        "PD input demand (veh/h/lane)",
+        "PD capacity, ours (veh/h/lane)",
+        "paper (veh/h/lane)",
+        "difference (veh/h/lane)",
+        "PD vs baseline (%)",
+        "Dedicated-lane capacity, ours (veh/h/lane)",
+        "dedicated vs baseline (%)",
+        "Baseline mean discharge (veh/h/lane)",
+        "PD mean discharge (veh/h/lane)",
+        "Dedicated mean discharge (veh/h/lane)",
     ]
     .iter()
     .map(|h| h.to_string())
@@ -229,7 +229,7 @@ pub(super) fn markdown(
                     .unwrap_or(f64::NAN))
         )
     }));
-    md.push_str("\n## Checks (issue 3 targets)\n\n");
+    md.push_str("\n## Checks (the paper's findings)\n\n");
     md.push_str(&checks_md(&checks));
     (md, checks)
 }

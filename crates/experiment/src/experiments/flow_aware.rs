@@ -86,12 +86,12 @@ pub(super) fn markdown(
         "Strategy",
         "Discharge (veh/h/lane)",
         "Change vs baseline (%)",
-        "L̄",
-        "L̄ gain",
-        "P_P",
-        "LC/veh",
-        "LC/CAV",
-        "LC/human",
+        "L̄ (veh)",
+        "L̄ gain (veh)",
+        "P_P (fraction)",
+        "LC/veh (1/veh)",
+        "LC/CAV (1/veh)",
+        "LC/human (1/veh)",
     ]
     .iter()
     .map(|h| h.to_string())
@@ -141,7 +141,7 @@ pub(super) fn markdown(
             passed: gain.stats.mean > 0.0,
         });
     }
-    md.push_str("\n## Checks (issue 3 targets)\n\n");
+    md.push_str("\n## Checks (the paper's findings)\n\n");
     md.push_str(&checks_md(&checks));
     (md, checks)
 }

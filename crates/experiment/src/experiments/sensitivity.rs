@@ -48,14 +48,14 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
 
 /// (column title, metric, strategy) of the paper's Table 3, in its order.
 const COLUMNS: [(&str, &str, &str); 9] = [
-    ("LC/veh B", "lane_changes_per_vehicle", "none"),
-    ("LC/veh PO", "lane_changes_per_vehicle", "pd"),
-    ("L̄ B", "avg_platoon_length", "none"),
-    ("L̄ PO", "avg_platoon_length", "pd"),
-    ("P_P B", "platooning_probability", "none"),
-    ("P_P PO", "platooning_probability", "pd"),
-    ("Q_B", "discharge_flow_vphpl", "none"),
-    ("Q_PO", "discharge_flow_vphpl", "pd"),
+    ("LC/veh B (1/veh)", "lane_changes_per_vehicle", "none"),
+    ("LC/veh PO (1/veh)", "lane_changes_per_vehicle", "pd"),
+    ("L̄ B (veh)", "avg_platoon_length", "none"),
+    ("L̄ PO (veh)", "avg_platoon_length", "pd"),
+    ("P_P B (fraction)", "platooning_probability", "none"),
+    ("P_P PO (fraction)", "platooning_probability", "pd"),
+    ("Q_B (veh/h/lane)", "discharge_flow_vphpl", "none"),
+    ("Q_PO (veh/h/lane)", "discharge_flow_vphpl", "pd"),
     ("ΔQ = (Q_PO − Q_B)/Q_B (%)", "discharge_change_pct", "pd"),
 ];
 
@@ -109,10 +109,10 @@ pub(super) fn markdown(
     md.push_str("\nLane changes by vehicle type (not in the paper; its note says both kinds change lanes more under PO):\n\n");
     let header2: Vec<String> = [
         "Demand (veh/h/lane)",
-        "LC/CAV B",
-        "LC/CAV PO",
-        "LC/human B",
-        "LC/human PO",
+        "LC/CAV B (1/veh)",
+        "LC/CAV PO (1/veh)",
+        "LC/human B (1/veh)",
+        "LC/human PO (1/veh)",
     ]
     .iter()
     .map(|h| h.to_string())
@@ -141,16 +141,16 @@ pub(super) fn markdown(
     );
     let header3: Vec<String> = [
         "Demand (veh/h/lane)",
-        "LC/veh PO",
-        "LC/veh DL",
-        "L̄ PO",
-        "L̄ DL",
-        "P_P PO",
-        "P_P DL",
+        "LC/veh PO (1/veh)",
+        "LC/veh DL (1/veh)",
+        "L̄ PO (veh)",
+        "L̄ DL (veh)",
+        "P_P PO (fraction)",
+        "P_P DL (fraction)",
         "ΔQ PO (%)",
         "ΔQ DL (%)",
-        "conflicts PO",
-        "conflicts DL",
+        "conflicts PO (episodes)",
+        "conflicts DL (episodes)",
     ]
     .iter()
     .map(|h| h.to_string())
@@ -287,7 +287,7 @@ pub(super) fn markdown(
             metric_label(&r.metric)
         )
     }));
-    md.push_str("\n## Checks (issue 3 targets)\n\n");
+    md.push_str("\n## Checks (the paper's findings)\n\n");
     md.push_str(&checks_md(&checks));
     (md, checks)
 }

@@ -276,7 +276,7 @@ fn triple(r: Option<&SummaryRow>, dec: usize, skip: bool) -> [String; 3] {
         return ["–".into(), "–".into(), "–".into()];
     };
     let paper = r.paper.map_or("–".into(), |p| fixed(p.value, dec));
-    let rel = r.relative_difference();
+    let rel = r.relative_difference_pct() / 100.0;
     let diff = if rel.is_finite() {
         format!("{} %", signed(100.0 * rel, 1))
     } else {
@@ -306,18 +306,18 @@ pub(super) fn markdown(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> (St
     );
     md.push_str("## Table 4: ours vs the paper\n\n");
     let header: Vec<String> = [
-        "CAV",
-        "Demand scale (ours / paper)",
+        "CAV (%)",
+        "Demand scale, ours / paper (×)",
         "Strategy",
         "Network discharge (veh/h)",
-        "paper",
-        "vs paper",
-        "Lane changes / veh",
-        "paper",
-        "vs paper",
-        "L̄",
-        "paper",
-        "vs paper",
+        "paper (veh/h)",
+        "vs paper (%)",
+        "Lane changes (1/veh)",
+        "paper (1/veh)",
+        "vs paper (%)",
+        "L̄ (veh)",
+        "paper (veh)",
+        "vs paper (%)",
     ]
     .iter()
     .map(|h| h.to_string())
@@ -371,16 +371,16 @@ pub(super) fn markdown(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> (St
          its link further; see the notes).\n\n",
     );
     let header: Vec<String> = [
-        "CAV",
+        "CAV (%)",
         "Strategy",
-        "Network discharge: ours",
-        "paper",
-        "Lane changes / veh: ours",
-        "paper",
-        "L̄: ours",
-        "paper",
-        "L̄ strict (time gap ≤ 2 s): ours",
-        "paper",
+        "Network discharge: ours (%)",
+        "paper (%)",
+        "Lane changes / veh: ours (%)",
+        "paper (%)",
+        "L̄: ours (%)",
+        "paper (%)",
+        "L̄ strict (time gap ≤ 2 s): ours (%)",
+        "paper (%)",
     ]
     .iter()
     .map(|h| h.to_string())
@@ -470,10 +470,10 @@ fn bottleneck_section(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> Stri
         num(crit.minutes)
     );
     let header: Vec<String> = [
-        "CAV",
+        "CAV (%)",
         "Strategy",
-        "Demand scale",
-        "Runs with both active",
+        "Demand scale (×)",
+        "Runs with both active (runs)",
         "Florin Rd (min)",
         "Elk Grove Blvd stretch (min)",
     ]
@@ -487,7 +487,7 @@ fn bottleneck_section(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> Stri
 /// "x % higher / lower than the paper's" for a row with a paper value.
 fn versus(r: Option<&SummaryRow>, dec: usize) -> String {
     let Some(r) = r else { return "–".into() };
-    let rel = 100.0 * r.relative_difference();
+    let rel = r.relative_difference_pct();
     if !rel.is_finite() {
         return "no paper value".into();
     }

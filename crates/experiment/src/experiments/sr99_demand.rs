@@ -282,15 +282,15 @@ pub(super) fn markdown(
     };
     md.push_str("## Demand scale by penetration\n\n");
     let header: Vec<String> = [
-        "CAV",
+        "CAV (%)",
         if d.grid {
-            "Found (ours)"
+            "Found, ours (×)"
         } else {
-            "Table scale: both bottlenecks?"
+            "Table scale (×): both bottlenecks?"
         },
-        "Paper",
-        "Ours − paper",
-        "Table used by `sr99`",
+        "Paper (×)",
+        "Ours − paper (×)",
+        "Table used by `sr99` (×)",
     ]
     .iter()
     .map(|h| h.to_string())
@@ -330,9 +330,9 @@ pub(super) fn markdown(
          network discharge (veh/h).\n\n",
     );
     let header: Vec<String> = [
-        "CAV",
-        "Scale",
-        "Both active",
+        "CAV (%)",
+        "Scale (×)",
+        "Both active (seeds)",
         "Florin Rd (min)",
         "Elk Grove Blvd stretch (min)",
         "Network discharge (veh/h)",

@@ -225,17 +225,31 @@ pub fn bar_charts(cells: &[Cell], rows: &[SummaryRow]) -> Vec<Bars> {
             s_ours.push((name.clone(), mean, Some(err)));
             s_paper.push((name, pap, None));
         }
+        // One y range for ours and the paper's panel of a quantity: both cover every bar of
+        // both (ours with its whiskers).
+        let mut shared: Vec<f64> = Vec::new();
+        for (_, v, e) in &s_ours {
+            for (g, x) in v.iter().enumerate() {
+                let h = e.as_ref().and_then(|e| e.get(g)).copied().unwrap_or(0.0);
+                let h = if h.is_finite() { h } else { 0.0 };
+                shared.extend([x - h, x + h]);
+            }
+        }
+        shared.extend(s_paper.iter().flat_map(|(_, v, _)| v.iter().copied()));
+        shared.retain(|v| v.is_finite());
         ours.push(Bars {
             title: format!("{title}: ours"),
             y_label: unit.into(),
             groups: groups.clone(),
             series: s_ours,
+            y_include: shared.clone(),
         });
         theirs.push(Bars {
             title: format!("{title}: paper"),
             y_label: unit.into(),
             groups: groups.clone(),
             series: s_paper,
+            y_include: shared,
         });
     }
     ours.extend(theirs);

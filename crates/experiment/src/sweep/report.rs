@@ -185,6 +185,7 @@ pub fn figures(
             }
             None => {
                 let bars = Bars {
+                    y_include: Vec::new(),
                     title: title.clone(),
                     y_label: metric_label(m).to_string(),
                     groups: first.levels.iter().map(label).collect(),
