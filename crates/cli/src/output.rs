@@ -767,9 +767,14 @@ mod tests {
         let written = write_run(&dir, &config, &out).unwrap();
         assert_eq!(written.len(), 6);
         let trips = std::fs::read_to_string(dir.join("trips.csv")).unwrap();
+        // One row per vehicle that entered, one per vehicle still queued at the end.
         assert_eq!(
             trips.lines().count() as u64,
-            1 + out.summary.vehicles_entered
+            1 + out.summary.vehicles_entered + out.summary.vehicles_waiting
+        );
+        assert_eq!(
+            trips.matches(",queued,").count() as u64,
+            out.summary.vehicles_waiting
         );
         let traj = std::fs::read_to_string(dir.join("trajectories.csv")).unwrap();
         let rows = out.trajectories.as_ref().unwrap().len();
