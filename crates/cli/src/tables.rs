@@ -48,9 +48,7 @@ pub fn detector_kind(column: &str) -> Kind {
 /// The column types of `trips.csv`.
 pub fn trip_kind(column: &str) -> Kind {
     match column {
-        "kind" | "origin" | "destination" | "status" | "depart_clock" | "arrive_clock" => {
-            Kind::Str
-        }
+        "kind" | "origin" | "destination" | "status" | "entered_clock" | "left_clock" => Kind::Str,
         "id" | "lane_changes" | "max_platoon" | "max_platoon_tg2" => Kind::U64,
         "measured" => Kind::Bool,
         _ => Kind::F64,

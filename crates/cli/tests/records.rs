@@ -57,10 +57,7 @@ fn sr99_trips_agree_with_the_summary_and_the_off_ramp_detectors() {
     ));
     let status = |st: &str| trips.iter().filter(|t| t["status"] == st).count() as u64;
     assert_eq!(status("queued"), n("vehicles_waiting"));
-    assert_eq!(
-        trips.len() as u64 - status("queued"),
-        n("vehicles_entered")
-    );
+    assert_eq!(trips.len() as u64 - status("queued"), n("vehicles_entered"));
     assert_eq!(status("in_network"), n("vehicles_in_network"));
     assert_eq!(
         status("exited") + status("missed_exit_then_end"),

@@ -119,7 +119,10 @@ fn penetration_outside_unit_interval() {
 #[test]
 fn clock_start_must_be_a_time_of_day() {
     for bad in ["5:00", "24:00", "05:60", "05:00:60", "05:00pm", "0500", ""] {
-        let p = problems(with_set(HOMOGENEOUS, &[&format!("run.clock_start=\"{bad}\"")]));
+        let p = problems(with_set(
+            HOMOGENEOUS,
+            &[&format!("run.clock_start=\"{bad}\"")],
+        ));
         assert_eq!(
             p,
             vec![format!(
