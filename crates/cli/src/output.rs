@@ -8,7 +8,7 @@
 //! | `*.parquet` | with `--format parquet`: the tables detectors, trips and trajectories as Parquet instead of CSV ([`crate::tables`]) |
 //! | `scenario.json` | the resolved [`Config`] |
 //! | `scenario.toml` | the same as a complete scenario file (`platoonsim run DIR/scenario.toml` reruns it) |
-//! | `trips.csv` | with `--trips`: one row per vehicle that entered the road ([`trips_csv`]) |
+//! | `trips.csv` | with `--trips`: one row per vehicle that entered the road, then one per vehicle still in an entrance queue at the end ([`trips_csv`]) |
 //! | `trajectories.csv` | with `--trajectories`: one row per vehicle and sample ([`write_trajectories`]) |
 //! | `collisions.csv` | only if the run had collisions: one row per [`CollisionEvent`] ([`collisions_csv`]) |
 
@@ -17,7 +17,8 @@ use crate::tables::{self, FormatArg};
 use anyhow::{Context, Result};
 use platoonsim_experiment::detectors::Scope;
 use platoonsim_sim::{
-    CollisionEvent, Config, DetectorRecord, Output, Summary, TrajectoryPoint, Trip, TripStatus,
+    CollisionEvent, Config, DetectorRecord, Output, Queued, Summary, TrajectoryPoint, Trip,
+    TripStatus,
 };
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -115,7 +116,7 @@ pub fn write_run_files(
     }
     let ext = format.ext();
     let table = |stem: &str| dir.join(format!("{stem}.{ext}"));
-    let detectors = detectors_csv(&output.detectors)?;
+    let detectors = detectors_csv(&output.detectors, config.clock_start_s)?;
     match format {
         FormatArg::Csv => put(table("detectors"), &detectors)?,
         FormatArg::Parquet => put(
@@ -124,7 +125,8 @@ pub fn write_run_files(
         )?,
     }
     if let Some(trips) = &output.trips {
-        let csv = trips_csv(config, trips)?;
+        let queued = output.queued.as_deref().unwrap_or_default();
+        let csv = trips_csv(config, trips, queued)?;
         match format {
             FormatArg::Csv => put(table("trips"), &csv)?,
             FormatArg::Parquet => put(
@@ -222,25 +224,44 @@ pub const TRIP_COLUMNS: [&str; 15] = [
 /// the share of its energy without drag reduction that drafting saved (%).
 pub const TRIP_ENERGY_COLUMNS: [&str; 3] = ["fuel_l", "energy_kwh", "drag_saving_pct"];
 
-/// `trips.csv`: the header, then one row per trip. `destination` is the off-ramp's id, `end`
-/// (the road end) or empty (still on the road); `status` is `exited`, `missed_exit_then_end`
-/// (it chose an off-ramp, was not in its lane there and drove on to the end), `in_network` or
-/// `collided` (it ran past the end of its lane and was removed, see `collisions.csv`);
-/// `left_s` and `travel_time_s` are empty for a vehicle still on the road; `depart_delay_s` is
-/// the time from its arrival at the entrance to its insertion on the road (the wait in the
-/// entrance queue, SUMO's `departDelay`).
-pub fn trips_csv(config: &Config, trips: &[Trip]) -> Result<Vec<u8>> {
+/// The column every `trips.csv` ends with (after the energy columns, if any): the vehicle's
+/// arrival at its entrance (s), `entered_s − depart_delay_s`.
+pub const TRIP_ARRIVAL_COLUMN: &str = "entrance_arrival_s";
+
+/// The columns appended last with `run.clock_start`: the clock times ("HH:MM:SS") of
+/// `entered_s` and `left_s`.
+pub const TRIP_CLOCK_COLUMNS: [&str; 2] = ["entered_clock", "left_clock"];
+
+/// `trips.csv`: the header, then one row per trip, then one per vehicle still queued at the
+/// end. `destination` is the off-ramp's id, `end` (the road end) or empty (still on the road
+/// or queued); `status` is `exited`, `missed_exit_then_end` (it chose an off-ramp, was not in
+/// its lane there and drove on to the end), `in_network`, `collided` (it ran past the end of
+/// its lane and was removed, see `collisions.csv`) or `queued` (still waiting in its
+/// entrance's queue when the run ended); `left_s` and `travel_time_s` are empty for a vehicle
+/// still on the road; `depart_delay_s` is the time from its arrival at the entrance to its
+/// insertion on the road (the wait in the entrance queue, SUMO's `departDelay`), for a queued
+/// vehicle the wait so far. A queued vehicle never entered the road: `entered_s`,
+/// `travel_time_s` and the positions are empty, its counters 0 and `measured` false.
+pub fn trips_csv(config: &Config, trips: &[Trip], queued: &[Queued]) -> Result<Vec<u8>> {
     let mut w = csv::WriterBuilder::new()
         .has_headers(false)
         .from_writer(Vec::new());
     let energy = config.energy.enabled;
-    let header = TRIP_COLUMNS.iter();
+    let clock = config.clock_start_s;
+    let mut header: Vec<&str> = TRIP_COLUMNS.to_vec();
     if energy {
-        w.write_record(header.chain(TRIP_ENERGY_COLUMNS.iter()))?;
-    } else {
-        w.write_record(header)?;
+        header.extend(TRIP_ENERGY_COLUMNS);
     }
+    header.push(TRIP_ARRIVAL_COLUMN);
+    if clock.is_some() {
+        header.extend(TRIP_CLOCK_COLUMNS);
+    }
+    w.write_record(&header)?;
     let num = |v: Option<f64>| v.map(|v| format!("{v}")).unwrap_or_default();
+    let at = |t: Option<f64>| match (clock, t) {
+        (Some(start), Some(t)) => platoonsim_scenario::clock::clock_at(start, t),
+        _ => String::new(),
+    };
     for t in trips {
         let (destination, status) = match t.status {
             TripStatus::Exited { off_ramp: Some(k) } => (off_ramp_name(config, k), "exited"),
@@ -273,6 +294,37 @@ pub fn trips_csv(config: &Config, trips: &[Trip]) -> Result<Vec<u8>> {
                 num(e.and_then(|e| e.energy_kwh)),
                 num(e.and_then(|e| e.drag_saving_pct)),
             ]);
+        }
+        row.push(format!("{}", t.arrived_s));
+        if clock.is_some() {
+            row.extend([at(Some(t.entered_s)), at(t.left_s)]);
+        }
+        w.write_record(&row)?;
+    }
+    for q in queued {
+        let mut row = vec![
+            q.id.to_string(),
+            q.kind.as_str().to_string(),
+            entrance_name(config, q.origin),
+            String::new(),
+            "queued".to_string(),
+            String::new(),
+            format!("{}", q.depart_delay_s),
+            String::new(),
+            String::new(),
+            String::new(),
+            String::new(),
+            "0".to_string(),
+            "0".to_string(),
+            "0".to_string(),
+            "false".to_string(),
+        ];
+        if energy {
+            row.extend([String::new(), String::new(), String::new()]);
+        }
+        row.push(format!("{}", q.arrived_s));
+        if clock.is_some() {
+            row.extend([String::new(), String::new()]);
         }
         w.write_record(&row)?;
     }
@@ -386,10 +438,11 @@ pub fn json<T: serde::Serialize + ?Sized>(value: &T) -> Result<Vec<u8>> {
 }
 
 /// `detectors.csv`: the header, then one row per record; an interval without vehicles has an
-/// empty `speed_kmh` cell.
-pub fn detectors_csv(records: &[DetectorRecord]) -> Result<Vec<u8>> {
+/// empty `speed_kmh` cell. With `clock_start_s` (`run.clock_start`) a `clock` column
+/// ("HH:MM:SS", the interval's start) follows `interval_start_s`.
+pub fn detectors_csv(records: &[DetectorRecord], clock_start_s: Option<u32>) -> Result<Vec<u8>> {
     // One writer for the run files and the experiment runner's kept detector files.
-    let (bytes, _) = platoonsim_experiment::detectors::to_csv(records, Scope::All)?;
+    let (bytes, _) = platoonsim_experiment::detectors::to_csv(records, Scope::All, clock_start_s)?;
     Ok(bytes)
 }
 
@@ -542,7 +595,7 @@ mod tests {
 
     #[test]
     fn detectors_csv_has_the_columns_and_empty_speed_cells() {
-        let bytes = detectors_csv(&[record(Some(97.25)), record(None)]).unwrap();
+        let bytes = detectors_csv(&[record(Some(97.25)), record(None)], None).unwrap();
         let text = String::from_utf8(bytes).unwrap();
         let lines: Vec<&str> = text.lines().collect();
         assert_eq!(
@@ -593,7 +646,7 @@ mod tests {
             serde_json::from_slice(&std::fs::read(dir.join("summary.json")).unwrap()).unwrap();
         assert_eq!(s["vehicle_updates"], out.summary.vehicle_updates);
         let csv = std::fs::read(dir.join("detectors.csv")).unwrap();
-        assert_eq!(csv, detectors_csv(&out.detectors).unwrap());
+        assert_eq!(csv, detectors_csv(&out.detectors, None).unwrap());
         let c: serde_json::Value =
             serde_json::from_slice(&std::fs::read(dir.join("scenario.json")).unwrap()).unwrap();
         assert_eq!(c["road"]["length_m"], 6500.0);
@@ -617,6 +670,7 @@ mod tests {
             origin: 7,
             status,
             entered_s: 12.3,
+            arrived_s: 12.05,
             depart_delay_s: 0.25,
             left_s: left,
             travel_time_s: left.map(|l| l - 12.3),
@@ -634,15 +688,36 @@ mod tests {
             trip(TripStatus::MissedExitThenEnd { missed: 2 }, Some(112.5)),
             trip(TripStatus::InNetwork, None),
         ];
-        let text = String::from_utf8(trips_csv(&sr99, &trips).unwrap()).unwrap();
+        let queued = [Queued {
+            id: 43,
+            kind: Kind::Human,
+            origin: 0,
+            arrived_s: 55.5,
+            depart_delay_s: 4.5,
+        }];
+        // sr99 names its clock start (05:00): the clock columns come last.
+        let text = String::from_utf8(trips_csv(&sr99, &trips, &queued).unwrap()).unwrap();
         assert_eq!(
             text.lines().collect::<Vec<_>>(),
             [
-                "id,kind,origin,destination,status,entered_s,depart_delay_s,left_s,travel_time_s,entry_x_m,last_x_m,lane_changes,max_platoon,max_platoon_tg2,measured",
-                "42,cav,OR7,FR3,exited,12.3,0.25,112.5,100.2,5734,9000.25,2,3,1,false",
-                "42,cav,OR7,end,exited,12.3,0.25,112.5,100.2,5734,9000.25,2,3,1,false",
-                "42,cav,OR7,end,missed_exit_then_end,12.3,0.25,112.5,100.2,5734,9000.25,2,3,1,false",
-                "42,cav,OR7,,in_network,12.3,0.25,,,5734,9000.25,2,3,1,false",
+                "id,kind,origin,destination,status,entered_s,depart_delay_s,left_s,travel_time_s,entry_x_m,last_x_m,lane_changes,max_platoon,max_platoon_tg2,measured,entrance_arrival_s,entered_clock,left_clock",
+                "42,cav,OR7,FR3,exited,12.3,0.25,112.5,100.2,5734,9000.25,2,3,1,false,12.05,05:00:12.3,05:01:52.5",
+                "42,cav,OR7,end,exited,12.3,0.25,112.5,100.2,5734,9000.25,2,3,1,false,12.05,05:00:12.3,05:01:52.5",
+                "42,cav,OR7,end,missed_exit_then_end,12.3,0.25,112.5,100.2,5734,9000.25,2,3,1,false,12.05,05:00:12.3,05:01:52.5",
+                "42,cav,OR7,,in_network,12.3,0.25,,,5734,9000.25,2,3,1,false,12.05,05:00:12.3,",
+                "43,human,mainline,,queued,,4.5,,,,,0,0,0,false,55.5,,",
+            ]
+        );
+        // Without a clock start, no clock columns.
+        let mut plain = sr99.clone();
+        plain.clock_start_s = None;
+        let text = String::from_utf8(trips_csv(&plain, &trips[3..], &queued).unwrap()).unwrap();
+        assert_eq!(
+            text.lines().collect::<Vec<_>>(),
+            [
+                "id,kind,origin,destination,status,entered_s,depart_delay_s,left_s,travel_time_s,entry_x_m,last_x_m,lane_changes,max_platoon,max_platoon_tg2,measured,entrance_arrival_s",
+                "42,cav,OR7,,in_network,12.3,0.25,,,5734,9000.25,2,3,1,false,12.05",
+                "43,human,mainline,,queued,,4.5,,,,,0,0,0,false,55.5",
             ]
         );
         let homogeneous = Config::homogeneous(0.5, 2000.0, 60.0, 0.0, 1);
@@ -692,9 +767,14 @@ mod tests {
         let written = write_run(&dir, &config, &out).unwrap();
         assert_eq!(written.len(), 6);
         let trips = std::fs::read_to_string(dir.join("trips.csv")).unwrap();
+        // One row per vehicle that entered, one per vehicle still queued at the end.
         assert_eq!(
             trips.lines().count() as u64,
-            1 + out.summary.vehicles_entered
+            1 + out.summary.vehicles_entered + out.summary.vehicles_waiting
+        );
+        assert_eq!(
+            trips.matches(",queued,").count() as u64,
+            out.summary.vehicles_waiting
         );
         let traj = std::fs::read_to_string(dir.join("trajectories.csv")).unwrap();
         let rows = out.trajectories.as_ref().unwrap().len();

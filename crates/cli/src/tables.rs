@@ -39,7 +39,7 @@ impl FormatArg {
 /// The column types of `detectors.csv`.
 pub fn detector_kind(column: &str) -> Kind {
     match column {
-        "detector" | "kind" | "lane" => Kind::Str,
+        "detector" | "kind" | "lane" | "clock" => Kind::Str,
         "count" | "cav_count" => Kind::U64,
         _ => Kind::F64,
     }
@@ -48,7 +48,7 @@ pub fn detector_kind(column: &str) -> Kind {
 /// The column types of `trips.csv`.
 pub fn trip_kind(column: &str) -> Kind {
     match column {
-        "kind" | "origin" | "destination" | "status" => Kind::Str,
+        "kind" | "origin" | "destination" | "status" | "entered_clock" | "left_clock" => Kind::Str,
         "id" | "lane_changes" | "max_platoon" | "max_platoon_tg2" => Kind::U64,
         "measured" => Kind::Bool,
         _ => Kind::F64,

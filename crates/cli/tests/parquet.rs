@@ -67,6 +67,36 @@ fn parquet_tables_equal_the_csv_tables() {
         ));
     }
 
+    // run: an overloaded entrance (rows of vehicles still queued, with empty cells) and a
+    // clock start (the clock columns, as text).
+    let (csv, pq) = (dir.join("queued-csv"), dir.join("queued-pq"));
+    let base = [
+        "run",
+        "homogeneous",
+        "--duration",
+        "300",
+        "--warmup",
+        "60",
+        "--demand",
+        "4000",
+        "--trips",
+        "--set",
+        "run.clock_start=\"05:00\"",
+    ];
+    ok(&[&base[..], &["--out", s(&csv)]].concat());
+    ok(&[&base[..], &["--out", s(&pq), "--format", "parquet"]].concat());
+    let trips = std::fs::read_to_string(csv.join("trips.csv")).unwrap();
+    assert!(
+        trips.contains(",queued,") && trips.contains(",05:00:"),
+        "{trips}"
+    );
+    for t in ["detectors", "trips"] {
+        pairs.push((
+            csv.join(format!("{t}.csv")),
+            pq.join(format!("{t}.parquet")),
+        ));
+    }
+
     // sweep: the tables of the same run files, collected as Parquet.
     let spec = tests.join("sweep/sweep.toml");
     let sweep = dir.join("sweep");

@@ -4,6 +4,7 @@
 mod common;
 
 use common::{num, platoonsim, read_csv, s, scratch, stderr, stdout, summary_without_wall_time};
+use platoonsim_scenario::clock::clock_at;
 use std::path::{Path, PathBuf};
 
 // ---------------------------------------------------------------- trips and trajectories
@@ -52,10 +53,11 @@ fn sr99_trips_agree_with_the_summary_and_the_off_ramp_detectors() {
     let header = std::fs::read_to_string(out.join("trips.csv")).unwrap();
     assert!(header.starts_with(
         "id,kind,origin,destination,status,entered_s,depart_delay_s,left_s,travel_time_s,entry_x_m,last_x_m,\
-         lane_changes,max_platoon,max_platoon_tg2,measured\n"
+         lane_changes,max_platoon,max_platoon_tg2,measured,entrance_arrival_s,entered_clock,left_clock\n"
     ));
-    assert_eq!(trips.len() as u64, n("vehicles_entered"));
     let status = |st: &str| trips.iter().filter(|t| t["status"] == st).count() as u64;
+    assert_eq!(status("queued"), n("vehicles_waiting"));
+    assert_eq!(trips.len() as u64 - status("queued"), n("vehicles_entered"));
     assert_eq!(status("in_network"), n("vehicles_in_network"));
     assert_eq!(
         status("exited") + status("missed_exit_then_end"),
@@ -99,10 +101,16 @@ fn sr99_trips_agree_with_the_summary_and_the_off_ramp_detectors() {
     assert!(total > 100, "only {total} vehicles took an off-ramp");
 
     let mut origins = std::collections::BTreeSet::new();
-    for t in &trips {
+    for t in trips.iter().filter(|t| t["status"] != "queued") {
         origins.insert(t["origin"].clone());
         assert!(["human", "cav"].contains(&t["kind"].as_str()), "{t:?}");
         let entered = num(t, "entered_s");
+        // sr99 starts at 05:00: the clock columns follow the simulated times.
+        assert_eq!(t["entered_clock"], clock_at(18_000, entered), "{t:?}");
+        assert!(
+            (num(t, "entrance_arrival_s") - (entered - num(t, "depart_delay_s"))).abs() < 1e-9,
+            "{t:?}"
+        );
         assert!(entered > 0.0 && entered <= 600.0, "{t:?}");
         assert!(num(t, "last_x_m") >= num(t, "entry_x_m"), "{t:?}");
         if t["status"] == "in_network" {
@@ -111,8 +119,10 @@ fn sr99_trips_agree_with_the_summary_and_the_off_ramp_detectors() {
                 "{t:?}"
             );
             assert!(t["travel_time_s"].is_empty(), "{t:?}");
+            assert!(t["left_clock"].is_empty(), "{t:?}");
         } else {
             let (left, tt) = (num(t, "left_s"), num(t, "travel_time_s"));
+            assert_eq!(t["left_clock"], clock_at(18_000, left), "{t:?}");
             assert!(tt > 0.0, "{t:?}");
             assert!((tt - (left - entered)).abs() < 1e-6, "{t:?}");
             assert!(!t["destination"].is_empty(), "{t:?}");

@@ -77,24 +77,35 @@ pub const COLUMNS: [&str; 11] = [
     "occupancy",
 ];
 
+/// Where the optional `clock` column goes: right after `interval_start_s`.
+const CLOCK_AT: usize = 5;
+
 /// Detector records that cannot be written or read as CSV; the message says where and why.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("{0}")]
 pub struct DetectorCsvError(pub String);
 
-/// The records of `scope`, as CSV bytes, with how many rows were written.
+/// The records of `scope`, as CSV bytes, with how many rows were written. With `clock_start_s`
+/// (the clock time of t = 0, s after midnight: `run.clock_start`) a `clock` column follows
+/// `interval_start_s` with the interval's start as "HH:MM:SS"; without it the columns are
+/// exactly [`COLUMNS`] (the runner's kept files, which [`from_csv`] reads, never have it).
 pub fn to_csv(
     records: &[DetectorRecord],
     scope: Scope,
+    clock_start_s: Option<u32>,
 ) -> Result<(Vec<u8>, usize), DetectorCsvError> {
     let mut w = csv::WriterBuilder::new()
         .has_headers(false)
         .from_writer(Vec::new());
     let err = |e: csv::Error| DetectorCsvError(format!("cannot encode detector records: {e}"));
-    w.write_record(COLUMNS).map_err(err)?;
+    let mut header = COLUMNS.to_vec();
+    if clock_start_s.is_some() {
+        header.insert(CLOCK_AT, "clock");
+    }
+    w.write_record(&header).map_err(err)?;
     let mut rows = 0;
     for r in records.iter().filter(|r| scope.keeps(r)) {
-        w.write_record([
+        let mut row = vec![
             r.detector.clone(),
             r.kind.clone(),
             format!("{}", r.position_m),
@@ -106,8 +117,14 @@ pub fn to_csv(
             format!("{}", r.flow_vph),
             r.speed_kmh.map(|v| format!("{v}")).unwrap_or_default(),
             format!("{}", r.occupancy),
-        ])
-        .map_err(err)?;
+        ];
+        if let Some(start) = clock_start_s {
+            row.insert(
+                CLOCK_AT,
+                platoonsim_scenario::clock::clock_at(start, r.interval_start_s),
+            );
+        }
+        w.write_record(&row).map_err(err)?;
         rows += 1;
     }
     let bytes = w
@@ -192,16 +209,16 @@ mod tests {
             record("A", "all", 0.0, None),
             record("A", "2", 300.0, Some(0.1)),
         ];
-        let (all, n) = to_csv(&recs, Scope::All).unwrap();
+        let (all, n) = to_csv(&recs, Scope::All, None).unwrap();
         assert_eq!(n, 3);
         assert_eq!(from_csv(&all).unwrap(), recs);
         let text = String::from_utf8(all.clone()).unwrap();
         assert!(text.starts_with("detector,kind,position_m,lane,interval_start_s,"));
         assert!(text.contains("A,mainline,100.5,all,0,300,10,4,120,,0.125\n"));
-        let (cross, n) = to_csv(&recs, Scope::CrossSection).unwrap();
+        let (cross, n) = to_csv(&recs, Scope::CrossSection, None).unwrap();
         assert_eq!(n, 1);
         assert_eq!(from_csv(&cross).unwrap(), vec![recs[1].clone()]);
-        assert_eq!(to_csv(&recs, Scope::None).unwrap().1, 0);
+        assert_eq!(to_csv(&recs, Scope::None, None).unwrap().1, 0);
 
         let r = DetectorsRef::of(Scope::All, 3, &all);
         assert!(r.matches(&all) && !r.matches(&cross));
@@ -210,5 +227,23 @@ mod tests {
         assert!(Scope::CrossSection.covers(Scope::None));
         assert!(from_csv(b"a,b\n1,2\n").is_err());
         assert!(from_csv(&all[..all.len() - 8]).is_err());
+    }
+
+    #[test]
+    fn a_clock_start_adds_the_clock_column_after_the_interval_start() {
+        let recs = vec![
+            record("A", "1", 0.0, Some(101.25)),
+            record("A", "all", 300.0, None),
+        ];
+        // 05:00 is 18,000 s after midnight.
+        let (bytes, n) = to_csv(&recs, Scope::All, Some(18_000)).unwrap();
+        assert_eq!(n, 2);
+        assert_eq!(
+            String::from_utf8(bytes).unwrap(),
+            "detector,kind,position_m,lane,interval_start_s,clock,interval_s,count,cav_count,\
+             flow_vph,speed_kmh,occupancy\n\
+             A,mainline,100.5,1,0,05:00:00,300,10,4,120,101.25,0.125\n\
+             A,mainline,100.5,all,300,05:05:00,300,10,4,120,,0.125\n"
+        );
     }
 }

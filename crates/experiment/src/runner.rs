@@ -301,7 +301,7 @@ impl<'a> Runner<'a> {
             None
         } else {
             let (csv, rows) =
-                detectors::to_csv(&output.detectors, scope).map_err(|e| run_error(e.0))?;
+                detectors::to_csv(&output.detectors, scope, None).map_err(|e| run_error(e.0))?;
             let path = self.detectors_file(key);
             write_atomic(&path, &csv).map_err(|e| Error::io(&path, e))?;
             Some(DetectorsRef::of(scope, rows, &csv))

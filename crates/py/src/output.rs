@@ -19,7 +19,8 @@ fn json<T: serde::Serialize>(value: &T) -> Result<Vec<u8>, String> {
 pub fn write_run(dir: &Path, config: &Config, out: &Output) -> Result<Vec<PathBuf>, String> {
     std::fs::create_dir_all(dir)
         .map_err(|e| format!("cannot create the output directory {}: {e}", dir.display()))?;
-    let (detectors, _) = to_csv(&out.detectors, Scope::All).map_err(|e| e.to_string())?;
+    let (detectors, _) =
+        to_csv(&out.detectors, Scope::All, config.clock_start_s).map_err(|e| e.to_string())?;
     let files: [(&str, Vec<u8>); 4] = [
         ("scenario.json", json(config)?),
         (

@@ -57,6 +57,7 @@ pub fn to_raw(config: &Config, description: Option<String>) -> RawScenario {
             duration_s: Some(config.duration_s),
             warmup_s: Some(config.warmup_s),
             penetration: Some(config.penetration),
+            clock_start: config.clock_start_s.map(crate::clock::format_clock),
         },
         road: RawRoad {
             lanes: (!is_network).then_some(config.road.lanes),

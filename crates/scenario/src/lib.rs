@@ -37,6 +37,7 @@
 //! buffer_s = 0.2
 //! ```
 
+pub mod clock;
 pub mod demand_scales;
 pub mod error;
 pub mod format;

@@ -62,6 +62,9 @@ pub struct RawRun {
     pub warmup_s: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub penetration: Option<f64>,
+    /// Clock time of t = 0, "HH:MM" or "HH:MM:SS" (validated in `validate_run.rs`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub clock_start: Option<String>,
 }
 
 /// `[road]`: all keys required, except with a `[network]`, which gives the lanes and the length

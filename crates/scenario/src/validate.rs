@@ -326,6 +326,7 @@ pub fn validate_in(
         lane_change: raw.lane_change,
         safety: raw.safety,
         energy: raw.energy,
+        clock_start_s: run.clock_start_s,
     };
     if c.problems.is_empty() {
         // The engine's own invariants; the checks above are stricter, so this is a safety net.

@@ -16,6 +16,8 @@ pub(super) struct Run {
     pub duration_ok: bool,
     pub warmup: Num,
     pub penetration: Num,
+    /// `run.clock_start` in seconds after midnight.
+    pub clock_start_s: Option<u32>,
 }
 
 pub(super) fn check_run(c: &mut Checker, r: &RawRun) -> Run {
@@ -62,6 +64,17 @@ pub(super) fn check_run(c: &mut Checker, r: &RawRun) -> Run {
     }
     let penetration = c.opt(r.penetration, defaults::PENETRATION);
     c.unit("run.penetration", penetration);
+    let clock_start_s = r.clock_start.as_deref().and_then(|text| {
+        let parsed = crate::clock::parse_clock(text);
+        if parsed.is_none() {
+            c.push(
+                "run.clock_start",
+                format!("{text:?}"),
+                "must be a clock time \"HH:MM\" or \"HH:MM:SS\" (00:00 to 23:59:59)",
+            );
+        }
+        parsed
+    });
     Run {
         seed,
         dt,
@@ -70,6 +83,7 @@ pub(super) fn check_run(c: &mut Checker, r: &RawRun) -> Run {
         duration_ok,
         warmup,
         penetration,
+        clock_start_s,
     }
 }
 

@@ -132,6 +132,19 @@ fn resolved_toml_loads_back_to_the_same_config() {
 }
 
 #[test]
+fn the_clock_start_round_trips_and_only_sr99_names_one() {
+    let sr99 = load("sr99").unwrap();
+    assert_eq!(sr99.clock_start_s, Some(5 * 3600));
+    let text = to_toml(&sr99);
+    assert!(text.contains("clock_start = \"05:00:00\""), "{text}");
+    let back = from_toml(&text, "resolved", "sr99", &Overrides::default()).unwrap();
+    assert_eq!(back.clock_start_s, Some(5 * 3600));
+    let homogeneous = load("homogeneous").unwrap();
+    assert_eq!(homogeneous.clock_start_s, None);
+    assert!(!to_toml(&homogeneous).contains("clock_start"));
+}
+
+#[test]
 fn resolved_toml_lists_every_section() {
     let text = to_toml(&load("homogeneous").unwrap());
     for section in [

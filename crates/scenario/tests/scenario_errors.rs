@@ -117,6 +117,28 @@ fn penetration_outside_unit_interval() {
 }
 
 #[test]
+fn clock_start_must_be_a_time_of_day() {
+    for bad in ["5:00", "24:00", "05:60", "05:00:60", "05:00pm", "0500", ""] {
+        let p = problems(with_set(
+            HOMOGENEOUS,
+            &[&format!("run.clock_start=\"{bad}\"")],
+        ));
+        assert_eq!(
+            p,
+            vec![format!(
+                "run.clock_start = \"{bad}\": must be a clock time \"HH:MM\" or \"HH:MM:SS\" \
+                 (00:00 to 23:59:59)"
+            )]
+        );
+    }
+    // A number is not a clock time: a structure error that names the key.
+    let err = with_set(HOMOGENEOUS, &["run.clock_start=500"]).unwrap_err();
+    assert!(err.to_string().contains("clock_start"), "{err}");
+    let c = with_set(HOMOGENEOUS, &["run.clock_start=\"07:30:15\""]).unwrap();
+    assert_eq!(c.clock_start_s, Some(7 * 3600 + 30 * 60 + 15));
+}
+
+#[test]
 fn detector_off_the_road() {
     let p = problems(with_set(HOMOGENEOUS, &["detectors[2].position_m=7000"]));
     assert_eq!(

@@ -358,6 +358,11 @@ pub struct Config {
     /// so that configurations without it keep their identity.
     #[serde(skip_serializing_if = "EnergyParams::is_default")]
     pub energy: EnergyParams,
+    /// Clock time of t = 0 (s after midnight, `run.clock_start`), when the scenario names one:
+    /// outputs then carry clock time next to simulated time. A label of the outputs only: the
+    /// engine never reads it, so it is not serialized and no run's identity depends on it.
+    #[serde(skip)]
+    pub clock_start_s: Option<u32>,
 }
 
 /// Input limits shared by the engine's [`Config::check`] and the scenario crate's validation
@@ -590,6 +595,7 @@ impl Config {
             lane_change: LaneChangeDists::default(),
             safety: SafetyParams::default(),
             energy: EnergyParams::default(),
+            clock_start_s: None,
         }
     }
 

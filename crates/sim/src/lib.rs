@@ -49,7 +49,7 @@ pub use error::SimError;
 pub use events::{Departure, Event, LaneChangeReason, Observer};
 pub use organize::{Advice, LaneChoice, Organizer, StrategyKind, UnknownStrategy, STRATEGIES};
 pub use platoonsim_model::lanechange::Side;
-pub use record::{Recording, TrajectoryPoint, TrajectorySpec, Trip, TripStatus};
+pub use record::{Queued, Recording, TrajectoryPoint, TrajectorySpec, Trip, TripStatus};
 pub use sim::Simulation;
 pub use snapshot::VehicleColumns;
 pub use summary::{CollisionEvent, CollisionKind, DetectorRecord, Output, Summary};

@@ -139,6 +139,8 @@ pub struct Trip {
     /// Entrance: 0 the mainline, i + 1 on-ramp i of the network.
     pub origin: usize,
     pub status: TripStatus,
+    /// Time at which it arrived at its entrance (s): `entered_s − depart_delay_s`.
+    pub arrived_s: f64,
     /// Time at which it entered the road (s).
     pub entered_s: f64,
     /// Time it waited in its entrance's queue: from its arrival at the entrance to its
@@ -159,6 +161,43 @@ pub struct Trip {
     pub measured: bool,
     /// Fuel or electricity and the drag saving (with `energy.enabled`; docs/energy.md).
     pub energy: Option<crate::energy::TripEnergy>,
+}
+
+/// A vehicle still waiting in its entrance's queue when the run ended: it never entered the
+/// road, so it has no entry time, travel time or positions.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Queued {
+    pub id: u64,
+    pub kind: Kind,
+    /// Entrance: 0 the mainline, i + 1 on-ramp i of the network.
+    pub origin: usize,
+    /// Time at which it arrived at its entrance (s).
+    pub arrived_s: f64,
+    /// Time it has waited so far: from its arrival to the end of the run (s).
+    pub depart_delay_s: f64,
+}
+
+/// The vehicles in `queue`s (in any order) at the end of the run, `end_s`, by id; `arrived_s`
+/// holds the arrival times by id (the recorder's).
+pub(crate) fn queued_of<'a>(
+    queues: impl Iterator<Item = &'a Vehicle>,
+    arrived_s: &[f64],
+    end_s: f64,
+) -> Vec<Queued> {
+    let mut out: Vec<Queued> = queues
+        .map(|v| {
+            let a = arrived_s.get(v.id as usize).copied().unwrap_or(end_s);
+            Queued {
+                id: v.id,
+                kind: v.kind,
+                origin: v.route.origin as usize,
+                arrived_s: a,
+                depart_delay_s: (end_s - a).max(0.0),
+            }
+        })
+        .collect();
+    out.sort_unstable_by_key(|q| q.id);
+    out
 }
 
 /// One vehicle at one sample time (48 bytes: a long recording is held in memory until the end
@@ -239,6 +278,7 @@ impl Observer for Recorder {
         let entry_x = self.entry_x[v.route.origin as usize];
         let mut trip = trip_of(v, how, left_step, entry_x, self.origin_m, self.dt);
         if let Some(&a) = self.arrived_s.get(v.id as usize) {
+            trip.arrived_s = a.min(trip.entered_s);
             trip.depart_delay_s = (trip.entered_s - a).max(0.0);
         }
         trips.push(trip);
@@ -364,7 +404,8 @@ pub(crate) fn trip_of(
         origin: v.route.origin as usize,
         status,
         entered_s: step_time(v.stats.entered_step, dt),
-        // Set by the recorder, which knows the arrival time.
+        // Both set by the recorder, which knows the arrival time (no wait without it).
+        arrived_s: step_time(v.stats.entered_step, dt),
         depart_delay_s: 0.0,
         left_s: left_step.map(|s| step_time(s, dt)),
         travel_time_s: left_step.map(|s| step_time(s - v.stats.entered_step, dt)),

@@ -401,6 +401,13 @@ impl Simulation {
         for s in on_road {
             self.leave(s, Departure::OnRoad);
         }
+        let queued = self.rec.trips.is_some().then(|| {
+            crate::record::queued_of(
+                self.entrances.iter().flat_map(|e| e.queue.iter()),
+                &self.rec.arrived_s,
+                crate::record::step_time(self.clock.step, self.clock.dt),
+            )
+        });
         let mut trips = self.rec.trips.take();
         if let (Some(trips), Some(e)) = (trips.as_mut(), self.energy.as_ref()) {
             for t in trips {
@@ -512,6 +519,7 @@ impl Simulation {
             detectors,
             collision_events: std::mem::take(&mut self.measures.safety.collisions.events),
             trips,
+            queued,
             trajectories,
         }
     }

@@ -164,6 +164,9 @@ pub struct Output {
     /// With [`crate::Recording::trips`]: one trip per vehicle that entered the road, in the
     /// order they left, then those still on the road by id.
     pub trips: Option<Vec<Trip>>,
+    /// With [`crate::Recording::trips`]: the vehicles still waiting in an entrance queue at the
+    /// end of the run, by id (as many as `Simulation::vehicles_waiting` then).
+    pub queued: Option<Vec<crate::record::Queued>>,
     /// With [`crate::Recording::trajectories`]: the samples in time order, each sample by id.
     pub trajectories: Option<Vec<TrajectoryPoint>>,
 }

@@ -401,3 +401,41 @@ fn recording_requests_are_checked() {
     times.dedup();
     assert_eq!(times, [30.0, 30.3, 30.6, 30.9]);
 }
+
+#[test]
+fn vehicles_still_queued_at_the_end_are_recorded_with_their_wait_so_far() {
+    // (queued records, vehicles waiting when the run ended, the end time) at a demand.
+    let queued_at = |demand: f64| {
+        let cfg = Config::homogeneous(0.5, demand, 600.0, 0.0, 3);
+        let mut sim = Simulation::new(cfg).unwrap();
+        sim.record(&trips_only()).unwrap();
+        while !sim.finished() {
+            sim.step().unwrap();
+        }
+        let (waiting, end_s) = (sim.vehicles_waiting(), sim.time_s());
+        let out = sim.finish(0.0);
+        let entered = out.trips.as_ref().unwrap();
+        (out.queued.clone().unwrap(), waiting, end_s, entered.len())
+    };
+    // Above capacity: a queue that the records list vehicle by vehicle, each with the time
+    // from its arrival to the end of the run.
+    let (queued, waiting, end_s, entered) = queued_at(4500.0);
+    assert!(waiting > 100, "{waiting}");
+    assert_eq!(queued.len(), waiting);
+    assert!(queued.windows(2).all(|w| w[0].id < w[1].id));
+    for q in &queued {
+        assert!(q.depart_delay_s > 0.0, "{q:?}");
+        assert_eq!(q.depart_delay_s, end_s - q.arrived_s, "{q:?}");
+        assert_eq!(q.origin, 0, "{q:?}");
+    }
+    // Ids are dense: the vehicles that entered and those queued are every arrival.
+    assert_eq!(
+        entered + queued.len(),
+        queued.last().unwrap().id as usize + 1
+    );
+    // First come, first served: the oldest still queued has waited more than a minute.
+    assert!(queued[0].depart_delay_s > 60.0, "{:?}", queued[0]);
+    // Light traffic: nobody is left waiting, and there are no queued records.
+    let (queued, waiting, _, _) = queued_at(1000.0);
+    assert_eq!((queued.len(), waiting), (0, 0));
+}

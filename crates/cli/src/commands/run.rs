@@ -47,7 +47,8 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
     let ext = args.format.ext();
     let mut extra = Vec::new();
     if let Some(trips) = &out.trips {
-        extra.push(format!("trips.{ext} ({} rows)", trips.len()));
+        let queued = out.queued.as_ref().map_or(0, Vec::len);
+        extra.push(format!("trips.{ext} ({} rows)", trips.len() + queued));
     }
     if let Some(rows) = &out.trajectories {
         extra.push(format!("trajectories.{ext} ({} rows)", rows.len()));
