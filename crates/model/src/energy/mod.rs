@@ -60,7 +60,7 @@ impl Powertrain {
 pub struct EnergyParams {
     /// Compute fuel and electricity per vehicle (trips, summary).
     pub enabled: bool,
-    /// Scale each vehicle's drag coefficient by [`drag::factor`] (false: every vehicle meets
+    /// Scale each vehicle's drag coefficient by [`drag::Drag::factor`] (false: every vehicle meets
     /// the drag of an isolated vehicle).
     pub drag_reduction: bool,
     /// Human-driven vehicles get the same slipstream physics as CAVs (a slipstream does not
