@@ -166,6 +166,21 @@ fn points(cells: &[Cell]) -> Vec<usize> {
         .collect()
 }
 
+/// Every (cell index, strategy index, strategy name) of the design, point by point in table
+/// order: the cells that follow a point's baseline and carry the strategy expected there.
+fn strategy_cells(cells: &[Cell]) -> Vec<(usize, usize, &'static str)> {
+    let mut out = Vec::new();
+    for &b in &points(cells) {
+        for (j, k) in STRATEGIES.iter().enumerate() {
+            let i = b + j;
+            if i < cells.len() && cells[i].labels.get("strategy") == Some(k.as_str()) {
+                out.push((i, j, k.as_str()));
+            }
+        }
+    }
+    out
+}
+
 fn point_name(c: &Cell) -> String {
     let get = |k| c.labels.get(k).unwrap_or("?");
     match get("road") {
@@ -218,25 +233,19 @@ pub(super) fn markdown(
     .map(|h| h.to_string())
     .collect();
     let mut trs = Vec::new();
-    for &b in &points(cells) {
-        for (j, k) in STRATEGIES.iter().enumerate() {
-            let i = b + j;
-            if i >= cells.len() || cells[i].labels.get("strategy") != Some(k.as_str()) {
-                continue;
-            }
-            let mut r = vec![point_name(&cells[i]), strategy_name(k.as_str()).into()];
-            for (metric, _, _) in FUEL {
-                r.push(value(rows, i, metric, 3));
-            }
-            for (_, ch, _) in FUEL {
-                r.push(if j == 0 {
-                    "–".into()
-                } else {
-                    change(rows, i, ch)
-                });
-            }
-            trs.push(r);
+    for (i, j, k) in strategy_cells(cells) {
+        let mut r = vec![point_name(&cells[i]), strategy_name(k).into()];
+        for (metric, _, _) in FUEL {
+            r.push(value(rows, i, metric, 3));
         }
+        for (_, ch, _) in FUEL {
+            r.push(if j == 0 {
+                "–".into()
+            } else {
+                change(rows, i, ch)
+            });
+        }
+        trs.push(r);
     }
     md.push_str(&md_table(&header, &trs));
 
@@ -261,24 +270,20 @@ pub(super) fn markdown(
     .iter()
     .map(|h| h.to_string())
     .collect();
-    let mut trs = Vec::new();
-    for &b in &points(cells) {
-        for (j, k) in STRATEGIES.iter().enumerate() {
-            let i = b + j;
-            if i >= cells.len() || cells[i].labels.get("strategy") != Some(k.as_str()) {
-                continue;
-            }
-            trs.push(vec![
+    let trs: Vec<Vec<String>> = strategy_cells(cells)
+        .into_iter()
+        .map(|(i, _, k)| {
+            vec![
                 point_name(&cells[i]),
-                strategy_name(k.as_str()).into(),
+                strategy_name(k).into(),
                 value(rows, i, "cav_drag_reduction_pct", 2),
                 value(rows, i, "cav_drag_saving_pct", 2),
                 value(rows, i, "cav_dynamics_excess_pct", 2),
                 value(rows, i, "human_drag_reduction_pct", 2),
                 value(rows, i, "human_dynamics_excess_pct", 2),
-            ]);
-        }
-    }
+            ]
+        })
+        .collect();
     md.push_str(&md_table(&header, &trs));
 
     let (answer, checks) = answer(cells, rows);
@@ -294,24 +299,18 @@ fn answer(cells: &[Cell], rows: &[SummaryRow]) -> (String, Vec<Check>) {
     let mut both = Vec::new();
     let mut cav_saves = Vec::new();
     let mut system_costs = Vec::new();
-    for &b in &points(cells) {
-        for (j, k) in STRATEGIES.iter().enumerate().skip(1) {
-            let i = b + j;
-            if i >= cells.len() || cells[i].labels.get("strategy") != Some(k.as_str()) {
-                continue;
-            }
-            let name = format!("{} at {}", strategy_name(k.as_str()), point_name(&cells[i]));
-            let cav = sign(rows, i, "cav_fuel_change_pct");
-            let all = sign(rows, i, "fuel_change_pct");
-            if cav < 0 {
-                cav_saves.push(name.clone());
-            }
-            if all > 0 {
-                system_costs.push(name.clone());
-            }
-            if cav < 0 && all > 0 {
-                both.push(name);
-            }
+    for (i, _, k) in strategy_cells(cells).into_iter().filter(|&(_, j, _)| j > 0) {
+        let name = format!("{} at {}", strategy_name(k), point_name(&cells[i]));
+        let cav = sign(rows, i, "cav_fuel_change_pct");
+        let all = sign(rows, i, "fuel_change_pct");
+        if cav < 0 {
+            cav_saves.push(name.clone());
+        }
+        if all > 0 {
+            system_costs.push(name.clone());
+        }
+        if cav < 0 && all > 0 {
+            both.push(name);
         }
     }
     let list = |v: &[String]| {
