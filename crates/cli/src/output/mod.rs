@@ -16,12 +16,15 @@ use crate::atomic::{write_atomic, write_atomic_with};
 use crate::tables::{self, FormatArg};
 use anyhow::{Context, Result};
 use platoonsim_experiment::detectors::Scope;
-use platoonsim_sim::{
-    CollisionEvent, Config, DetectorRecord, Output, Queued, Summary, TrajectoryPoint, Trip,
-    TripStatus,
-};
+use platoonsim_sim::{CollisionEvent, Config, DetectorRecord, Output, TrajectoryPoint};
 use std::io::Write;
 use std::path::{Path, PathBuf};
+
+mod paragraph;
+mod trips;
+
+pub use paragraph::{paragraph, si};
+pub use trips::trips_csv;
 
 /// The file of a run's collisions; like the record files, a stale one is removed by a run
 /// without collisions, so that its absence means "no collision".
@@ -175,162 +178,6 @@ fn remove_stale(path: &Path) -> Result<()> {
     }
 }
 
-/// The name of entrance `origin` ([`Trip::origin`]): `mainline`, or the on-ramp's id as in the
-/// scenario file and the detector names (`OR3`).
-pub fn entrance_name(config: &Config, origin: usize) -> String {
-    let ramp = origin
-        .checked_sub(1)
-        .and_then(|i| config.road.network.as_ref()?.on_ramps.get(i));
-    match ramp {
-        Some(r) => platoonsim_scenario::network::split_name(&r.name).0,
-        None => "mainline".to_string(),
-    }
-}
-
-/// The id of off-ramp `k` (`FR2`; its exits are counted by detector `FR2-off`).
-pub fn off_ramp_name(config: &Config, k: usize) -> String {
-    config
-        .road
-        .network
-        .as_ref()
-        .and_then(|n| n.off_ramps.get(k))
-        .map_or_else(
-            || format!("off-ramp {k}"),
-            |r| platoonsim_scenario::network::split_name(&r.name).0,
-        )
-}
-
-/// The columns of `trips.csv`, in order.
-pub const TRIP_COLUMNS: [&str; 15] = [
-    "id",
-    "kind",
-    "origin",
-    "destination",
-    "status",
-    "entered_s",
-    "depart_delay_s",
-    "left_s",
-    "travel_time_s",
-    "entry_x_m",
-    "last_x_m",
-    "lane_changes",
-    "max_platoon",
-    "max_platoon_tg2",
-    "measured",
-];
-
-/// The columns `trips.csv` gains with `energy.enabled` (docs/energy.md): fuel (L) of a
-/// combustion-engine vehicle, battery energy (kWh) of an electric one (the other empty), and
-/// the share of its energy without drag reduction that drafting saved (%).
-pub const TRIP_ENERGY_COLUMNS: [&str; 3] = ["fuel_l", "energy_kwh", "drag_saving_pct"];
-
-/// The column every `trips.csv` ends with (after the energy columns, if any): the vehicle's
-/// arrival at its entrance (s), `entered_s − depart_delay_s`.
-pub const TRIP_ARRIVAL_COLUMN: &str = "entrance_arrival_s";
-
-/// The columns appended last with `run.clock_start`: the clock times ("HH:MM:SS") of
-/// `entered_s` and `left_s`.
-pub const TRIP_CLOCK_COLUMNS: [&str; 2] = ["entered_clock", "left_clock"];
-
-/// `trips.csv`: the header, then one row per trip, then one per vehicle still queued at the
-/// end. `destination` is the off-ramp's id, `end` (the road end) or empty (still on the road
-/// or queued); `status` is `exited`, `missed_exit_then_end` (it chose an off-ramp, was not in
-/// its lane there and drove on to the end), `in_network`, `collided` (it ran past the end of
-/// its lane and was removed, see `collisions.csv`) or `queued` (still waiting in its
-/// entrance's queue when the run ended); `left_s` and `travel_time_s` are empty for a vehicle
-/// still on the road; `depart_delay_s` is the time from its arrival at the entrance to its
-/// insertion on the road (the wait in the entrance queue, SUMO's `departDelay`), for a queued
-/// vehicle the wait so far. A queued vehicle never entered the road: `entered_s`,
-/// `travel_time_s` and the positions are empty, its counters 0 and `measured` false.
-pub fn trips_csv(config: &Config, trips: &[Trip], queued: &[Queued]) -> Result<Vec<u8>> {
-    let mut w = csv::WriterBuilder::new()
-        .has_headers(false)
-        .from_writer(Vec::new());
-    let energy = config.energy.enabled;
-    let clock = config.clock_start_s;
-    let mut header: Vec<&str> = TRIP_COLUMNS.to_vec();
-    if energy {
-        header.extend(TRIP_ENERGY_COLUMNS);
-    }
-    header.push(TRIP_ARRIVAL_COLUMN);
-    if clock.is_some() {
-        header.extend(TRIP_CLOCK_COLUMNS);
-    }
-    w.write_record(&header)?;
-    let num = |v: Option<f64>| v.map(|v| format!("{v}")).unwrap_or_default();
-    let at = |t: Option<f64>| match (clock, t) {
-        (Some(start), Some(t)) => platoonsim_scenario::clock::clock_at(start, t),
-        _ => String::new(),
-    };
-    for t in trips {
-        let (destination, status) = match t.status {
-            TripStatus::Exited { off_ramp: Some(k) } => (off_ramp_name(config, k), "exited"),
-            TripStatus::Exited { off_ramp: None } => ("end".to_string(), "exited"),
-            TripStatus::MissedExitThenEnd { .. } => ("end".to_string(), "missed_exit_then_end"),
-            TripStatus::InNetwork => (String::new(), "in_network"),
-            TripStatus::Collided => (String::new(), "collided"),
-        };
-        let mut row = vec![
-            t.id.to_string(),
-            t.kind.as_str().to_string(),
-            entrance_name(config, t.origin),
-            destination,
-            status.to_string(),
-            format!("{}", t.entered_s),
-            format!("{}", t.depart_delay_s),
-            num(t.left_s),
-            num(t.travel_time_s),
-            format!("{}", t.entry_x_m),
-            format!("{}", t.last_x_m),
-            t.lane_changes.to_string(),
-            t.max_platoon.to_string(),
-            t.max_platoon_tg2.to_string(),
-            t.measured.to_string(),
-        ];
-        if energy {
-            let e = t.energy;
-            row.extend([
-                num(e.and_then(|e| e.fuel_l)),
-                num(e.and_then(|e| e.energy_kwh)),
-                num(e.and_then(|e| e.drag_saving_pct)),
-            ]);
-        }
-        row.push(format!("{}", t.arrived_s));
-        if clock.is_some() {
-            row.extend([at(Some(t.entered_s)), at(t.left_s)]);
-        }
-        w.write_record(&row)?;
-    }
-    for q in queued {
-        let mut row = vec![
-            q.id.to_string(),
-            q.kind.as_str().to_string(),
-            entrance_name(config, q.origin),
-            String::new(),
-            "queued".to_string(),
-            String::new(),
-            format!("{}", q.depart_delay_s),
-            String::new(),
-            String::new(),
-            String::new(),
-            String::new(),
-            "0".to_string(),
-            "0".to_string(),
-            "0".to_string(),
-            "false".to_string(),
-        ];
-        if energy {
-            row.extend([String::new(), String::new(), String::new()]);
-        }
-        row.push(format!("{}", q.arrived_s));
-        if clock.is_some() {
-            row.extend([String::new(), String::new()]);
-        }
-        w.write_record(&row)?;
-    }
-    w.into_inner().context("cannot encode trips.csv")
-}
-
 /// The columns of `collisions.csv`, in the order of [`CollisionEvent`]'s fields.
 pub const COLLISION_COLUMNS: [&str; 11] = [
     "t_s",
@@ -446,136 +293,13 @@ pub fn detectors_csv(records: &[DetectorRecord], clock_start_s: Option<u32>) -> 
     Ok(bytes)
 }
 
-/// The one-paragraph human summary printed after a run.
-/// A statistic with `dec` decimals, or "n/a" where it does not apply (nothing to count).
-fn maybe(v: Option<f64>, dec: usize) -> String {
-    v.map_or("n/a".to_string(), |v| format!("{v:.dec$}"))
-}
-
-pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
-    let detector = config
-        .detectors
-        .get(config.measurement_detector)
-        .map_or("?", |d| d.name.as_str());
-    let rate = if s.wall_seconds > 0.0 {
-        format!(
-            " ({} per second)",
-            si(s.vehicle_updates as f64 / s.wall_seconds)
-        )
-    } else {
-        String::new()
-    };
-    // A network's demand is its series times a scale; it also reports the discharge through
-    // every exit.
-    let (demand, network) = match &config.road.network {
-        Some(n) => (
-            format!("the network's demand x {:.3}", n.demand_scale),
-            format!(
-                " Network discharge (off-ramps and the end): {} veh/h; {} missed exits.",
-                s.network_discharge_vph
-                    .map_or("-".to_string(), |q| format!("{q:.0}")),
-                s.missed_exits
-            ),
-        ),
-        None => (
-            format!("{} veh/h/lane demand", config.demand.vph_per_lane),
-            String::new(),
-        ),
-    };
-    let text = format!(
-        "{name}: {dur} s simulated in steps of {dt} s (measured after the {warm} s warm-up) with \
-         {pen} % CAV, {demand}, strategy {strategy}, seed {seed}. \
-         Vehicles: {entered} entered, {exited} exited, {inside} still on the road, {waiting} \
-         waiting at the entrance. Discharge at detector '{detector}': {q:.1} veh/h/lane over \
-         the measurement window; highest {agg} s flow {qmax:.1} veh/h/lane.{network} Lane changes per \
-         vehicle {lc} ({counted} vehicles; per CAV {lc_cav}, per human {lc_human}); \
-         average platoon length {lbar} and platooning probability {pp} ({cavs} CAVs). \
-         Safety after the warm-up: {eb} emergency brakings ({eb_cav} CAV, {eb_human} human), \
-         {conflicts} conflicts (TTC below {ttc_star} s), TET {tet:.1} s, TIT {tit:.1} s², \
-         minimum TTC {min_ttc}; largest deceleration {max_decel:.2} m/s² over the whole run. \
-         Collisions: {collisions}. {updates} vehicle updates in {wall:.2} s{rate}. \
-         Files in {dir}: summary.json, detectors.csv, scenario.json, scenario.toml{collisions_file}.",
-        name = s.scenario,
-        dur = s.duration_s,
-        dt = s.dt_s,
-        warm = s.warmup_s,
-        pen = s.penetration * 100.0,
-        strategy = s.strategy,
-        seed = s.seed,
-        entered = s.vehicles_entered,
-        exited = s.vehicles_exited,
-        inside = s.vehicles_in_network,
-        waiting = s.vehicles_waiting,
-        q = s.discharge_flow_vphpl,
-        agg = config.aggregation_s,
-        qmax = s.max_sustained_flow_vphpl,
-        lc = maybe(s.lane_changes_per_vehicle, 3),
-        lc_cav = maybe(s.lane_changes_per_cav, 3),
-        lc_human = maybe(s.lane_changes_per_human, 3),
-        counted = s.vehicles_counted,
-        lbar = maybe(s.avg_platoon_length, 2),
-        pp = maybe(s.platooning_probability, 3),
-        cavs = s.cavs_counted,
-        eb = s.emergency_brakings,
-        eb_cav = s.emergency_brakings_cav,
-        eb_human = s.emergency_brakings_human,
-        conflicts = s.conflicts,
-        ttc_star = config.safety.ttc_threshold_s,
-        tet = s.tet_s,
-        tit = s.tit_s2,
-        // Null when no follower ever closed in on its leader.
-        min_ttc = s
-            .min_ttc_s
-            .map_or("none (no follower closed in)".to_string(), |t| format!("{t:.2} s")),
-        max_decel = s.max_deceleration_mps2,
-        collisions = s.collisions,
-        collisions_file = if s.collisions > 0 {
-            ", collisions.csv"
-        } else {
-            ""
-        },
-        updates = s.vehicle_updates,
-        wall = s.wall_seconds,
-        dir = dir.display(),
-    );
-    wrap(&text, 96)
-}
-
-/// 12.3 M, 456.7 k, 89.
-pub fn si(v: f64) -> String {
-    if v >= 1e9 {
-        format!("{:.2} G", v / 1e9)
-    } else if v >= 1e6 {
-        format!("{:.2} M", v / 1e6)
-    } else if v >= 1e3 {
-        format!("{:.1} k", v / 1e3)
-    } else {
-        format!("{v:.0}")
-    }
-}
-
-/// Greedy word wrap.
-pub fn wrap(text: &str, width: usize) -> String {
-    let mut out = String::new();
-    let mut line = 0;
-    for word in text.split_whitespace() {
-        if line > 0 && line + 1 + word.len() > width {
-            out.push('\n');
-            line = 0;
-        } else if line > 0 {
-            out.push(' ');
-            line += 1;
-        }
-        out.push_str(word);
-        line += word.len();
-    }
-    out
-}
-
 #[cfg(test)]
 mod tests {
+    use super::paragraph::wrap;
+    use super::trips::{entrance_name, off_ramp_name};
     use super::*;
     use platoonsim_sim::vehicle::{Kind, ModeLabel};
+    use platoonsim_sim::{Queued, Trip, TripStatus};
 
     fn record(speed: Option<f64>) -> DetectorRecord {
         DetectorRecord {

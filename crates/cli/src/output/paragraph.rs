@@ -1,0 +1,130 @@
+//! The one-paragraph human summary printed after a run, and its number formatting.
+
+use platoonsim_sim::{Config, Summary};
+use std::path::Path;
+
+/// A statistic with `dec` decimals, or "n/a" where it does not apply (nothing to count).
+fn maybe(v: Option<f64>, dec: usize) -> String {
+    v.map_or("n/a".to_string(), |v| format!("{v:.dec$}"))
+}
+
+/// The one-paragraph human summary printed after a run.
+pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
+    let detector = config
+        .detectors
+        .get(config.measurement_detector)
+        .map_or("?", |d| d.name.as_str());
+    let rate = if s.wall_seconds > 0.0 {
+        format!(
+            " ({} per second)",
+            si(s.vehicle_updates as f64 / s.wall_seconds)
+        )
+    } else {
+        String::new()
+    };
+    // A network's demand is its series times a scale; it also reports the discharge through
+    // every exit.
+    let (demand, network) = match &config.road.network {
+        Some(n) => (
+            format!("the network's demand x {:.3}", n.demand_scale),
+            format!(
+                " Network discharge (off-ramps and the end): {} veh/h; {} missed exits.",
+                s.network_discharge_vph
+                    .map_or("-".to_string(), |q| format!("{q:.0}")),
+                s.missed_exits
+            ),
+        ),
+        None => (
+            format!("{} veh/h/lane demand", config.demand.vph_per_lane),
+            String::new(),
+        ),
+    };
+    let text = format!(
+        "{name}: {dur} s simulated in steps of {dt} s (measured after the {warm} s warm-up) with \
+         {pen} % CAV, {demand}, strategy {strategy}, seed {seed}. \
+         Vehicles: {entered} entered, {exited} exited, {inside} still on the road, {waiting} \
+         waiting at the entrance. Discharge at detector '{detector}': {q:.1} veh/h/lane over \
+         the measurement window; highest {agg} s flow {qmax:.1} veh/h/lane.{network} Lane changes per \
+         vehicle {lc} ({counted} vehicles; per CAV {lc_cav}, per human {lc_human}); \
+         average platoon length {lbar} and platooning probability {pp} ({cavs} CAVs). \
+         Safety after the warm-up: {eb} emergency brakings ({eb_cav} CAV, {eb_human} human), \
+         {conflicts} conflicts (TTC below {ttc_star} s), TET {tet:.1} s, TIT {tit:.1} s², \
+         minimum TTC {min_ttc}; largest deceleration {max_decel:.2} m/s² over the whole run. \
+         Collisions: {collisions}. {updates} vehicle updates in {wall:.2} s{rate}. \
+         Files in {dir}: summary.json, detectors.csv, scenario.json, scenario.toml{collisions_file}.",
+        name = s.scenario,
+        dur = s.duration_s,
+        dt = s.dt_s,
+        warm = s.warmup_s,
+        pen = s.penetration * 100.0,
+        strategy = s.strategy,
+        seed = s.seed,
+        entered = s.vehicles_entered,
+        exited = s.vehicles_exited,
+        inside = s.vehicles_in_network,
+        waiting = s.vehicles_waiting,
+        q = s.discharge_flow_vphpl,
+        agg = config.aggregation_s,
+        qmax = s.max_sustained_flow_vphpl,
+        lc = maybe(s.lane_changes_per_vehicle, 3),
+        lc_cav = maybe(s.lane_changes_per_cav, 3),
+        lc_human = maybe(s.lane_changes_per_human, 3),
+        counted = s.vehicles_counted,
+        lbar = maybe(s.avg_platoon_length, 2),
+        pp = maybe(s.platooning_probability, 3),
+        cavs = s.cavs_counted,
+        eb = s.emergency_brakings,
+        eb_cav = s.emergency_brakings_cav,
+        eb_human = s.emergency_brakings_human,
+        conflicts = s.conflicts,
+        ttc_star = config.safety.ttc_threshold_s,
+        tet = s.tet_s,
+        tit = s.tit_s2,
+        // Null when no follower ever closed in on its leader.
+        min_ttc = s
+            .min_ttc_s
+            .map_or("none (no follower closed in)".to_string(), |t| format!("{t:.2} s")),
+        max_decel = s.max_deceleration_mps2,
+        collisions = s.collisions,
+        collisions_file = if s.collisions > 0 {
+            ", collisions.csv"
+        } else {
+            ""
+        },
+        updates = s.vehicle_updates,
+        wall = s.wall_seconds,
+        dir = dir.display(),
+    );
+    wrap(&text, 96)
+}
+
+/// 12.3 M, 456.7 k, 89.
+pub fn si(v: f64) -> String {
+    if v >= 1e9 {
+        format!("{:.2} G", v / 1e9)
+    } else if v >= 1e6 {
+        format!("{:.2} M", v / 1e6)
+    } else if v >= 1e3 {
+        format!("{:.1} k", v / 1e3)
+    } else {
+        format!("{v:.0}")
+    }
+}
+
+/// Greedy word wrap.
+pub fn wrap(text: &str, width: usize) -> String {
+    let mut out = String::new();
+    let mut line = 0;
+    for word in text.split_whitespace() {
+        if line > 0 && line + 1 + word.len() > width {
+            out.push('\n');
+            line = 0;
+        } else if line > 0 {
+            out.push(' ');
+            line += 1;
+        }
+        out.push_str(word);
+        line += word.len();
+    }
+    out
+}
