@@ -259,6 +259,28 @@ pub fn add_paired(
     }
 }
 
+/// Add a paired ratio to the runs of `cell`: for each of its runs, the run of `base` with the
+/// same seed gives b, and `name` = x / b (e.g. the L̄ gain L̄_PO / L̄_B). Runs without a
+/// partner, or with b = 0 or a missing value, get NaN.
+pub fn add_ratio(outcomes: &mut [Outcome], base: usize, cell: usize, metric: &str, name: &str) {
+    let reference: Vec<(u64, f64)> = outcomes
+        .iter()
+        .filter(|o| o.cell == base)
+        .filter_map(|o| o.fields.get(metric).map(|v| (o.seed, v)))
+        .collect();
+    for o in outcomes.iter_mut().filter(|o| o.cell == cell) {
+        let b = reference
+            .iter()
+            .find(|(s, _)| *s == o.seed)
+            .map(|(_, v)| *v);
+        let r = match (o.fields.get(metric), b) {
+            (Some(x), Some(b)) if b != 0.0 => x / b,
+            _ => f64::NAN,
+        };
+        o.fields.set(name, r);
+    }
+}
+
 // ---- Markdown number formatting -------------------------------------------------------
 
 /// `v` with `dec` decimals; "–" for NaN.
@@ -316,7 +338,8 @@ pub fn md_table(header: &[String], rows: &[Vec<String>]) -> String {
 pub fn decimals(metric: &str) -> usize {
     match metric {
         m if m.starts_with("lane_changes") => 3,
-        "avg_platoon_length" | "platoon_length_gain" => 2,
+        "avg_platoon_length" | "platoon_length_gain" | "platoon_length_ratio" => 2,
+        m if m.ends_with("_per_100vkm") => 3,
         "platooning_probability" => 3,
         m if m.ends_with("_pct") => 2,
         m if m.ends_with("_vphpl") => 1,
@@ -410,6 +433,29 @@ mod tests {
             ]),
             computed: true,
         }
+    }
+
+    #[test]
+    fn the_ratio_pairs_runs_by_seed() {
+        let mut outs = vec![
+            outcome(0, 1, 1000.0, 2.5),
+            outcome(0, 2, 1010.0, 0.0),
+            outcome(1, 2, 1010.0, 5.2),
+            outcome(1, 1, 990.0, 5.0),
+            outcome(1, 3, 990.0, 4.0),
+        ];
+        add_ratio(
+            &mut outs,
+            0,
+            1,
+            "avg_platoon_length",
+            "platoon_length_ratio",
+        );
+        let r = |i: usize| outs[i].fields.get("platoon_length_ratio");
+        assert_eq!(r(3), Some(2.0), "seed 1: 5.0 / 2.5");
+        assert!(r(2).unwrap().is_nan(), "seed 2: the baseline is 0");
+        assert!(r(4).unwrap().is_nan(), "seed 3: no baseline run");
+        assert_eq!(r(0), None, "the baseline gets no ratio");
     }
 
     #[test]
