@@ -32,6 +32,7 @@ pub mod record;
 pub mod rng;
 mod safety;
 mod sense;
+mod place;
 mod sim;
 pub mod snapshot;
 mod state;
