@@ -193,14 +193,64 @@ mod tests {
         assert!(join_safe(&p, v, 0.0, v, at(eq, v), true, t, 2.0, 0.1));
         // Two metres short, equal speeds: the CACC collision-avoidance gains ask for
         // 0.45 × 2 / 0.1 = 9 m/s² (cut to b): unsafe.
-        assert!(!join_safe(&p, v, 0.0, v, at(eq - 2.0, v), true, t, 2.0, 0.1));
+        assert!(!join_safe(
+            &p,
+            v,
+            0.0,
+            v,
+            at(eq - 2.0, v),
+            true,
+            t,
+            2.0,
+            0.1
+        ));
         // At the gap but closing at 5 m/s: unsafe (the override brakes).
-        assert!(!join_safe(&p, v, 0.0, v, at(eq, v - 5.0), true, t, 2.0, 0.1));
+        assert!(!join_safe(
+            &p,
+            v,
+            0.0,
+            v,
+            at(eq, v - 5.0),
+            true,
+            t,
+            2.0,
+            0.1
+        ));
         // Behind a human driver: the ACC law at its gap.
         let acc_eq = cav::acc_equilibrium_gap(&p, 1.1, v);
-        assert!(join_safe(&p, v, 0.0, v, at(acc_eq, v), false, 1.1, 2.0, 0.1));
-        assert!(!join_safe(&p, v, 0.0, v, at(0.5 * acc_eq, v), false, 1.1, 2.0, 0.1));
+        assert!(join_safe(
+            &p,
+            v,
+            0.0,
+            v,
+            at(acc_eq, v),
+            false,
+            1.1,
+            2.0,
+            0.1
+        ));
+        assert!(!join_safe(
+            &p,
+            v,
+            0.0,
+            v,
+            at(0.5 * acc_eq, v),
+            false,
+            1.1,
+            2.0,
+            0.1
+        ));
         // Never inside the standstill margin.
-        assert!(!join_safe(&p, 0.0, 0.0, 30.0, at(1.0, 0.0), true, t, 2.0, 0.1));
+        assert!(!join_safe(
+            &p,
+            0.0,
+            0.0,
+            30.0,
+            at(1.0, 0.0),
+            true,
+            t,
+            2.0,
+            0.1
+        ));
     }
 }

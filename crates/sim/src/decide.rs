@@ -266,7 +266,7 @@ impl View<'_> {
         }
     }
 
-    /// The published lane-change behaviour of a vehicle with a desire (spec 4.3, 6.20).
+    /// The published lane-change behaviour of a vehicle with a desire (spec 4.3; docs/model-choices.md 6.20).
     fn published_change(
         &self,
         s: u32,
@@ -672,7 +672,17 @@ impl View<'_> {
             let dt = self.clock.dt;
             change = g.lead_ok
                 && g.lag_ok
-                && coop::join_safe(p, f.v, f.a, f_des, lag, true, Self::effective_gap(f), b_co, dt)
+                && coop::join_safe(
+                    p,
+                    f.v,
+                    f.a,
+                    f_des,
+                    lag,
+                    true,
+                    Self::effective_gap(f),
+                    b_co,
+                    dt,
+                )
                 && lead.is_none_or(|(l, cav_l)| {
                     coop::join_safe(p, v.v, v.a, v_des_target, l, cav_l, t_own, b_co, dt)
                 });
@@ -777,7 +787,11 @@ impl View<'_> {
         let mut best: Option<(u32, f64)> = None;
         for (lane, j, toward) in [
             (v.lane as usize + 1, nb.left_j as usize, Side::Right),
-            ((v.lane as usize).wrapping_sub(1), nb.right_j as usize, Side::Left),
+            (
+                (v.lane as usize).wrapping_sub(1),
+                nb.right_j as usize,
+                Side::Left,
+            ),
         ] {
             let Some(list) = lanes.get(lane) else {
                 continue;

@@ -99,7 +99,11 @@ fn a_cav_follower_opens_a_gap_gently_and_the_joiner_changes_under_automation() {
             in_string = true;
         }
         let rv = v(&sim, r);
-        assert!(rv.automated(), "the requester never hands over: {:?}", rv.mode);
+        assert!(
+            rv.automated(),
+            "the requester never hands over: {:?}",
+            rv.mode
+        );
         assert_eq!(rv.lcs.relax, platoonsim_sim::vehicle::Relaxation::NONE);
         let fv = v(&sim, f);
         if matches!(fv.mode, Mode::Ycf { to, coop: true, auto: true } if to == r) {
@@ -197,8 +201,11 @@ impl Organizer for Swap {
 #[test]
 fn two_cavs_that_want_each_others_lane_do_not_wait_for_each_other() {
     // A in lane 0 and B in lane 1, fronts level: each is the other's target-lane follower,
-    // so each asks the other. A vehicle with a desire of its own never opens a gap, so
-    // neither request is answered; both time out and the published behaviour takes over.
+    // so each asks the other. A vehicle with a desire of its own never opens a gap, so neither
+    // request is answered (the rule this test pins: a requester that answered would be in
+    // YCF); the requests run into their timeout, the pair drifts apart at the drivers' own
+    // speeds, and each changes once it has no CAV follower to ask or its request rests. (The
+    // timeout cycle itself is pinned in `platoonsim_model::cooperative`.)
     let mut sim = Simulation::new(road(true)).unwrap();
     let a = sim.place_vehicle(Kind::Cav, 0, 1000.0, 25.0).unwrap();
     let b = sim.place_vehicle(Kind::Cav, 1, 1000.0, 25.0).unwrap();
@@ -233,4 +240,3 @@ fn two_cavs_that_want_each_others_lane_do_not_wait_for_each_other() {
     assert!(timed_out.iter().any(|&t| t), "a request timed out");
     assert_eq!(sim.collisions(), 0);
 }
-
