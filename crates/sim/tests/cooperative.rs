@@ -106,6 +106,10 @@ fn a_cav_follower_opens_a_gap_gently_and_the_joiner_changes_under_automation() {
         );
         assert_eq!(rv.lcs.relax, platoonsim_sim::vehicle::Relaxation::NONE);
         let fv = v(&sim, f);
+        assert!(
+            fv.automated(),
+            "the follower opens the gap under automation"
+        );
         if matches!(fv.mode, Mode::Ycf { to, coop: true, auto: true } if to == r) {
             asked = true;
         }
