@@ -39,11 +39,12 @@ pub const NOT_METRICS: [&str; 10] = [
 
 /// The summary's metrics that count things (integers in `summary.json`); `runs.csv` writes
 /// them without a decimal point, every other metric with one (`crate::table`).
-pub const COUNTS: [&str; 18] = [
+pub const COUNTS: [&str; 19] = [
     "vehicles_entered",
     "vehicles_exited",
     "vehicles_in_network",
     "vehicles_waiting",
+    "cooperative_lane_changes",
     "cavs_counted",
     "vehicles_counted",
     "missed_exits",

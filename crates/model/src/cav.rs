@@ -60,6 +60,9 @@
 //! | – | `organize_while_automated` | true | – | \[D\]: automation stays on while waiting for a PD-lane gap |
 //! | – | `cacc_closing_only_approaching` | true | – | \[D\] 6.21: CACC gap closing only while Δv < 0 |
 //! | – | `organize_regardless_of_speed` | true | – | \[S\] + \[D\] 6.22: no a_ant ≥ 0 test for a PD-lane move |
+//! | – | `cooperative_lane_change` | false | – | \[D\] spec 9.2: cooperative lane changes under automation (`cooperative.rs`) |
+//! | b_co | `cooperative_gap_decel_mps2` | 2.0 | m/s² (positive) | spec 9.2: b_c = 0.5 b_f of spec 4.3 [P15-doc] |
+//! | t_T | `cooperative_timeout_s` | 10 | s | \[D\] spec 9.2: request lifetime |
 //!
 //! Yielding through the automation (spec 4.5 applied to an automated CAV, \[D\]):
 //! a = min(a_auto, max(a_virtual, b_c)), a_virtual = the driver's relaxed car-following
@@ -134,6 +137,18 @@ pub struct CavParams {
     /// brakes to synchronize or drops back for a gap. Default true \[D\] (docs/model-choices.md
     /// 6.22). False = the discretionary rules of spec 4.3 as written.
     pub organize_regardless_of_speed: bool,
+    /// Cooperative lane changes (spec 9.2, `cooperative.rs`): an automated CAV with a mandatory
+    /// or organizing desire asks the automated CAV that follows it in the target lane to open
+    /// a gap and changes under automation. Default false: the seed paper's manual,
+    /// non-cooperative CAV lane changes stay the reference.
+    pub cooperative_lane_change: bool,
+    /// b_co (m/s², positive): the hardest braking with which a CAV opens a gap for a
+    /// cooperative change (or a joiner matches the target lane), and the hardest braking the
+    /// change may ask of the pair it creates.
+    pub cooperative_gap_decel_mps2: f64,
+    /// t_T (s): a cooperative request lives this long; then the published behaviour for as
+    /// long, then a new request.
+    pub cooperative_timeout_s: f64,
     /// The powertrain of the CAVs (`combustion` or `electric`; energy.rs). Not written when
     /// it is the default, so that older configurations keep their identity.
     #[serde(skip_serializing_if = "crate::energy::Powertrain::is_default")]
@@ -171,6 +186,9 @@ impl Default for CavParams {
             organize_while_automated: true,
             cacc_closing_only_approaching: true,
             organize_regardless_of_speed: true,
+            cooperative_lane_change: false,
+            cooperative_gap_decel_mps2: 2.0,
+            cooperative_timeout_s: 10.0,
             powertrain: crate::energy::Powertrain::Combustion,
         }
     }

@@ -11,6 +11,7 @@
 //! | [`human`] | human car following: min(Newell, IDM free term, Gipps), smoothing | 2 |
 //! | [`cav`] | CAV control: speed regulation, ACC, CACC, safety override, limits | 3 |
 //! | [`lanechange`] | lane-change desire, anticipated-minimum-gap acceptance, relaxation | 4 |
+//! | [`cooperative`] | cooperative lane changes of automated CAVs (request, gap opening, safe join) | 9.2 |
 //! | [`driver`] | the lane-change decision procedure, rule by rule | 4.2, 4.3, 4.7 |
 //! | [`safety`] | emergency braking limit, time to collision, TET/TIT exposure | docs/safety.md |
 //! | [`energy`] | fuel (VT-CPFM-1), battery-electric energy, platoon drag reduction | docs/energy.md |
@@ -20,6 +21,7 @@
 //! subject's front bumper), i.e. spec's `s - L`.
 
 pub mod cav;
+pub mod cooperative;
 pub mod dist;
 pub mod driver;
 pub mod energy;

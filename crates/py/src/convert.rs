@@ -173,6 +173,7 @@ pub fn event_dict<'py>(py: Python<'py>, e: &Event) -> PyResult<Bound<'py, PyDict
             to,
             x_m,
             reason: why,
+            cooperative,
             ..
         } => {
             d.set_item("type", "lane_change")?;
@@ -183,6 +184,7 @@ pub fn event_dict<'py>(py: Python<'py>, e: &Event) -> PyResult<Bound<'py, PyDict
             d.set_item("side", if to > from { "left" } else { "right" })?;
             d.set_item("x_m", x_m)?;
             d.set_item("reason", reason(*why))?;
+            d.set_item("cooperative", cooperative)?;
         }
         Event::ModeChange {
             id,

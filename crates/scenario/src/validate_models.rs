@@ -191,6 +191,24 @@ pub(super) fn check_cav(c: &mut Checker, p: &CavParams) {
         );
     }
     pos(c, "cav.sensor_range_m", p.sensor_range_m);
+    // Spec 9.2: the cooperative deceleration is a comfortable one, positive and within the
+    // normal braking b; the request timeout a positive time of at most 10 min.
+    let b = -p.max_decel;
+    c.value(
+        "cav.cooperative_gap_decel_mps2",
+        p.cooperative_gap_decel_mps2,
+        p.cooperative_gap_decel_mps2 > 0.0 && p.cooperative_gap_decel_mps2 <= b,
+        &format!(
+            "must be in (0, {}] m/s² (positive, at most -cav.max_decel)",
+            num(b)
+        ),
+    );
+    c.value(
+        "cav.cooperative_timeout_s",
+        p.cooperative_timeout_s,
+        p.cooperative_timeout_s > 0.0 && p.cooperative_timeout_s <= 600.0,
+        "must be in (0, 600] s",
+    );
 
     let shares = &p.time_gap_shares;
     let text = || {

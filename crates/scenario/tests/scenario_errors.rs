@@ -398,6 +398,18 @@ fn other_ranges() {
             "cav.time_gap_ramp_per_s=-0.5",
             "cav.time_gap_ramp_per_s = -0.5: must be >= 0",
         ),
+        (
+            "cav.cooperative_gap_decel_mps2=-2",
+            "cav.cooperative_gap_decel_mps2 = -2: must be in (0, 4] m/s² (positive, at most -cav.max_decel)",
+        ),
+        (
+            "cav.cooperative_gap_decel_mps2=5",
+            "cav.cooperative_gap_decel_mps2 = 5: must be in (0, 4] m/s² (positive, at most -cav.max_decel)",
+        ),
+        (
+            "cav.cooperative_timeout_s=0",
+            "cav.cooperative_timeout_s = 0: must be in (0, 600] s",
+        ),
     ];
     for (set, expected) in cases {
         let p = problems(with_set(HOMOGENEOUS, &[set]));

@@ -13,6 +13,7 @@ use crate::sim::Decision;
 use crate::state::{Clock, Control, RoadState, Scratch, Traffic};
 use crate::vehicle::{Mode, Relaxation, Vehicle};
 use platoonsim_model::cav::{self, Family};
+use platoonsim_model::cooperative as coop;
 use platoonsim_model::driver;
 use platoonsim_model::human;
 use platoonsim_model::lanechange::{self as lcm, Side};
@@ -80,6 +81,7 @@ pub(crate) fn decide(
                 change: None,
                 why: LaneChangeReason::Discretionary,
                 takeover: false,
+                coop: false,
             },
         );
     }
@@ -207,6 +209,74 @@ impl View<'_> {
 
         // 1. Lane-change desire (takes priority over yielding).
         if let Some(d) = self.desire(s, v, nb) {
+            // Cooperative lane changes (spec 9.2): an automated CAV with a mandatory or
+            // organizing desire asks its target-lane CAV follower; without one, or while the
+            // request rests, the published behaviour below (the request counter rides along
+            // in the BLC mode).
+            if self.cfg.cav.cooperative_lane_change && (d.mandatory || d.organize) && v.automated()
+            {
+                return self.cooperative_or_published(s, v, nb, leader, wall, d);
+            }
+            return self.published_change(s, v, nb, leader, wall, d);
+        }
+
+        // 2. Automated CAV: ACC / CACC / speed regulation (spec 3); with cooperative lane
+        // changes (spec 9.2) it first answers a CAV that asks it for a gap.
+        if v.automated() {
+            if self.cfg.cav.cooperative_lane_change {
+                if let Some(d) = self.open_gap(s, v, nb, leader, wall) {
+                    return d;
+                }
+            }
+            return self.automated_decision(s, v, nb, leader, wall);
+        }
+        let yield_to = self.agreed_request(v, nb, false);
+
+        // 3. Human model (humans and CAVs driving manually), possibly yielding.
+        let v_des = self.manual_v_des(s, v, v_des);
+        let relax = self.relax_now(v);
+        let mut target = human::target_accel(&v.driver.human, v.v, v_des, leader, relax);
+        let mut mode = Mode::Cf;
+        if let Some(req) = yield_to {
+            let r = &self.traffic.vehicles[req as usize];
+            target = lcm::yield_accel(
+                &v.driver.human,
+                &v.driver.lc,
+                v.v,
+                v_des,
+                target,
+                self.yield_gap(v, r),
+            );
+            mode = Mode::Ycf {
+                to: r.id,
+                auto: false,
+                coop: false,
+            };
+        }
+        Decision {
+            accel: human::smooth_accel(v.a, target, v.driver.human.smoothing),
+            mode,
+            family: v.cacc.family,
+            regime: None,
+            time_gap: v.cacc.time_gap_s,
+            change: None,
+            why: LaneChangeReason::Discretionary,
+            takeover: false,
+            coop: false,
+        }
+    }
+
+    /// The published lane-change behaviour of a vehicle with a desire (spec 4.3; docs/model-choices.md 6.20).
+    fn published_change(
+        &self,
+        s: u32,
+        v: &Vehicle,
+        nb: &Neighbours,
+        leader: Option<Leader>,
+        wall: bool,
+        d: Desire,
+    ) -> Decision {
+        {
             // With `cav.organize_while_automated` [D] a CAV's automation stays engaged while
             // its driver waits for a gap toward the PD lane: the driver takes over only once
             // both gaps are acceptable (a leader then changes at once, a follower splits first,
@@ -230,48 +300,12 @@ impl View<'_> {
                         side: d.side,
                         mandatory: false,
                         auto: true,
+                        ask: 0,
                     };
                 }
                 return a;
             }
-            return self.before_lane_change(s, v, nb, leader, d).0;
-        }
-
-        // 2. Automated CAV: ACC / CACC / speed regulation (spec 3).
-        if v.automated() {
-            return self.automated_decision(s, v, nb, leader, wall);
-        }
-        let yield_to = self.agreed_request(v, nb, false);
-
-        // 3. Human model (humans and CAVs driving manually), possibly yielding.
-        let v_des = self.manual_v_des(s, v, v_des);
-        let relax = self.relax_now(v);
-        let mut target = human::target_accel(&v.driver.human, v.v, v_des, leader, relax);
-        let mut mode = Mode::Cf;
-        if let Some(req) = yield_to {
-            let r = &self.traffic.vehicles[req as usize];
-            target = lcm::yield_accel(
-                &v.driver.human,
-                &v.driver.lc,
-                v.v,
-                v_des,
-                target,
-                self.yield_gap(v, r),
-            );
-            mode = Mode::Ycf {
-                to: r.id,
-                auto: false,
-            };
-        }
-        Decision {
-            accel: human::smooth_accel(v.a, target, v.driver.human.smoothing),
-            mode,
-            family: v.cacc.family,
-            regime: None,
-            time_gap: v.cacc.time_gap_s,
-            change: None,
-            why: LaneChangeReason::Discretionary,
-            takeover: false,
+            self.before_lane_change(s, v, nb, leader, d).0
         }
     }
 
@@ -302,6 +336,7 @@ impl View<'_> {
                 d.mode = Mode::Ycf {
                     to: r.id,
                     auto: true,
+                    coop: false,
                 };
             }
         }
@@ -344,6 +379,7 @@ impl View<'_> {
             change: None,
             why: LaneChangeReason::Discretionary,
             takeover: false,
+            coop: false,
         }
     }
 
@@ -426,6 +462,7 @@ impl View<'_> {
                     side: d.side,
                     mandatory: d.mandatory,
                     auto: false,
+                    ask: 0,
                 },
                 family: Family::Speed,
                 regime: None,
@@ -439,6 +476,7 @@ impl View<'_> {
                     LaneChangeReason::Discretionary
                 },
                 takeover,
+                coop: false,
             },
             Gaps {
                 lead_ok: blc.lead_ok,
@@ -502,6 +540,281 @@ impl View<'_> {
 }
 
 pub(crate) use platoonsim_model::driver::opposite;
+
+/// Adjacent-lane vehicles a CAV looks through for a cooperative request (spec 9.2): requests
+/// come from between it and its own leader, so a few suffice [D].
+const COOP_SCAN: usize = 4;
+
+/// Cooperative lane changes (spec 9.2; `platoonsim_model::cooperative`).
+impl View<'_> {
+    /// The request timeout in steps (at least 1).
+    #[inline]
+    fn coop_timeout_steps(&self) -> u16 {
+        (self.cfg.cav.cooperative_timeout_s / self.clock.dt)
+            .round()
+            .clamp(1.0, f64::from(u16::MAX / 2)) as u16
+    }
+
+    /// The effective time gap of an automated CAV's controller (its drawn t_C before the first
+    /// setting).
+    #[inline]
+    fn effective_gap(v: &Vehicle) -> f64 {
+        if v.cacc.time_gap_s > 0.0 {
+            v.cacc.time_gap_s
+        } else {
+            v.cacc.gap_s
+        }
+    }
+
+    /// An automated CAV `v` with a mandatory or organizing desire `d`: the cooperative change
+    /// if its target-lane follower is an automated CAV within V2V (sensor) range and the
+    /// request lives; otherwise the published behaviour, with the request counter carried in
+    /// the BLC mode (0 without a CAV follower: a new request starts once there is one).
+    #[inline(never)]
+    fn cooperative_or_published(
+        &self,
+        s: u32,
+        v: &Vehicle,
+        nb: &Neighbours,
+        leader: Option<Leader>,
+        wall: bool,
+        d: Desire,
+    ) -> Decision {
+        let p = &self.cfg.cav;
+        let tf = self.side_follower(v, nb, d.side);
+        let partner = tf != NONE && {
+            let f = &self.traffic.vehicles[tf as usize];
+            f.automated() && v.rear() - f.x <= p.sensor_range_m
+        };
+        let prev = match v.mode {
+            Mode::Blc { side, ask, .. } if side == d.side => ask,
+            _ => 0,
+        };
+        let timeout = self.coop_timeout_steps();
+        let ask = if partner {
+            coop::next_ask(prev, timeout)
+        } else {
+            0
+        };
+        if coop::asking(ask, timeout) {
+            return self.cooperative_change(s, v, nb, leader, wall, d, tf, ask);
+        }
+        let mut dec = self.published_change(s, v, nb, leader, wall, d);
+        if let Mode::Blc { ask: a, .. } = &mut dec.mode {
+            *a = ask;
+        }
+        dec
+    }
+
+    /// The requester's step (spec 9.2): its automation keeps control; once the follower `tf`
+    /// answers, it matches the target lane's leader (never braking harder than b_co), and it
+    /// changes when both gaps pass the gap acceptance of spec 4.3 and the change is safe for
+    /// both new pairs under their own automated laws (`cooperative::join_safe`).
+    #[allow(clippy::too_many_arguments)]
+    fn cooperative_change(
+        &self,
+        s: u32,
+        v: &Vehicle,
+        nb: &Neighbours,
+        leader: Option<Leader>,
+        wall: bool,
+        d: Desire,
+        tf: u32,
+        ask: u16,
+    ) -> Decision {
+        let p = &self.cfg.cav;
+        let b_co = p.cooperative_gap_decel_mps2;
+        let f = &self.traffic.vehicles[tf as usize];
+        let answered = matches!(f.mode, Mode::Ycf { to, coop: true, .. } if to == v.id);
+        let tl = match d.side {
+            Side::Left => nb.left_leader,
+            Side::Right => nb.right_leader,
+        };
+        let target = match d.side {
+            Side::Left => v.lane as usize + 1,
+            Side::Right => (v.lane as usize).saturating_sub(1),
+        };
+        let v_des_target = self.v_des_in(s, v, target);
+        let mut dec = self.cav_control(s, v, leader, wall);
+        let t_own = Self::effective_gap(v);
+        // The target lane's leader within sensor range, as the automation sees it.
+        let lead = self
+            .view(v, tl)
+            .filter(|l| l.gap_m <= p.sensor_range_m)
+            .map(|l| (l, self.is_cav(tl)));
+        if let Some((l, cav_l)) = lead {
+            let a_match = coop::open_gap_accel(
+                p,
+                v.v,
+                v.a,
+                v_des_target,
+                l,
+                cav_l,
+                coop::opening_time_gap(p, t_own),
+                b_co,
+            );
+            // Before the answer, no acceleration beyond what the target lane allows (never
+            // braking for it, as 6.20); after it, the speed match.
+            dec.accel = if answered {
+                dec.accel.min(a_match)
+            } else {
+                dec.accel.min(a_match.max(0.0))
+            };
+        }
+        let mut change = false;
+        if answered {
+            let (_, g) = self.before_lane_change(s, v, nb, leader, d);
+            let lag = Leader {
+                gap_m: v.rear() - f.x,
+                v_mps: v.v,
+            };
+            let f_des = self.v_des_in(tf, f, f.lane as usize);
+            let dt = self.clock.dt;
+            change = g.lead_ok
+                && g.lag_ok
+                && coop::join_safe(
+                    p,
+                    f.v,
+                    f.a,
+                    f_des,
+                    lag,
+                    true,
+                    Self::effective_gap(f),
+                    b_co,
+                    dt,
+                )
+                && lead.is_none_or(|(l, cav_l)| {
+                    coop::join_safe(p, v.v, v.a, v_des_target, l, cav_l, t_own, b_co, dt)
+                });
+        }
+        dec.mode = Mode::Blc {
+            side: d.side,
+            mandatory: d.mandatory,
+            auto: true,
+            ask,
+        };
+        dec.change = change.then_some(d.side);
+        dec.coop = change;
+        dec.why = if d.mandatory {
+            LaneChangeReason::Mandatory
+        } else {
+            LaneChangeReason::Organizing
+        };
+        dec
+    }
+
+    /// The opener's step (spec 9.2): an automated CAV without a desire of its own answers the
+    /// nearest live request addressed to it (an automated CAV ahead of it in an adjacent lane,
+    /// behind its own leader, asking toward its lane) by following the requester as a virtual
+    /// leader at the opening gap, never braking harder than b_co.
+    #[inline(never)]
+    fn open_gap(
+        &self,
+        s: u32,
+        v: &Vehicle,
+        nb: &Neighbours,
+        leader: Option<Leader>,
+        wall: bool,
+    ) -> Option<Decision> {
+        let r = self.cooperative_request(v, nb)?;
+        let p = &self.cfg.cav;
+        let rv = &self.traffic.vehicles[r as usize];
+        let mut dec = self.cav_control(s, v, leader, wall);
+        let vl = Leader {
+            gap_m: rv.rear() - v.x,
+            v_mps: rv.v,
+        };
+        let t_open = coop::opening_time_gap(p, self.join_time_gap(s, v));
+        let v_des = self.v_des_in(s, v, v.lane as usize);
+        dec.accel = dec.accel.min(coop::open_gap_accel(
+            p,
+            v.v,
+            v.a,
+            v_des,
+            vl,
+            true,
+            t_open,
+            p.cooperative_gap_decel_mps2,
+        ));
+        dec.mode = Mode::Ycf {
+            to: rv.id,
+            auto: true,
+            coop: true,
+        };
+        Some(dec)
+    }
+
+    /// The time gap a CAV `v` in slot `s` will keep behind a joiner that enters between it and
+    /// its leader: its own t_C if the joined string stays within `max_platoon` (the joiner
+    /// takes the leader's position + 1 when the leader is a CAV in range with room, spec 3.6;
+    /// the opener brings its own sub-string), else the inter-platoon gap.
+    fn join_time_gap(&self, s: u32, v: &Vehicle) -> f64 {
+        let p = &self.cfg.cav;
+        let sensed = &self.sensed[s as usize];
+        let ld = sensed.nb.leader;
+        let pos_ld = if sensed.cav_ahead {
+            self.sensed[ld as usize].platoon_pos
+        } else {
+            0
+        };
+        let pos_joiner = if pos_ld >= 1 && pos_ld < p.max_platoon {
+            pos_ld + 1
+        } else {
+            1
+        };
+        if pos_joiner + sensed.sub_size <= p.max_platoon {
+            v.cacc.gap_s
+        } else {
+            p.inter_platoon_gap_s
+        }
+    }
+
+    /// The nearest live cooperative request addressed to `v` (slot), if any: in each adjacent
+    /// lane, from the vehicle alongside forward, the first automated CAV asking toward `v`'s
+    /// lane whose target-lane follower is `v` (ahead of `v`, behind `v`'s leader), within
+    /// sensor range; the nearer of the two sides, the left one on a tie. Deterministic, and a
+    /// vehicle with a desire of its own never gets here (so two requesters never wait for each
+    /// other).
+    fn cooperative_request(&self, v: &Vehicle, nb: &Neighbours) -> Option<u32> {
+        let p = &self.cfg.cav;
+        let timeout = self.coop_timeout_steps();
+        let x_limit = if nb.leader != NONE {
+            self.traffic.vehicles[nb.leader as usize].x
+        } else {
+            f64::INFINITY
+        };
+        let lanes = &self.traffic.lanes;
+        let mut best: Option<(u32, f64)> = None;
+        for (lane, j, toward) in [
+            (v.lane as usize + 1, nb.left_j as usize, Side::Right),
+            (
+                (v.lane as usize).wrapping_sub(1),
+                nb.right_j as usize,
+                Side::Left,
+            ),
+        ] {
+            let Some(list) = lanes.get(lane) else {
+                continue;
+            };
+            for &o in list[..j.min(list.len())].iter().rev().take(COOP_SCAN) {
+                let r = &self.traffic.vehicles[o as usize];
+                if r.x >= x_limit || r.rear() - v.x > p.sensor_range_m {
+                    break;
+                }
+                let asks = matches!(r.mode, Mode::Blc { side, auto: true, ask, .. }
+                    if side == toward && coop::asking(ask, timeout));
+                if asks && r.automated() {
+                    let dist = r.x - v.x;
+                    if best.is_none_or(|(_, b)| dist < b) {
+                        best = Some((o, dist));
+                    }
+                    break;
+                }
+            }
+        }
+        best.map(|(o, _)| o)
+    }
+}
 
 /// A uniform draw in [0, 1) for the pair (driver, requester): "a fresh U(0,1) at each new
 /// request" (spec 4.5), reproducible without storing anything.

@@ -87,6 +87,9 @@ pub enum Event {
         to: u32,
         x_m: f64,
         reason: LaneChangeReason,
+        /// A cooperative change, made under automation into a gap a CAV follower opened
+        /// (spec 9.2).
+        cooperative: bool,
     },
     /// The driving mode or the CAV controller's regime changed in this step.
     ModeChange {

@@ -6,6 +6,8 @@ use crate::events::Event;
 use crate::sense::NONE;
 use crate::state::{Clock, RoadState, Scratch, Traffic, Watch};
 use crate::vehicle::{Mode, Relaxation};
+use platoonsim_model::cav::CavParams;
+use platoonsim_model::cooperative as coop;
 use platoonsim_model::human;
 use platoonsim_model::lanechange::{self as lcm, Side};
 use platoonsim_model::Leader;
@@ -13,6 +15,7 @@ use platoonsim_model::Leader;
 /// Phase 4: reads the clock, the road and the decisions; writes the vehicles and lanes, the
 /// lane-change bookkeeping and, with an observer, the step's events.
 pub(crate) fn apply_lane_changes(
+    cav: &CavParams,
     clock: &Clock,
     origin_m: f64,
     road: &RoadState,
@@ -38,13 +41,14 @@ pub(crate) fn apply_lane_changes(
     }
     for i in 0..scratch.change_list.len() {
         let (s, side) = scratch.change_list[i];
-        try_change(clock, origin_m, road, traffic, scratch, watch, s, side);
+        try_change(cav, clock, origin_m, road, traffic, scratch, watch, s, side);
     }
 }
 
 /// One accepted change, re-checked on the current positions.
 #[allow(clippy::too_many_arguments)]
 fn try_change(
+    cav: &CavParams,
     clock: &Clock,
     origin_m: f64,
     road: &RoadState,
@@ -111,6 +115,12 @@ fn try_change(
             return;
         }
     }
+    // A cooperative change (spec 9.2) stays safe by construction on the updated positions:
+    // neither new pair needs braking harder than b_co under its own automated law.
+    let cooperative = scratch.decisions[s as usize].coop;
+    if cooperative && !coop_still_safe(cav, clock.dt, road, traffic, scratch, s, to, tl, tf) {
+        return;
+    }
     // Execute.
     let k = traffic.lanes[from]
         .iter()
@@ -122,7 +132,12 @@ fn try_change(
     let v = &mut traffic.vehicles[s as usize];
     v.lane = to as u32;
     v.mode = Mode::Cf;
-    v.lcs.relax = Relaxation::since(step + 1);
+    if cooperative {
+        // Under automation: no hand-over, no relaxation (spec 9.2).
+        v.lcs.coop_count = v.lcs.coop_count.saturating_add(1);
+    } else {
+        v.lcs.relax = Relaxation::since(step + 1);
+    }
     v.lcs.last_step = step;
     v.lcs.last_side = Some(side);
     v.lcs.count += 1;
@@ -136,6 +151,7 @@ fn try_change(
             to: to as u32,
             x_m: x + origin_m,
             reason: scratch.decisions[s as usize].why,
+            cooperative,
         });
     }
     // The new follower relaxes (RCF), unless it is an automated CAV (spec 4.6).
@@ -148,4 +164,67 @@ fn try_change(
             }
         }
     }
+}
+
+/// [`try_change`]'s re-check of a cooperative change (spec 9.2) on the current positions: the
+/// new follower `tf` (it must still be an automated CAV) behind the changer `s`, and the changer
+/// behind the new leader `tl` within sensor range, each under its own automated law at its
+/// effective time gap, need no braking harder than b_co (`cooperative::join_safe`).
+#[allow(clippy::too_many_arguments)]
+fn coop_still_safe(
+    cav: &CavParams,
+    dt: f64,
+    road: &RoadState,
+    traffic: &Traffic,
+    scratch: &Scratch,
+    s: u32,
+    to: usize,
+    tl: u32,
+    tf: u32,
+) -> bool {
+    let gap = |v: &crate::vehicle::Vehicle| {
+        if v.cacc.time_gap_s > 0.0 {
+            v.cacc.time_gap_s
+        } else {
+            v.cacc.gap_s
+        }
+    };
+    let b_co = cav.cooperative_gap_decel_mps2;
+    let v = &traffic.vehicles[s as usize];
+    if tf != NONE {
+        let f = &traffic.vehicles[tf as usize];
+        if !f.automated() {
+            return false;
+        }
+        let f_des = road.desired_speed_in(
+            f.driver.human.desired_speed,
+            to,
+            scratch.sensed[tf as usize].here.right,
+        );
+        let lag = Leader {
+            gap_m: v.rear() - f.x,
+            v_mps: v.v,
+        };
+        if !coop::join_safe(cav, f.v, f.a, f_des, lag, true, gap(f), b_co, dt) {
+            return false;
+        }
+    }
+    if tl != NONE {
+        let l = &traffic.vehicles[tl as usize];
+        let lead = Leader {
+            gap_m: l.rear() - v.x,
+            v_mps: l.v,
+        };
+        if lead.gap_m <= cav.sensor_range_m {
+            let v_des = road.desired_speed_in(
+                v.driver.human.desired_speed,
+                to,
+                scratch.sensed[s as usize].here.right,
+            );
+            if !coop::join_safe(cav, v.v, v.a, v_des, lead, l.is_cav(), gap(v), b_co, dt) {
+                return false;
+            }
+        }
+    }
+    true
 }

@@ -28,6 +28,7 @@ mod invariants;
 pub mod metrics;
 pub mod network;
 pub mod organize;
+mod place;
 pub mod record;
 pub mod rng;
 mod safety;

@@ -12,6 +12,8 @@ pub struct Metrics {
     pub vehicles_counted: u64,
     pub lane_changes: u64,
     pub lane_changes_cav: u64,
+    /// Cooperative lane changes (spec 9.2) of the vehicles counted.
+    pub cooperative_lane_changes: u64,
     pub cavs_counted: u64,
     pub platoon_length_sum: u64,
     pub cavs_platooned: u64,
@@ -28,6 +30,7 @@ impl Metrics {
         self.lane_changes += v.lcs.count as u64;
         if v.is_cav() {
             self.lane_changes_cav += v.lcs.count as u64;
+            self.cooperative_lane_changes += v.lcs.coop_count as u64;
             self.cavs_counted += 1;
             self.platoon_length_sum += v.cacc.max_platoon as u64;
             if v.cacc.max_platoon > 1 {

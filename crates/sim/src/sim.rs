@@ -34,6 +34,8 @@ pub(crate) struct Decision {
     pub why: crate::events::LaneChangeReason,
     /// An automated CAV hands over to its driver in this step: relaxation starts (spec 4.6).
     pub takeover: bool,
+    /// The change is a cooperative one, made under automation (spec 9.2).
+    pub coop: bool,
 }
 
 /// The whole simulation state.
@@ -313,6 +315,7 @@ impl Simulation {
         self.integrate();
         let origin = self.origin_m();
         crate::execute::apply_lane_changes(
+            &self.cfg.cav,
             &self.clock,
             origin,
             &self.road,
@@ -476,6 +479,7 @@ impl Simulation {
             lane_changes_per_vehicle: m.lane_changes_per_vehicle(),
             lane_changes_per_cav: m.lane_changes_by_type().0,
             lane_changes_per_human: m.lane_changes_by_type().1,
+            cooperative_lane_changes: m.cooperative_lane_changes,
             avg_platoon_length: m.avg_platoon_length(),
             platooning_probability: m.platooning_probability(),
             avg_platoon_length_tg2: m.platoon_stats_tg2().0,

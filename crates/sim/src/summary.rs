@@ -32,6 +32,10 @@ pub struct Summary {
     /// The same per CAV and per human-driven vehicle.
     pub lane_changes_per_cav: Option<f64>,
     pub lane_changes_per_human: Option<f64>,
+    /// Cooperative lane changes (spec 9.2: made under automation into a gap a CAV follower
+    /// opened) of the vehicles counted in the lane-change statistic; 0 without
+    /// `cav.cooperative_lane_change`.
+    pub cooperative_lane_changes: u64,
     /// L̄: mean over CAVs (entered in the window) of the largest platoon each was in.
     pub avg_platoon_length: Option<f64>,
     /// P_P: share of those CAVs ever in a platoon of 2 or more.

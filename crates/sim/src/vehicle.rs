@@ -29,15 +29,19 @@ pub enum Mode {
     Cf,
     /// Before lane change toward `side`; `mandatory` if the desire is mandatory; `auto` if a
     /// CAV's automation stays engaged while its driver waits for a gap toward the PD lane
-    /// (`cav.organize_while_automated`).
+    /// (`cav.organize_while_automated`) or asks for a cooperative change (spec 9.2); `ask`
+    /// counts the steps of the cooperative request cycle (0: none; live while
+    /// `platoonsim_model::cooperative::asking`).
     Blc {
         side: Side,
         mandatory: bool,
         auto: bool,
+        ask: u16,
     },
     /// Yielding to the vehicle with id `to` (a neighbour in BLC toward this lane); `auto` if
-    /// an automated CAV yields through its automation (spec 6.5 flag).
-    Ycf { to: u64, auto: bool },
+    /// an automated CAV yields through its automation (spec 6.5 flag); `coop` if it opens a
+    /// gap for a cooperative change (spec 9.2).
+    Ycf { to: u64, auto: bool, coop: bool },
 }
 
 /// Which relaxation is running (spec 4.6): none, or one that started at a step, after one's
@@ -143,6 +147,8 @@ pub struct LaneChangeState {
     pub count: u32,
     /// Side of the last lane change.
     pub last_side: Option<Side>,
+    /// Cooperative lane changes made (spec 9.2; in the padding after `last_side`).
+    pub coop_count: u16,
 }
 
 /// A driver's drawn parameters (spec 2, 4) and own random stream.
