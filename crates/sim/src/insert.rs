@@ -139,7 +139,7 @@ pub const MIN_TRIP_TO_EXIT_M: f64 = 200.0;
 /// its exit on entry at `x` and time `t` (issue 4 item 1): for each off-ramp downstream in turn
 /// a Bernoulli trial with that ramp's exit fraction for the current interval; the first success
 /// is its exit, none means the mainline end. `origin` is the entrance's index.
-fn create(cfg: &Config, id: u64, x: f64, t: f64, origin: u32) -> Vehicle {
+pub(crate) fn create(cfg: &Config, id: u64, x: f64, t: f64, origin: u32) -> Vehicle {
     let mut rng = Stream::new(cfg.seed, Purpose::Vehicle, id);
     let kind = if rng.uniform() < cfg.penetration {
         Kind::Cav
