@@ -60,6 +60,14 @@ pub const SEVERE_BRAKING_MPS2: f64 = 6.0;
 /// in the last bin).
 pub const PEAK_BIN_EDGES_MPS2: [f64; 6] = [4.0, 5.0, 6.0, 7.0, 8.0, 9.0];
 
+/// Largest emergency deceleration b_e a scenario may set (m/s², about 1.2 g: above the
+/// tyre-road friction of any road car on dry asphalt, about 0.8-1.0 g).
+pub const MAX_EMERGENCY_DECEL_MPS2: f64 = 12.0;
+
+/// Largest TTC* a scenario may set (s): the literature uses 1-4 s (SSAM 1.5 s, SUMO's SSM
+/// device 3 s); beyond 10 s every follower closing in at a few m/s is "in conflict".
+pub const MAX_TTC_THRESHOLD_S: f64 = 10.0;
+
 /// Scenario section `[safety]`: the surrogate safety measures' settings.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
