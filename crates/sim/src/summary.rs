@@ -96,7 +96,7 @@ pub struct Summary {
 
 /// One measure counted in episodes, by kind (the braking vehicle's, or the conflict's
 /// follower's), with its rates per 100 veh-km.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct CountedMeasure {
     /// Its name in the outputs, e.g. `hard_brakings`.
     pub name: &'static str,
