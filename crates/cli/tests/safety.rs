@@ -125,7 +125,10 @@ fn a_run_with_collisions_writes_them_and_exits_with_3() {
     assert!(p.contains("Safety after the warm-up, over "), "{p}");
     assert!(p.contains("hard brakings beyond 4 m/s² ("), "{p}");
     assert!(p.contains(" severe (6 m/s² or more; "), "{p}");
-    assert!(p.contains("lane-change conflicts (TTC below 1.5 s), TET "), "{p}");
+    assert!(
+        p.contains("lane-change conflicts (TTC below 1.5 s), TET "),
+        "{p}"
+    );
     assert!(p.contains("largest deceleration "), "{p}");
 }
 
@@ -210,7 +213,9 @@ fn show_homogeneous_states_the_ttc_threshold() {
         .nth(1)
         .unwrap_or_else(|| panic!("no [safety] section: {text}"));
     assert!(
-        section.lines().any(|l| l.trim_start().starts_with("ttc_threshold_s = 1.5")),
+        section
+            .lines()
+            .any(|l| l.trim_start().starts_with("ttc_threshold_s = 1.5")),
         "{section}"
     );
 }

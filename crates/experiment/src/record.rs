@@ -67,7 +67,10 @@ pub fn is_count(name: &str) -> bool {
         || name.starts_with(HISTOGRAM)
         || platoonsim_sim::Counted::ALL.iter().any(|m| {
             let n = m.name();
-            name == n || name.strip_prefix(n).is_some_and(|k| k == "_cav" || k == "_human")
+            name == n
+                || name
+                    .strip_prefix(n)
+                    .is_some_and(|k| k == "_cav" || k == "_human")
         })
 }
 
@@ -356,7 +359,11 @@ mod tests {
         for name in ints {
             assert!(is_count(name), "{name}");
         }
-        for rate in ["hard_brakings_per_100vkm", "severe_brakings_per_100vkm_cav", "tet_s"] {
+        for rate in [
+            "hard_brakings_per_100vkm",
+            "severe_brakings_per_100vkm_cav",
+            "tet_s",
+        ] {
             assert!(!is_count(rate), "{rate}");
         }
         assert!(is_count("braking_peaks_human_2"));

@@ -214,10 +214,16 @@ fn mean_text(outcomes: &[Outcome], c: usize, metric: &str, dec: usize, runs: usi
 
 /// The TTC* of the cells, as text: `1.5 s`, or every value if the cells differ.
 pub fn ttc_thresholds(cells: &[Cell]) -> String {
-    let mut v: Vec<f64> = cells.iter().map(|c| c.config.safety.ttc_threshold_s).collect();
+    let mut v: Vec<f64> = cells
+        .iter()
+        .map(|c| c.config.safety.ttc_threshold_s)
+        .collect();
     v.sort_by(f64::total_cmp);
     v.dedup();
-    let v: Vec<String> = v.iter().map(|t| format!("{} s", crate::design::num(*t))).collect();
+    let v: Vec<String> = v
+        .iter()
+        .map(|t| format!("{} s", crate::design::num(*t)))
+        .collect();
     v.join(", ")
 }
 
@@ -321,17 +327,31 @@ pub fn braking_figure(
     {
         return Ok(Vec::new());
     }
-    let charts: Vec<platoonsim_plot::Bars> = (0..cells.len())
+    let panels: Vec<(usize, Vec<f64>, Vec<f64>)> = (0..cells.len())
         .filter(|&c| outcomes.iter().any(|o| o.cell == c))
-        .map(|c| platoonsim_plot::Bars {
+        .map(|c| {
+            let (h, v) = (
+                peak_rates(outcomes, c, "human"),
+                peak_rates(outcomes, c, "cav"),
+            );
+            (c, h, v)
+        })
+        .collect();
+    // One y scale for every panel, so that the cells compare at a glance.
+    let top = panels
+        .iter()
+        .flat_map(|(_, h, v)| h.iter().chain(v))
+        .copied()
+        .filter(|x| x.is_finite())
+        .fold(0.0, f64::max);
+    let charts: Vec<platoonsim_plot::Bars> = panels
+        .into_iter()
+        .map(|(c, h, v)| platoonsim_plot::Bars {
             title: cell_name(&cells[c].labels),
             y_label: "episodes per 100 veh-km".into(),
             groups: bin_labels(),
-            series: vec![
-                ("human-driven".into(), peak_rates(outcomes, c, "human"), None),
-                ("CAV".into(), peak_rates(outcomes, c, "cav"), None),
-            ],
-            y_include: vec![0.0],
+            series: vec![("human-driven".into(), h, None), ("CAV".into(), v, None)],
+            y_include: vec![0.0, top],
         })
         .collect();
     let title = "Hard-braking episodes by peak deceleration (m/s²), per 100 veh-km of each kind";

@@ -238,7 +238,10 @@ fn an_experiment_marks_the_cells_that_collided() {
     );
     assert!(md.contains("## Safety"), "{md}");
     // The braking histogram, as a figure.
-    assert!(md.contains("![Hard-braking episodes by peak deceleration"), "{md}");
+    assert!(
+        md.contains("![Hard-braking episodes by peak deceleration"),
+        "{md}"
+    );
     assert!(dir.join("braking.png").is_file() && dir.join("braking.svg").is_file());
     let safety_rows: Vec<&str> = md
         .split("## Safety")

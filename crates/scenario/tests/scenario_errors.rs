@@ -583,14 +583,20 @@ fn a_negative_emergency_deceleration_is_refused() {
 #[test]
 fn an_emergency_limit_weaker_than_the_normal_one_is_refused() {
     let p = problems(with_set(HOMOGENEOUS, &["cav.emergency_decel_mps2=3.5"]));
-    assert_eq!(p, vec![format!("cav.emergency_decel_mps2 = 3.5: {CAV_B_E}")]);
+    assert_eq!(
+        p,
+        vec![format!("cav.emergency_decel_mps2 = 3.5: {CAV_B_E}")]
+    );
     let p = problems(with_set(HOMOGENEOUS, &["human.emergency_decel_mps2=3.5"]));
     assert_eq!(
         p,
         vec![format!("human.emergency_decel_mps2 = 3.5: {HUMAN_B_E}")]
     );
     // A normal limit raised to 7 m/s² needs b_e >= 7.
-    let p = problems(with_set(HOMOGENEOUS, &["cav.max_decel=-7", "cav.emergency_decel_mps2=6"]));
+    let p = problems(with_set(
+        HOMOGENEOUS,
+        &["cav.max_decel=-7", "cav.emergency_decel_mps2=6"],
+    ));
     assert_eq!(p.len(), 1, "{p:?}");
     assert!(
         p[0].starts_with("cav.emergency_decel_mps2 = 6: must be in [7, 12] m/s²")

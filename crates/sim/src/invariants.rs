@@ -187,7 +187,10 @@ mod tests {
         clock.step += 1;
         check_invariants(&clock, 0.0, &mut traffic, &mut safety).unwrap();
         let n = |w| safety.counts.get(w).human;
-        (n(Counted::RearEndConflicts), n(Counted::LaneChangeConflicts))
+        (
+            n(Counted::RearEndConflicts),
+            n(Counted::LaneChangeConflicts),
+        )
     }
 
     #[test]

@@ -31,7 +31,6 @@ impl<T> ByKind<T> {
 }
 
 impl<T: Copy + std::ops::Add<Output = T>> ByKind<T> {
-
     pub fn total(&self) -> T {
         self.human + self.cav
     }
@@ -222,7 +221,9 @@ impl Safety {
         let d = -a;
         let limit = b.emergency_decel[v.kind as usize];
         let running = if law::is_hard(a_prev) {
-            b.running.iter().position(|e| e.id == v.id && e.step + 1 == step)
+            b.running
+                .iter()
+                .position(|e| e.id == v.id && e.step + 1 == step)
         } else {
             None
         };
@@ -443,12 +444,13 @@ mod tests {
     fn episodes_of_two_vehicles_are_apart_and_the_window_decides() {
         let cfg = Config::homogeneous(0.5, 1000.0, 60.0, 0.0, 1);
         let mut s = Safety::new(&cfg);
-        let (a, b) = (
-            vehicle(&cfg, 1, Kind::Human),
-            vehicle(&cfg, 2, Kind::Human),
-        );
+        let (a, b) = (vehicle(&cfg, 1, Kind::Human), vehicle(&cfg, 2, Kind::Human));
         // Interleaved: a peaks at 6.2, b at 4.5, in the same steps.
-        for (k, (&x, &y)) in [-5.0, -6.2, -4.5].iter().zip(&[-4.5, -4.5, -4.5]).enumerate() {
+        for (k, (&x, &y)) in [-5.0, -6.2, -4.5]
+            .iter()
+            .zip(&[-4.5, -4.5, -4.5])
+            .enumerate()
+        {
             let prev = |v: &[f64]| if k == 0 { 0.0 } else { v[k - 1] };
             s.on_applied(&a, prev(&[-5.0, -6.2, -4.5]), x, k as u64 + 1, true);
             s.on_applied(&b, prev(&[-4.5, -4.5, -4.5]), y, k as u64 + 1, true);
