@@ -411,6 +411,12 @@ fn braking_in_hard_cut_ins_stays_within_the_emergency_limit() {
         );
         // The situation exercises the limit: hard brakings happen and some reach b_e.
         assert!(hard.total() > 0, "b_e = {limit}: no hard braking");
+        assert!(
+            at_limit.total() > 0 && at_limit.total() <= hard.total(),
+            "b_e = {limit}: {} brakings at the limit of {} hard ones",
+            at_limit.total(),
+            hard.total()
+        );
         assert_eq!(
             hardest.a_mps2, -limit,
             "b_e = {limit}: the limit never binds in the sampled window, the test proves nothing"
