@@ -288,8 +288,8 @@ fn reproduce_writes_the_report() {
                 + md.matches("| ✗ **does not hold** |").count()
     );
     // capacity, sensitivity; sr99: contours, lanes, bars; sr99-demand: scales, contours;
-    // energy.
-    assert_eq!(html.matches("src=\"data:image/png;base64,").count(), 8);
+    // energy; and the braking histogram of each of the six experiments (issue 29).
+    assert_eq!(html.matches("src=\"data:image/png;base64,").count(), 8 + 6);
     assert!(out.join("capacity/capacity.svg").is_file());
     for exp in [
         "capacity",

@@ -122,9 +122,13 @@ fn a_run_with_collisions_writes_them_and_exits_with_3() {
     assert!(!dir.join("collisions.csv").exists());
     let p = stdout(&o).replace('\n', " ");
     assert!(p.contains("Collisions: 0."), "{p}");
-    assert!(p.contains("Safety after the warm-up: "), "{p}");
-    assert!(p.contains("emergency brakings ("), "{p}");
-    assert!(p.contains("conflicts (TTC below 3 s), TET "), "{p}");
+    assert!(p.contains("Safety after the warm-up, over "), "{p}");
+    assert!(p.contains("hard brakings beyond 4 m/s² ("), "{p}");
+    assert!(p.contains(" severe (6 m/s² or more; "), "{p}");
+    assert!(
+        p.contains("lane-change conflicts (TTC below 1.5 s), TET "),
+        "{p}"
+    );
     assert!(p.contains("largest deceleration "), "{p}");
 }
 
@@ -195,4 +199,23 @@ fn a_full_device_is_an_error() {
         );
         assert!(!err.contains("panicked"), "{err}");
     }
+}
+
+/// The TTC threshold of the conflict measures is SSAM's 1.5 s by default, and `show` says so
+/// (issue 29).
+#[test]
+fn show_homogeneous_states_the_ttc_threshold() {
+    let o = platoonsim(&["show", "homogeneous"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    let section = text
+        .split("\n[safety]\n")
+        .nth(1)
+        .unwrap_or_else(|| panic!("no [safety] section: {text}"));
+    assert!(
+        section
+            .lines()
+            .any(|l| l.trim_start().starts_with("ttc_threshold_s = 1.5")),
+        "{section}"
+    );
 }

@@ -37,9 +37,10 @@ pub const NOT_METRICS: [&str; 10] = [
     "wall_seconds",
 ];
 
-/// The summary's metrics that count things (integers in `summary.json`); `runs.csv` writes
-/// them without a decimal point, every other metric with one (`crate::table`).
-pub const COUNTS: [&str; 19] = [
+/// The summary's metrics that count things (integers in `summary.json`) besides the
+/// counted safety measures ([`is_count`]); `runs.csv` writes them without a decimal point,
+/// every other metric with one (`crate::table`).
+pub const COUNTS: [&str; 13] = [
     "vehicles_entered",
     "vehicles_exited",
     "vehicles_in_network",
@@ -49,17 +50,30 @@ pub const COUNTS: [&str; 19] = [
     "vehicles_counted",
     "missed_exits",
     "collisions",
-    "emergency_brakings",
-    "emergency_brakings_cav",
-    "emergency_brakings_human",
-    "conflicts",
-    "conflicts_cav",
-    "conflicts_human",
     "vehicle_updates",
     "steps",
     "runs_with_collisions",
     "seed",
 ];
+
+/// The object of integer arrays in the summary whose bins become metrics
+/// `braking_peaks_<kind>_<bin>` (bin 0 = the peaks from 4 m/s², docs/safety.md).
+pub const HISTOGRAM: &str = "braking_peaks";
+
+/// Is `name` a metric that counts things: one of [`COUNTS`], a counted safety measure
+/// (`hard_brakings`, `lane_change_conflicts_cav`, …: not its `_per_100vkm` rates) or a bin of
+/// the [`HISTOGRAM`].
+pub fn is_count(name: &str) -> bool {
+    COUNTS.contains(&name)
+        || name.starts_with(HISTOGRAM)
+        || platoonsim_sim::Counted::ALL.iter().any(|m| {
+            let n = m.name();
+            name == n
+                || name
+                    .strip_prefix(n)
+                    .is_some_and(|k| k == "_cav" || k == "_human")
+        })
+}
 
 /// Named numbers in a fixed order: a run's metrics (the summary's numeric fields, in the
 /// summary's order, then any derived ones). A JSON `null` (a NaN when written) reads as NaN.
@@ -231,6 +245,21 @@ pub fn decode_with(
         match v {
             serde_json::Value::Number(n) => fields.0.push((k, n.as_f64().unwrap_or(f64::NAN))),
             serde_json::Value::Null => fields.0.push((k, f64::NAN)),
+            // The histogram: one metric per kind and bin (its integer arrays).
+            serde_json::Value::Object(o) if k == HISTOGRAM => {
+                for (kind, bins) in o {
+                    let Some(bins) = bins.as_array() else {
+                        continue;
+                    };
+                    if !bins.iter().all(|b| b.is_u64()) {
+                        continue;
+                    }
+                    for (i, b) in bins.iter().enumerate() {
+                        let v = b.as_f64().unwrap_or(f64::NAN);
+                        fields.0.push((format!("{k}_{kind}_{i}"), v));
+                    }
+                }
+            }
             _ => {}
         }
     }
@@ -315,14 +344,43 @@ mod tests {
             .filter(|(k, v)| v.is_u64() && !NOT_METRICS.contains(&k.as_str()))
             .map(|(k, _)| k.as_str())
             .collect();
-        let mut listed: Vec<&str> = COUNTS
+        let mut listed: Vec<String> = COUNTS
             .iter()
-            .copied()
             .filter(|c| !["runs_with_collisions", "seed"].contains(c))
+            .map(|c| c.to_string())
             .collect();
+        for m in platoonsim_sim::Counted::ALL {
+            for k in ["", "_cav", "_human"] {
+                listed.push(format!("{}{k}", m.name()));
+            }
+        }
         ints.sort_unstable();
         listed.sort_unstable();
         assert_eq!(ints, listed);
+        for name in ints {
+            assert!(is_count(name), "{name}");
+        }
+        for rate in [
+            "hard_brakings_per_100vkm",
+            "severe_brakings_per_100vkm_cav",
+            "tet_s",
+        ] {
+            assert!(!is_count(rate), "{rate}");
+        }
+        assert!(is_count("braking_peaks_human_2"));
+    }
+
+    #[test]
+    fn the_histogram_becomes_one_count_per_kind_and_bin() {
+        let mut s = summary();
+        s.braking_peaks.human = vec![3, 1, 0, 0, 0, 2];
+        s.braking_peaks.cav = vec![1, 0, 0, 0, 0, 0];
+        let f = decode(&encode("k", 4, "e", &s), "k", 4, None).unwrap();
+        assert_eq!(f.get("braking_peaks_human_0"), Some(3.0));
+        assert_eq!(f.get("braking_peaks_human_5"), Some(2.0));
+        assert_eq!(f.get("braking_peaks_cav_0"), Some(1.0));
+        assert_eq!(f.get("braking_peaks_cav_6"), None);
+        assert!(f.names().all(|n| !n.contains("lower_edges")));
     }
 
     #[test]

@@ -1,6 +1,7 @@
-//! Safety per cell (issue 18, docs/safety.md): which runs had collisions, and the surrogate
-//! safety measures of the engine's summary (emergency brakings, conflicts, TET, TIT, the
-//! smallest TTC, the largest deceleration) as a Markdown table.
+//! Safety per cell (issues 18, 29, docs/safety.md): which runs had collisions, and the
+//! surrogate safety measures of the engine's summary (hard, severe and at-limit brakings and
+//! rear-end and lane-change conflicts per 100 veh-km, TET, TIT, the smallest TTC, the
+//! largest deceleration) as Markdown tables, and the braking histogram as a figure.
 //!
 //! A run with a collision is a failed run: vehicles overlapped or ran past the end of a lane,
 //! so its discharge, lane changes and platoons are not those of physical traffic. Every
@@ -8,18 +9,54 @@
 //! collided, and `summary.csv` counts the failed runs of each cell.
 
 use crate::design::{Cell, Labels};
+use crate::experiments::Figure;
 use crate::runner::Outcome;
 use crate::stats::Stats;
 use crate::table::{self, md_table, pm};
+use crate::Error;
+use platoonsim_model::safety::PEAK_BIN_EDGES_MPS2;
+use std::path::Path;
 
 /// The safety columns: (metric of the summary, column title, decimals).
-pub const METRICS: [(&str, &str, usize); 6] = [
-    ("emergency_brakings", "Emergency brakings (episodes)", 1),
-    ("conflicts", "Conflicts, TTC < TTC* (episodes)", 1),
+pub const METRICS: [(&str, &str, usize); 10] = [
+    ("vehicle_km", "Vehicle-km (veh·km)", 0),
+    (
+        "hard_brakings_per_100vkm",
+        "Hard brakings > 4 m/s² (per 100 veh-km)",
+        3,
+    ),
+    (
+        "severe_brakings_per_100vkm",
+        "Severe brakings ≥ 6 m/s² (per 100 veh-km)",
+        3,
+    ),
+    (
+        "brakings_at_limit_per_100vkm",
+        "Brakings at the limit b_e (per 100 veh-km)",
+        3,
+    ),
+    (
+        "rear_end_conflicts_per_100vkm",
+        "Rear-end conflicts (per 100 veh-km)",
+        2,
+    ),
+    (
+        "lane_change_conflicts_per_100vkm",
+        "Lane-change conflicts (per 100 veh-km)",
+        2,
+    ),
     ("tet_s", "TET (s)", 1),
     ("tit_s2", "TIT (s²)", 1),
     ("min_ttc_s", "Min TTC (s)", 2),
     ("max_deceleration_mps2", "Max deceleration (m/s²)", 2),
+];
+
+/// The by-kind columns: the braking classes and the lane-change conflicts per 100 veh-km of
+/// human-driven vehicles and of CAVs.
+pub const BY_KIND: [(&str, &str, usize); 3] = [
+    ("hard_brakings", "Hard brakings", 3),
+    ("severe_brakings", "Severe brakings", 3),
+    ("lane_change_conflicts", "Lane-change conflicts", 2),
 ];
 
 /// Whether a run collided. A run file without the field (an older engine) counts as no
@@ -137,17 +174,19 @@ fn grouped(cells: &[Cell], group: &[&str]) -> Vec<usize> {
     order
 }
 
-/// The `## Safety` section: one row per cell (cells sharing the `group` labels adjacent, so
-/// that a point's baseline and PD rows are side by side), its labels, the runs with
-/// collisions, and the mean ± 95 % half-width of each of [`METRICS`]. The minimum TTC is
-/// averaged over the runs in which a follower closed in (`n` given when some did not).
-pub fn section_md(cells: &[Cell], outcomes: &[Outcome], group: &[&str]) -> String {
+/// One row per cell (in `order`): its labels, then `text(cell, runs)` for each column.
+fn cell_table(
+    cells: &[Cell],
+    outcomes: &[Outcome],
+    order: &[usize],
+    columns: &[String],
+    text: impl Fn(usize, usize, usize) -> String,
+) -> String {
     let labels = table::label_columns(cells);
     let mut header: Vec<String> = labels.iter().map(|l| table::label_header(l)).collect();
-    header.push("Runs with collisions (runs)".into());
-    header.extend(METRICS.iter().map(|m| m.1.to_string()));
+    header.extend(columns.iter().cloned());
     let mut rows = Vec::new();
-    for c in grouped(cells, group) {
+    for &c in order {
         let runs = outcomes.iter().filter(|o| o.cell == c).count();
         if runs == 0 {
             continue;
@@ -156,32 +195,175 @@ pub fn section_md(cells: &[Cell], outcomes: &[Outcome], group: &[&str]) -> Strin
             .iter()
             .map(|k| cells[c].labels.get(k).unwrap_or("").to_string())
             .collect();
-        let bad = collided_runs(outcomes, c);
-        row.push(if bad > 0 {
-            format!("**{bad} of {runs}** (invalid)")
-        } else {
-            format!("0 of {runs}")
-        });
-        for (metric, _, dec) in METRICS {
-            let v = table::values(outcomes, c, metric);
-            let s = Stats::of(&v);
-            let mut text = pm(&s, dec);
-            if !v.is_empty() && s.n < runs {
-                text.push_str(&format!(" (n = {})", s.n));
-            }
-            row.push(text);
-        }
+        row.extend((0..columns.len()).map(|i| text(c, i, runs)));
         rows.push(row);
     }
+    md_table(&header, &rows)
+}
+
+/// Mean ± 95 % half-width of a cell's metric over its runs (`n` given when some runs lack it).
+fn mean_text(outcomes: &[Outcome], c: usize, metric: &str, dec: usize, runs: usize) -> String {
+    let v = table::values(outcomes, c, metric);
+    let s = Stats::of(&v);
+    let mut text = pm(&s, dec);
+    if !v.is_empty() && s.n < runs {
+        text.push_str(&format!(" (n = {})", s.n));
+    }
+    text
+}
+
+/// The TTC* of the cells, as text: `1.5 s`, or every value if the cells differ.
+pub fn ttc_thresholds(cells: &[Cell]) -> String {
+    let mut v: Vec<f64> = cells
+        .iter()
+        .map(|c| c.config.safety.ttc_threshold_s)
+        .collect();
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    let v: Vec<String> = v
+        .iter()
+        .map(|t| format!("{} s", crate::design::num(*t)))
+        .collect();
+    v.join(", ")
+}
+
+/// The `## Safety` section: one row per cell (cells sharing the `group` labels adjacent, so
+/// that a point's baseline and PD rows are side by side), its labels, the runs with
+/// collisions, and the mean ± 95 % half-width of each of [`METRICS`]; then the braking
+/// classes and lane-change conflicts by vehicle kind ([`BY_KIND`]). The minimum TTC is
+/// averaged over the runs in which a follower closed in, a rate over the runs in which
+/// vehicles of its kind drove (`n` given when some did not).
+pub fn section_md(cells: &[Cell], outcomes: &[Outcome], group: &[&str]) -> String {
+    let order = grouped(cells, group);
+    let mut columns = vec!["Runs with collisions (runs)".to_string()];
+    columns.extend(METRICS.iter().map(|m| m.1.to_string()));
+    let main = cell_table(cells, outcomes, &order, &columns, |c, i, runs| {
+        if i == 0 {
+            let bad = collided_runs(outcomes, c);
+            return if bad > 0 {
+                format!("**{bad} of {runs}** (invalid)")
+            } else {
+                format!("0 of {runs}")
+            };
+        }
+        let (metric, _, dec) = METRICS[i - 1];
+        mean_text(outcomes, c, metric, dec, runs)
+    });
+    let kinds = [("human", "human-driven"), ("cav", "CAV")];
+    let columns: Vec<String> = BY_KIND
+        .iter()
+        .flat_map(|(_, title, _)| {
+            kinds
+                .iter()
+                .map(move |(_, k)| format!("{title}, {k} (per 100 veh-km)"))
+        })
+        .collect();
+    let by_kind = cell_table(cells, outcomes, &order, &columns, |c, i, runs| {
+        let (name, _, dec) = BY_KIND[i / kinds.len()];
+        let kind = kinds[i % kinds.len()].0;
+        mean_text(outcomes, c, &format!("{name}_per_100vkm_{kind}"), dec, runs)
+    });
     format!(
-        "## Safety\n\nSurrogate safety measures per cell (definitions in docs/safety.md): mean ± \
-         half-width of the 95 % confidence interval over the seeds. Emergency brakings \
-         (episodes of braking harder than the normal limit), conflicts (follower-leader \
-         episodes with a time to collision below TTC*), time-exposed (TET) and time-integrated \
-         (TIT) TTC, and the smallest TTC are measured after the warm-up; the largest \
-         deceleration over the whole run. A cell with collisions is invalid.\n\n{}",
-        md_table(&header, &rows)
+        "## Safety\n\nSurrogate safety measures per cell (definitions in docs/safety.md, spec \
+         9.4): mean ± half-width of the 95 % confidence interval over the seeds, measured \
+         after the warm-up except the largest deceleration (whole run). Braking episodes \
+         (consecutive steps of one vehicle braking harder than 4 m/s²) are classed by their \
+         peak: hard (> 4 m/s²), severe (≥ 6 m/s², about the 0.6 g near-crash trigger of the \
+         100-Car naturalistic study) and at the vehicle's emergency limit b_e. A conflict is an \
+         episode of a follower-leader pair with a time to collision below TTC* = {}; it is a \
+         lane-change conflict when the pair was formed by a lane change in the step it starts \
+         (SSAM's lane-change class), a rear-end conflict otherwise. Rates are per 100 \
+         vehicle-km driven in the window. A cell with collisions is invalid.\n\n{}\nBy \
+         vehicle kind (the braking vehicle's, the conflict's follower's), per 100 veh-km of \
+         that kind:\n\n{}",
+        ttc_thresholds(cells),
+        main,
+        by_kind
     )
+}
+
+/// The bins of the braking histogram as axis labels: `4–5`, …, `≥ 9` (m/s²).
+fn bin_labels() -> Vec<String> {
+    let e = PEAK_BIN_EDGES_MPS2;
+    (0..e.len())
+        .map(|i| match e.get(i + 1) {
+            Some(hi) => format!("{}–{}", e[i], hi),
+            None => format!("≥ {}", e[i]),
+        })
+        .collect()
+}
+
+/// A cell's episodes per 100 veh-km of `kind` in each peak bin: the bins' counts over its
+/// runs divided by the vehicle-km of that kind over the same runs (NaN without any).
+pub fn peak_rates(outcomes: &[Outcome], cell: usize, kind: &str) -> Vec<f64> {
+    let km: f64 = table::values(outcomes, cell, &format!("vehicle_km_{kind}"))
+        .iter()
+        .sum();
+    (0..PEAK_BIN_EDGES_MPS2.len())
+        .map(|i| {
+            let n: f64 = table::values(outcomes, cell, &format!("braking_peaks_{kind}_{i}"))
+                .iter()
+                .sum();
+            if km > 0.0 {
+                n * 100.0 / km
+            } else {
+                f64::NAN
+            }
+        })
+        .collect()
+}
+
+/// `braking.png` / `.svg`: one panel per cell, the hard-braking episodes per 100 veh-km by
+/// peak deceleration, human-driven vehicles and CAVs side by side. None when no run has the
+/// histogram (older run files).
+pub fn braking_figure(
+    dir: &Path,
+    cells: &[Cell],
+    outcomes: &[Outcome],
+) -> Result<Vec<Figure>, Error> {
+    if !outcomes
+        .iter()
+        .any(|o| o.fields.get("braking_peaks_human_0").is_some())
+    {
+        return Ok(Vec::new());
+    }
+    let panels: Vec<(usize, Vec<f64>, Vec<f64>)> = (0..cells.len())
+        .filter(|&c| outcomes.iter().any(|o| o.cell == c))
+        .map(|c| {
+            let (h, v) = (
+                peak_rates(outcomes, c, "human"),
+                peak_rates(outcomes, c, "cav"),
+            );
+            (c, h, v)
+        })
+        .collect();
+    // One y scale for every panel, so that the cells compare at a glance.
+    let top = panels
+        .iter()
+        .flat_map(|(_, h, v)| h.iter().chain(v))
+        .copied()
+        .filter(|x| x.is_finite())
+        .fold(0.0, f64::max);
+    let charts: Vec<platoonsim_plot::Bars> = panels
+        .into_iter()
+        .map(|(c, h, v)| platoonsim_plot::Bars {
+            title: cell_name(&cells[c].labels),
+            y_label: "episodes per 100 veh-km".into(),
+            groups: bin_labels(),
+            series: vec![("human-driven".into(), h, None), ("CAV".into(), v, None)],
+            y_include: vec![0.0, top],
+        })
+        .collect();
+    let title = "Hard-braking episodes by peak deceleration (m/s²), per 100 veh-km of each kind";
+    platoonsim_plot::bar_panels(&charts, 3, title, &dir.join("braking"))
+        .map_err(|e| Error::Other(e.to_string()))?;
+    Ok(vec![Figure {
+        title: format!(
+            "{title}: episodes of braking beyond 4 m/s² binned by their peak, after the \
+             warm-up, over all seeds of each cell (docs/safety.md)"
+        ),
+        stem: "braking".into(),
+    }])
 }
 
 #[cfg(test)]

@@ -14,7 +14,7 @@
 //! (no paper value, n < 2 for sd and the interval, a metric that does not apply to a run) are
 //! empty; `n` counts the runs that have a value.
 //!
-//! Number format: a count ([`crate::record::COUNTS`], and `n`, `seed`) is an integer; every
+//! Number format: a count ([`crate::record::is_count`], and `n`, `seed`) is an integer; every
 //! other number has a decimal point (`2040.0`, not `2040`), so that a column has one type
 //! whatever its values, as in `summary.json`.
 
@@ -91,7 +91,7 @@ pub fn csv_num(v: f64) -> String {
 
 /// A metric's value in `runs.csv`: counts as integers, everything else as [`csv_num`].
 fn metric_num(name: &str, v: f64) -> String {
-    if crate::record::COUNTS.contains(&name) && v.is_finite() {
+    if crate::record::is_count(name) && v.is_finite() {
         format!("{v}")
     } else {
         csv_num(v)

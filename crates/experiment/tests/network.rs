@@ -185,7 +185,9 @@ fn sr99_writes_table4_and_the_three_figures() {
     ] {
         assert!(md.contains(part), "{part} missing in summary.md:\n{md}");
     }
-    assert_eq!(res.figures.len(), 3);
+    // The three SR-99 figures and the braking histogram (issue 29).
+    assert_eq!(res.figures.len(), 4);
+    assert_eq!(res.figures[3].stem, "braking");
     assert!(!res.checks.is_empty());
 
     // A rerun reuses every run, detector files included.

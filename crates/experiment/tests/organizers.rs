@@ -205,7 +205,7 @@ fn lane_changes_counted_from_events_agree_with_the_summary() {
     }
 }
 
-/// Emergency brakings and mode changes from the event stream.
+/// Hard brakings and mode changes from the event stream.
 #[derive(Debug, Default)]
 struct SafetyCounter {
     warmup_s: f64,
@@ -223,7 +223,7 @@ impl platoonsim_sim::Observer for SafetyCounter {
             assert_eq!(e.t_s(), sim.time_s(), "stamped with the end of the step");
             self.last_t = e.t_s();
             match e {
-                Event::EmergencyBraking { t_s, kind, .. } if *t_s > self.warmup_s => {
+                Event::HardBraking { t_s, kind, .. } if *t_s > self.warmup_s => {
                     self.brakings[*kind as usize] += 1;
                 }
                 Event::ModeChange {
@@ -241,7 +241,7 @@ impl platoonsim_sim::Observer for SafetyCounter {
 }
 
 #[test]
-fn emergency_brakings_and_mode_changes_come_as_events() {
+fn hard_brakings_and_mode_changes_come_as_events() {
     let c = config(StrategyKind::DEDICATED, 2, &[]);
     let mut sim = Simulation::new(c.clone()).unwrap();
     sim.observe(Box::new(SafetyCounter {
@@ -256,9 +256,7 @@ fn emergency_brakings_and_mode_changes_come_as_events() {
     let (brakings, yields, regimes) = (n.brakings, n.yields, n.regimes);
     let s = sim.finish(0.0).summary;
     println!("brakings {brakings:?}, yields {yields}, regime changes {regimes}");
-    assert_eq!(
-        brakings,
-        [s.emergency_brakings_human, s.emergency_brakings_cav]
-    );
+    let hard = s.counted.get("hard_brakings").unwrap();
+    assert_eq!(brakings, [hard.human, hard.cav]);
     assert!(yields > 10 && regimes > 100, "{yields} {regimes}");
 }

@@ -215,6 +215,8 @@ fn sensitivity_files_have_the_expected_shape() {
     assert_eq!(
         names,
         [
+            "braking.png",
+            "braking.svg",
             "run.json",
             "runs.csv",
             "sensitivity.png",
@@ -226,7 +228,9 @@ fn sensitivity_files_have_the_expected_shape() {
     assert!(fs::read(dir.join("sensitivity.png"))
         .unwrap()
         .starts_with(b"\x89PNG"));
-    assert_eq!(res.figures.len(), 1);
+    // The Table 3 panels and the braking histogram (issue 29).
+    assert_eq!(res.figures.len(), 2);
+    assert_eq!(res.figures[1].stem, "braking");
     // 4 demands × 3 strategies (none, pd, dedicated) × 2 seeds.
     assert_eq!(run_files(&dir.join("runs")).len(), 24);
 

@@ -42,8 +42,14 @@ fn outcome(cell: usize, seed: u64, collisions: f64, brakings: f64, min_ttc: f64)
             ("discharge_flow_vphpl".into(), 1000.0),
             ("collisions".into(), collisions),
             ("max_deceleration_mps2".into(), 4.5),
-            ("emergency_brakings".into(), brakings),
-            ("conflicts".into(), 2.0),
+            ("vehicle_km".into(), 200.0),
+            ("hard_brakings".into(), brakings),
+            ("hard_brakings_per_100vkm".into(), brakings / 2.0),
+            ("hard_brakings_per_100vkm_human".into(), brakings / 2.0),
+            ("severe_brakings_per_100vkm".into(), 0.5),
+            ("brakings_at_limit_per_100vkm".into(), 0.0),
+            ("rear_end_conflicts_per_100vkm".into(), 1.0),
+            ("lane_change_conflicts_per_100vkm".into(), 0.5),
             ("tet_s".into(), 1.3),
             ("tit_s2".into(), 0.5),
             ("min_ttc_s".into(), min_ttc),
@@ -92,16 +98,25 @@ fn the_safety_table_has_every_cell_side_by_side() {
     let (cells, outcomes) = synthetic();
     let md = safety::section_md(&cells, &outcomes, &["demand_vphpl"]);
     assert!(md.starts_with("## Safety\n\n"), "{md}");
+    assert!(
+        md.contains("time to collision below TTC* = 1.5 s;"),
+        "the TTC* used: {md}"
+    );
     let lines: Vec<&str> = md.lines().filter(|l| l.starts_with('|')).collect();
     assert_eq!(
         lines,
         [
-            "| Demand (veh/h/lane) | Strategy | Runs with collisions (runs) | Emergency brakings (episodes) | Conflicts, TTC < TTC* (episodes) | TET (s) | TIT (s²) | Min TTC (s) | Max deceleration (m/s²) |",
-            "|---|---|---|---|---|---|---|---|---|",
+            "| Demand (veh/h/lane) | Strategy | Runs with collisions (runs) | Vehicle-km (veh·km) | Hard brakings > 4 m/s² (per 100 veh-km) | Severe brakings ≥ 6 m/s² (per 100 veh-km) | Brakings at the limit b_e (per 100 veh-km) | Rear-end conflicts (per 100 veh-km) | Lane-change conflicts (per 100 veh-km) | TET (s) | TIT (s²) | Min TTC (s) | Max deceleration (m/s²) |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
             // Min TTC: one run had none (null), left out of the mean.
-            "| 1000 | none | 0 of 2 | 3.0 ± 0.0 | 2.0 ± 0.0 | 1.3 ± 0.0 | 0.5 ± 0.0 | 1.50 (n = 1) | 4.50 ± 0.00 |",
-            // 6 ± t(0.975, 1) · √2 / √2 = 6 ± 12.7062; TTC 1 ± 6.3531.
-            "| 1000 | pd | **1 of 2** (invalid) | 6.0 ± 12.7 | 2.0 ± 0.0 | 1.3 ± 0.0 | 0.5 ± 0.0 | 1.00 ± 6.35 | 4.50 ± 0.00 |",
+            "| 1000 | none | 0 of 2 | 200 ± 0 | 1.500 ± 0.000 | 0.500 ± 0.000 | 0.000 ± 0.000 | 1.00 ± 0.00 | 0.50 ± 0.00 | 1.3 ± 0.0 | 0.5 ± 0.0 | 1.50 (n = 1) | 4.50 ± 0.00 |",
+            // 3 ± t(0.975, 1) · (1 / √2) / √2 = 3 ± 6.3531; TTC 1 ± 6.3531.
+            "| 1000 | pd | **1 of 2** (invalid) | 200 ± 0 | 3.000 ± 6.353 | 0.500 ± 0.000 | 0.000 ± 0.000 | 1.00 ± 0.00 | 0.50 ± 0.00 | 1.3 ± 0.0 | 0.5 ± 0.0 | 1.00 ± 6.35 | 4.50 ± 0.00 |",
+            // By kind: only the human hard-braking rate is in the synthetic runs.
+            "| Demand (veh/h/lane) | Strategy | Hard brakings, human-driven (per 100 veh-km) | Hard brakings, CAV (per 100 veh-km) | Severe brakings, human-driven (per 100 veh-km) | Severe brakings, CAV (per 100 veh-km) | Lane-change conflicts, human-driven (per 100 veh-km) | Lane-change conflicts, CAV (per 100 veh-km) |",
+            "|---|---|---|---|---|---|---|---|",
+            "| 1000 | none | 1.500 ± 0.000 | – | – | – | – | – |",
+            "| 1000 | pd | 3.000 ± 6.353 | – | – | – | – | – |",
         ]
     );
 }
@@ -114,12 +129,20 @@ fn runs_and_summary_csv_carry_the_safety_fields() {
     assert_eq!(
         lines[0],
         "demand_vphpl,strategy,seed,key,discharge_flow_vphpl,collisions,max_deceleration_mps2,\
-         emergency_brakings,conflicts,tet_s,tit_s2,min_ttc_s"
+         vehicle_km,hard_brakings,hard_brakings_per_100vkm,hard_brakings_per_100vkm_human,\
+         severe_brakings_per_100vkm,brakings_at_limit_per_100vkm,rear_end_conflicts_per_100vkm,\
+         lane_change_conflicts_per_100vkm,tet_s,tit_s2,min_ttc_s"
     );
     // The null minimum TTC is an empty cell (pandas reads NaN, the column stays float);
     // counts are integers, every other number has a decimal point.
-    assert_eq!(lines[2], "1000,none,2,k02,1000.0,0,4.5,3,2,1.3,0.5,");
-    assert_eq!(lines[4], "1000,pd,2,k12,1000.0,2,4.5,7,2,1.3,0.5,1.5");
+    assert_eq!(
+        lines[2],
+        "1000,none,2,k02,1000.0,0,4.5,200.0,3,1.5,1.5,0.5,0.0,1.0,0.5,1.3,0.5,"
+    );
+    assert_eq!(
+        lines[4],
+        "1000,pd,2,k12,1000.0,2,4.5,200.0,7,3.5,3.5,0.5,0.0,1.0,0.5,1.3,0.5,1.5"
+    );
 
     let rows = table::summarize("sensitivity", &cells, &outcomes);
     let ttc = rows
@@ -132,7 +155,8 @@ fn runs_and_summary_csv_carry_the_safety_fields() {
     let header = r.headers().unwrap().clone();
     assert_eq!(&header[header.len() - 1], "runs_with_collisions");
     let recs: Vec<csv::StringRecord> = r.records().map(|x| x.unwrap()).collect();
-    assert_eq!(recs.len(), 16);
+    // 14 metrics of two cells.
+    assert_eq!(recs.len(), 28);
     for rec in &recs {
         let expected = if &rec[1] == "pd" { "1" } else { "0" };
         assert_eq!(&rec[rec.len() - 1], expected, "{rec:?}");
@@ -167,7 +191,7 @@ fn an_old_run_file_without_the_safety_fields_still_reads() {
     }];
     let md = safety::section_md(&cells[..1], &outcomes, &[]);
     assert!(
-        md.contains("| 1000 | none | 0 of 1 | – | – | – | – | – | – |"),
+        md.contains("| 1000 | none | 0 of 1 | – | – | – | – | – | – | – | – | – | – |"),
         "{md}"
     );
     // A null minimum TTC reads as NaN, not as an error.
@@ -213,9 +237,18 @@ fn an_experiment_marks_the_cells_that_collided() {
         "{md}"
     );
     assert!(md.contains("## Safety"), "{md}");
+    // The braking histogram, as a figure.
+    assert!(
+        md.contains("![Hard-braking episodes by peak deceleration"),
+        "{md}"
+    );
+    assert!(dir.join("braking.png").is_file() && dir.join("braking.svg").is_file());
     let safety_rows: Vec<&str> = md
         .split("## Safety")
         .nth(1)
+        .unwrap()
+        .split("By vehicle kind")
+        .next()
         .unwrap()
         .lines()
         .filter(|l| l.starts_with("| 0.5 |"))
@@ -241,8 +274,16 @@ fn an_experiment_marks_the_cells_that_collided() {
         assert_eq!(&rec[col("collisions")], if collided { "1" } else { "0" });
         for f in [
             "max_deceleration_mps2",
-            "emergency_brakings",
-            "conflicts",
+            "vehicle_km",
+            "hard_brakings",
+            "severe_brakings_cav",
+            "brakings_at_limit_human",
+            "rear_end_conflicts",
+            "lane_change_conflicts_human",
+            "hard_brakings_per_100vkm",
+            "lane_change_conflicts_per_100vkm_human",
+            "braking_peaks_human_0",
+            "braking_peaks_cav_5",
             "tet_s",
             "tit_s2",
         ] {

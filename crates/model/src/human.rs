@@ -39,7 +39,8 @@
 //! | b_e | `emergency_decel_mps2` (scenario only) | 9.0 | fixed, positive | m/s² |
 //!
 //! b_e bounds every acceleration the engine applies to the vehicle, whatever produced it
-//! (`safety::braking_limited`); braking harder than b_f is an emergency braking (docs/safety.md).
+//! (`safety::braking_limited`); braking harder than 4 m/s² is a hard-braking episode
+//! (docs/safety.md, spec 9.4).
 
 use crate::bounded;
 use crate::dist::Dist;

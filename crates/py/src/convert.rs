@@ -203,13 +203,13 @@ pub fn event_dict<'py>(py: Python<'py>, e: &Event) -> PyResult<Bound<'py, PyDict
             d.set_item("from_regime", regime_from.map(|r| r.as_str()))?;
             d.set_item("to_regime", regime_to.map(|r| r.as_str()))?;
         }
-        Event::EmergencyBraking {
+        Event::HardBraking {
             id,
             kind,
             decel_mps2,
             ..
         } => {
-            d.set_item("type", "emergency_braking")?;
+            d.set_item("type", "hard_braking")?;
             d.set_item("id", id)?;
             d.set_item("kind", kind.as_str())?;
             d.set_item("decel_mps2", decel_mps2)?;

@@ -29,7 +29,7 @@ mod strategy;
 
 #[path = "validate_models.rs"]
 mod models;
-use models::{all_finite, check_cav, check_human, check_lane_change};
+use models::{all_finite, check_cav, check_human, check_lane_change, check_safety};
 
 /// Defaults of the optional keys.
 pub mod defaults {
@@ -293,7 +293,9 @@ pub fn validate_in(
     if all_finite(&mut c, "lane_change", &raw.lane_change) {
         check_lane_change(&mut c, &raw.lane_change, road.length);
     }
-    all_finite(&mut c, "safety", &raw.safety);
+    if all_finite(&mut c, "safety", &raw.safety) {
+        check_safety(&mut c, &raw.safety);
+    }
 
     let config = Config {
         name,

@@ -7,6 +7,7 @@ use crate::raw::num;
 use platoonsim_model::cav::CavParams;
 use platoonsim_model::human::HumanDists;
 use platoonsim_model::lanechange::LaneChangeDists;
+use platoonsim_model::safety::{SafetyParams, MAX_EMERGENCY_DECEL_MPS2, MAX_TTC_THRESHOLD_S};
 use toml::Value;
 
 /// Report every non-finite number (TOML allows `nan` and `inf`) and every number beyond
@@ -133,6 +134,46 @@ pub(super) fn check_human(c: &mut Checker, h: &HumanDists) {
         h.comfort_factor > 0.0 && h.comfort_factor <= 1.0,
         "must be in (0, 1] (a fraction of max_decel)",
     );
+    // b_e no weaker than the hardest normal limit a driver can draw.
+    emergency_decel(
+        c,
+        "human.emergency_decel_mps2",
+        h.emergency_decel_mps2,
+        -h.max_decel.min,
+        "the hardest normal limit a driver draws, -human.max_decel.min",
+    );
+}
+
+/// b_e (positive, m/s²) in [normal, `MAX_EMERGENCY_DECEL_MPS2`]: a negative value would make
+/// the braking limit an acceleration, one below the normal limit b would cut the laws short
+/// (docs/safety.md).
+fn emergency_decel(c: &mut Checker, field: &str, b_e: f64, normal: f64, what: &str) {
+    let lo = normal.max(0.0);
+    c.value(
+        field,
+        b_e,
+        b_e > 0.0 && b_e >= lo && b_e <= MAX_EMERGENCY_DECEL_MPS2,
+        &format!(
+            "must be in [{}, {}] m/s²: positive (a deceleration, as SUMO's emergencyDecel), no \
+             weaker than {what} = {}, at most about 1.2 g",
+            num(lo),
+            num(MAX_EMERGENCY_DECEL_MPS2),
+            num(normal)
+        ),
+    );
+}
+
+/// `[safety]`: TTC* in (0, `MAX_TTC_THRESHOLD_S`] s.
+pub(super) fn check_safety(c: &mut Checker, p: &SafetyParams) {
+    c.value(
+        "safety.ttc_threshold_s",
+        p.ttc_threshold_s,
+        p.ttc_threshold_s > 0.0 && p.ttc_threshold_s <= MAX_TTC_THRESHOLD_S,
+        &format!(
+            "must be in (0, {}] s (FHWA SSAM uses 1.5 s)",
+            num(MAX_TTC_THRESHOLD_S)
+        ),
+    );
 }
 
 pub(super) fn check_cav(c: &mut Checker, p: &CavParams) {
@@ -181,6 +222,13 @@ pub(super) fn check_cav(c: &mut Checker, p: &CavParams) {
         p.max_decel,
         p.max_decel < 0.0,
         "must be < 0 m/s² (decelerations are negative)",
+    );
+    emergency_decel(
+        c,
+        "cav.emergency_decel_mps2",
+        p.emergency_decel_mps2,
+        -p.max_decel,
+        "the normal limit -cav.max_decel",
     );
     pos(c, "cav.inter_platoon_gap_s", p.inter_platoon_gap_s);
     if !(1..=limits::MAX_PLATOON).contains(&p.max_platoon) {

@@ -568,3 +568,102 @@ fn readme_example_scenario_is_valid() {
     assert_eq!(c.name, "two_lane_test");
     assert_eq!(c.strategy.kind, platoonsim_sim::StrategyKind::PD);
 }
+
+// ---------------------------------------------------------------- braking limits and [safety]
+
+const CAV_B_E: &str = "must be in [4, 12] m/s²: positive (a deceleration, as SUMO's \
+                       emergencyDecel), no weaker than the normal limit -cav.max_decel = 4, at \
+                       most about 1.2 g";
+const HUMAN_B_E: &str = "must be in [4, 12] m/s²: positive (a deceleration, as SUMO's \
+                         emergencyDecel), no weaker than the hardest normal limit a driver \
+                         draws, -human.max_decel.min = 4, at most about 1.2 g";
+
+#[test]
+fn a_negative_emergency_deceleration_is_refused() {
+    // Accepted before issue 29: every CAV then accelerated at 9 m/s².
+    let p = problems(with_set(HOMOGENEOUS, &["cav.emergency_decel_mps2=-9"]));
+    assert_eq!(p, vec![format!("cav.emergency_decel_mps2 = -9: {CAV_B_E}")]);
+    let p = problems(with_set(HOMOGENEOUS, &["human.emergency_decel_mps2=-9"]));
+    assert_eq!(
+        p,
+        vec![format!("human.emergency_decel_mps2 = -9: {HUMAN_B_E}")]
+    );
+    let p = problems(with_set(HOMOGENEOUS, &["cav.emergency_decel_mps2=0"]));
+    assert_eq!(p, vec![format!("cav.emergency_decel_mps2 = 0: {CAV_B_E}")]);
+}
+
+#[test]
+fn an_emergency_limit_weaker_than_the_normal_one_is_refused() {
+    let p = problems(with_set(HOMOGENEOUS, &["cav.emergency_decel_mps2=3.5"]));
+    assert_eq!(
+        p,
+        vec![format!("cav.emergency_decel_mps2 = 3.5: {CAV_B_E}")]
+    );
+    let p = problems(with_set(HOMOGENEOUS, &["human.emergency_decel_mps2=3.5"]));
+    assert_eq!(
+        p,
+        vec![format!("human.emergency_decel_mps2 = 3.5: {HUMAN_B_E}")]
+    );
+    // A normal limit raised to 7 m/s² needs b_e >= 7.
+    let p = problems(with_set(
+        HOMOGENEOUS,
+        &["cav.max_decel=-7", "cav.emergency_decel_mps2=6"],
+    ));
+    assert_eq!(p.len(), 1, "{p:?}");
+    assert!(
+        p[0].starts_with("cav.emergency_decel_mps2 = 6: must be in [7, 12] m/s²")
+            && p[0].contains("-cav.max_decel = 7"),
+        "{p:?}"
+    );
+    // A human driver may draw a normal limit down to human.max_decel.min.
+    let p = problems(with_set(
+        HOMOGENEOUS,
+        &[
+            "human.max_decel={mean = -4.0, sd = 1.0, min = -7.0, max = -3.0}",
+            "human.emergency_decel_mps2=6",
+        ],
+    ));
+    assert_eq!(p.len(), 1, "{p:?}");
+    assert!(
+        p[0].starts_with("human.emergency_decel_mps2 = 6: must be in [7, 12] m/s²"),
+        "{p:?}"
+    );
+    // At the normal limit, and the findings' 6 m/s² with b = 4, are fine.
+    for ok in [
+        &["cav.emergency_decel_mps2=4", "human.emergency_decel_mps2=4"][..],
+        &["cav.emergency_decel_mps2=6", "human.emergency_decel_mps2=6"],
+        &["cav.emergency_decel_mps2=12"],
+    ] {
+        with_set(HOMOGENEOUS, ok).unwrap_or_else(|e| panic!("{ok:?}: {e}"));
+    }
+}
+
+#[test]
+fn an_emergency_limit_beyond_tyre_friction_is_refused() {
+    let p = problems(with_set(HOMOGENEOUS, &["cav.emergency_decel_mps2=20"]));
+    assert_eq!(p, vec![format!("cav.emergency_decel_mps2 = 20: {CAV_B_E}")]);
+    let p = problems(with_set(HOMOGENEOUS, &["human.emergency_decel_mps2=12.5"]));
+    assert_eq!(
+        p,
+        vec![format!("human.emergency_decel_mps2 = 12.5: {HUMAN_B_E}")]
+    );
+}
+
+#[test]
+fn the_ttc_threshold_is_positive_and_bounded() {
+    for bad in ["0", "-1.5", "10.5"] {
+        let p = problems(with_set(
+            HOMOGENEOUS,
+            &[&format!("safety.ttc_threshold_s={bad}")],
+        ));
+        assert_eq!(
+            p,
+            vec![format!(
+                "safety.ttc_threshold_s = {bad}: must be in (0, 10] s (FHWA SSAM uses 1.5 s)"
+            )],
+        );
+    }
+    let c = with_set(HOMOGENEOUS, &["safety.ttc_threshold_s=3"]).unwrap();
+    assert_eq!(c.safety.ttc_threshold_s, 3.0);
+    assert_eq!(parse(HOMOGENEOUS).unwrap().safety.ttc_threshold_s, 1.5);
+}

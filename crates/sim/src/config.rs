@@ -463,6 +463,37 @@ impl Config {
             MAX_DEMAND_VPHPL,
             " veh/h/lane",
         )?;
+        // Braking limits: b_e positive, no weaker than the normal limit (docs/safety.md).
+        use platoonsim_model::safety::{MAX_EMERGENCY_DECEL_MPS2, MAX_TTC_THRESHOLD_S};
+        for (name, b_e, normal) in [
+            (
+                "human.emergency_decel_mps2",
+                self.human.emergency_decel_mps2,
+                -self.human.max_decel.min,
+            ),
+            (
+                "cav.emergency_decel_mps2",
+                self.cav.emergency_decel_mps2,
+                -self.cav.max_decel,
+            ),
+        ] {
+            pos(name, b_e)?;
+            within(
+                name,
+                b_e,
+                normal.max(0.0),
+                MAX_EMERGENCY_DECEL_MPS2,
+                " m/s² (no weaker than the normal braking limit)",
+            )?;
+        }
+        pos("safety.ttc_threshold_s", self.safety.ttc_threshold_s)?;
+        within(
+            "safety.ttc_threshold_s",
+            self.safety.ttc_threshold_s,
+            0.0,
+            MAX_TTC_THRESHOLD_S,
+            " s",
+        )?;
         let entry = self.strategy.kind.entry();
         if entry.organizes && self.strategy.pd.is_none() {
             return Err(SimError::Config(format!(

@@ -101,10 +101,10 @@ pub enum Event {
         regime_from: Option<CavMode>,
         regime_to: Option<CavMode>,
     },
-    /// An emergency braking episode started: a deceleration beyond the vehicle's normal
-    /// braking (docs/safety.md). Counted at all times (the summary counts those in the
-    /// measurement window).
-    EmergencyBraking {
+    /// A hard-braking episode started: a deceleration beyond 4 m/s² (docs/safety.md, spec
+    /// 9.4), `decel_mps2` that of its first step. Reported at all times (the summary counts
+    /// those that start in the measurement window).
+    HardBraking {
         t_s: f64,
         id: u64,
         kind: Kind,
@@ -122,7 +122,7 @@ impl Event {
             | Event::Exited { t_s, .. }
             | Event::LaneChange { t_s, .. }
             | Event::ModeChange { t_s, .. }
-            | Event::EmergencyBraking { t_s, .. } => *t_s,
+            | Event::HardBraking { t_s, .. } => *t_s,
             Event::Collision(c) => c.t_s,
         }
     }

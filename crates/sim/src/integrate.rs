@@ -100,6 +100,8 @@ fn move_vehicles(
     let vehicles = &mut vehicles[..];
     let decisions = &decisions[..vehicles.len()];
     let sensed = &sensed[..vehicles.len()];
+    // Metres driven in this step by kind (human, CAV): the vehicle-km of the rates.
+    let mut driven = [0.0_f64; 2];
     for (l, lane) in lanes.iter().enumerate() {
         let mut ahead = f64::INFINITY;
         for &s in lane {
@@ -119,7 +121,8 @@ fn move_vehicles(
                 veh.a = -veh.v / dt;
                 veh.v = 0.0;
             }
-            safety.on_applied(veh, a_prev, veh.a, in_window);
+            driven[veh.kind as usize] += veh.x - veh.x_prev;
+            safety.on_applied(veh, a_prev, veh.a, step, in_window);
             if !plain {
                 // A wall is a standing obstacle (network.rs): passing it is a collision.
                 // (`here` is at the step-start position: x_prev, in this lane.)
@@ -156,4 +159,9 @@ fn move_vehicles(
         *vehicle_updates += lane.len() as u64;
     }
     *lanes_sorted = sorted;
+    if in_window {
+        let km = &mut safety.counts.vehicle_km;
+        km.human += driven[0] / 1000.0;
+        km.cav += driven[1] / 1000.0;
+    }
 }

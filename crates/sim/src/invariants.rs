@@ -118,8 +118,20 @@ pub(crate) fn check_invariants(
             // One comparison per pair: a pair that is not closing in gives a bound ≤ 0,
             // which only an overlap passes (`on_close` then finds no TTC).
             if gap < (fv - lead_v) * horizon {
-                let lead_id = vehicles[li as usize].id;
-                safety.on_close(&mut vehicles[s as usize], lead_id, gap, lead_v, step, dt);
+                let ld = &vehicles[li as usize];
+                let lead_id = ld.id;
+                // The pair was formed by a lane change in this step (phase 4 ran at step − 1).
+                let changed = |v: &Vehicle| v.lcs.last_step.wrapping_add(1) == step;
+                let lane_change = changed(ld) || changed(&vehicles[s as usize]);
+                safety.on_close(
+                    &mut vehicles[s as usize],
+                    lead_id,
+                    gap,
+                    lead_v,
+                    lane_change,
+                    step,
+                    dt,
+                );
                 horizon = safety.exposure.ttc_horizon_s;
             }
             (li, lead_rear, lead_x, lead_v) = (s, frear, fx, fv);
@@ -129,4 +141,71 @@ pub(crate) fn check_invariants(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::Config;
+    use crate::safety::Counted;
+    use crate::vehicle::Kind;
+
+    /// One lane, hand-placed: a follower (human, 30 m/s, front at 100 m) and, `gap` metres
+    /// ahead of it, a vehicle at 24 m/s that changed into the lane in the step that just ran
+    /// if `cut_in`. Returns the (rear-end, lane-change) conflicts after the invariant phase of
+    /// that step and of the next one (positions unchanged: the pair stays in conflict).
+    fn conflicts_after(gap: f64, cut_in: bool) -> (u64, u64) {
+        let cfg = Config::homogeneous(0.0, 1000.0, 60.0, 0.0, 1);
+        let mut safety = Safety::new(&cfg);
+        let mut traffic = Traffic {
+            lanes: vec![vec![]],
+            ..Traffic::default()
+        };
+        let step = 10;
+        let mut changer = crate::insert::create(&cfg, 1, 0.0, 0.0, 0);
+        let mut fol = crate::insert::create(&cfg, 2, 0.0, 0.0, 0);
+        fol.kind = Kind::Human;
+        fol.x = 100.0;
+        fol.v = 30.0;
+        changer.x = 100.0 + gap + changer.driver.human.length_m;
+        changer.v = 24.0;
+        if cut_in {
+            // Phase 4 of the step that just ran (the invariant phase sees step + 1).
+            changer.lcs.last_step = step - 1;
+        }
+        let c = traffic.alloc(changer);
+        let f = traffic.alloc(fol);
+        traffic.lanes[0] = vec![c, f];
+        let mut clock = Clock {
+            dt: 0.1,
+            step,
+            total_steps: 100,
+            warmup_step: 0,
+            agg_steps: 10,
+        };
+        check_invariants(&clock, 0.0, &mut traffic, &mut safety).unwrap();
+        clock.step += 1;
+        check_invariants(&clock, 0.0, &mut traffic, &mut safety).unwrap();
+        let n = |w| safety.counts.get(w).human;
+        (
+            n(Counted::RearEndConflicts),
+            n(Counted::LaneChangeConflicts),
+        )
+    }
+
+    #[test]
+    fn a_close_cut_in_is_one_lane_change_conflict() {
+        // TTC = 8 / 6 = 1.33 s < 1.5 s: one conflict episode over both steps, a lane-change one.
+        assert_eq!(conflicts_after(8.0, true), (0, 1));
+        // The same pair without a lane change is a rear-end conflict.
+        assert_eq!(conflicts_after(8.0, false), (1, 0));
+    }
+
+    #[test]
+    fn a_roomy_change_is_no_conflict() {
+        // TTC = 40 / 6 = 6.7 s.
+        assert_eq!(conflicts_after(40.0, true), (0, 0));
+        // Just above TTC* (9.3 / 6 = 1.55 s).
+        assert_eq!(conflicts_after(9.3, true), (0, 0));
+    }
 }

@@ -51,9 +51,13 @@ pub use events::{Departure, Event, LaneChangeReason, Observer};
 pub use organize::{Advice, LaneChoice, Organizer, StrategyKind, UnknownStrategy, STRATEGIES};
 pub use platoonsim_model::lanechange::Side;
 pub use record::{Queued, Recording, TrajectoryPoint, TrajectorySpec, Trip, TripStatus};
+pub use safety::Counted;
 pub use sim::Simulation;
 pub use snapshot::VehicleColumns;
-pub use summary::{CollisionEvent, CollisionKind, DetectorRecord, Output, Summary};
+pub use summary::{
+    BrakingPeaks, CollisionEvent, CollisionKind, CountedMeasure, CountedMeasures, DetectorRecord,
+    Output, Summary,
+};
 pub use vehicle::{Kind, ModeLabel, Vehicle};
 
 /// Progress callback: called with (simulated seconds so far, total seconds) every simulated minute.

@@ -492,12 +492,11 @@ impl Simulation {
             missed_exits: self.measures.missed_exits,
             collisions: self.measures.safety.collisions.events.len() as u64,
             max_deceleration_mps2: sf.braking.max_decel,
-            emergency_brakings: sf.braking.emergency_brakings.total(),
-            emergency_brakings_cav: sf.braking.emergency_brakings.cav,
-            emergency_brakings_human: sf.braking.emergency_brakings.human,
-            conflicts: sf.exposure.conflicts.total(),
-            conflicts_cav: sf.exposure.conflicts.cav,
-            conflicts_human: sf.exposure.conflicts.human,
+            vehicle_km: sf.counts.vehicle_km.total(),
+            vehicle_km_cav: sf.counts.vehicle_km.cav,
+            vehicle_km_human: sf.counts.vehicle_km.human,
+            counted: sf.counted_measures(),
+            braking_peaks: sf.braking_peaks(),
             tet_s: sf.exposure.tet_s.total(),
             tet_s_cav: sf.exposure.tet_s.cav,
             tet_s_human: sf.exposure.tet_s.human,
@@ -528,13 +527,13 @@ impl Simulation {
         }
     }
 
-    /// The emergency brakings that started in this step's integrate phase, as events.
+    /// The hard brakings that started in this step's integrate phase, as events.
     #[cold]
     #[inline(never)]
     pub(crate) fn log_brakings(&mut self) {
         let t = crate::record::step_time(self.clock.step + 1, self.clock.dt);
         for (id, kind, decel) in self.measures.safety.braking.brakings.drain(..) {
-            self.watch.events.push(Event::EmergencyBraking {
+            self.watch.events.push(Event::HardBraking {
                 t_s: t,
                 id,
                 kind,

@@ -65,17 +65,20 @@ pub struct Summary {
     /// Largest deceleration applied by any vehicle over the whole run (m/s², positive; 0 if
     /// none braked). Never above the vehicle's emergency limit.
     pub max_deceleration_mps2: f64,
-    /// Safety measures over the measurement window (docs/safety.md), all vehicles, then CAVs
-    /// and human-driven vehicles (by the follower's, or the braking vehicle's, kind).
-    /// Emergency brakings: episodes (consecutive steps of one vehicle) of braking harder than
-    /// the vehicle's normal limit.
-    pub emergency_brakings: u64,
-    pub emergency_brakings_cav: u64,
-    pub emergency_brakings_human: u64,
-    /// Conflicts: episodes of a (follower, leader) pair with TTC below `safety.ttc_threshold_s`.
-    pub conflicts: u64,
-    pub conflicts_cav: u64,
-    pub conflicts_human: u64,
+    /// Vehicle-km driven in the measurement window (all vehicles, CAVs, human-driven
+    /// vehicles): the denominators of the `_per_100vkm` rates.
+    pub vehicle_km: f64,
+    pub vehicle_km_cav: f64,
+    pub vehicle_km_human: f64,
+    /// The measures counted in episodes over the measurement window (docs/safety.md, spec
+    /// 9.4): hard, severe and at-limit brakings, rear-end and lane-change conflicts, each as
+    /// `<name>`, `<name>_cav`, `<name>_human` (counts) and `<name>_per_100vkm`,
+    /// `<name>_per_100vkm_cav`, `<name>_per_100vkm_human` (per 100 veh-km of the same
+    /// vehicles; null without any).
+    #[serde(flatten)]
+    pub counted: CountedMeasures,
+    /// The hard-braking episodes of the window by peak deceleration and kind.
+    pub braking_peaks: BrakingPeaks,
     /// Time-exposed TTC (vehicle-seconds with TTC below the threshold).
     pub tet_s: f64,
     pub tet_s_cav: f64,
@@ -93,6 +96,77 @@ pub struct Summary {
     pub vehicle_updates: u64,
     pub steps: u64,
     pub wall_seconds: f64,
+}
+
+/// One measure counted in episodes, by kind (the braking vehicle's, or the conflict's
+/// follower's), with its rates per 100 veh-km.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CountedMeasure {
+    /// Its name in the outputs, e.g. `hard_brakings`.
+    pub name: &'static str,
+    pub cav: u64,
+    pub human: u64,
+    /// Per 100 veh-km of all vehicles, of CAVs, of human-driven vehicles (`None` when no such
+    /// vehicle drove in the window).
+    pub per_100vkm: Option<f64>,
+    pub per_100vkm_cav: Option<f64>,
+    pub per_100vkm_human: Option<f64>,
+}
+
+impl CountedMeasure {
+    pub fn total(&self) -> u64 {
+        self.cav + self.human
+    }
+}
+
+/// The counted measures, written into the summary as six fields each (see
+/// [`Summary::counted`]), in this order.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CountedMeasures(pub Vec<CountedMeasure>);
+
+impl CountedMeasures {
+    /// The measure named `name` (e.g. `severe_brakings`).
+    pub fn get(&self, name: &str) -> Option<&CountedMeasure> {
+        self.0.iter().find(|m| m.name == name)
+    }
+
+    /// The names of the fields a measure `name` gives, in output order.
+    pub fn field_names(name: &str) -> [String; 6] {
+        [
+            name.to_string(),
+            format!("{name}_cav"),
+            format!("{name}_human"),
+            format!("{name}_per_100vkm"),
+            format!("{name}_per_100vkm_cav"),
+            format!("{name}_per_100vkm_human"),
+        ]
+    }
+}
+
+impl Serialize for CountedMeasures {
+    fn serialize<S: serde::Serializer>(&self, ser: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = ser.serialize_map(Some(self.0.len() * 6))?;
+        for m in &self.0 {
+            let [n, n_cav, n_human, r, r_cav, r_human] = CountedMeasures::field_names(m.name);
+            map.serialize_entry(&n, &m.total())?;
+            map.serialize_entry(&n_cav, &m.cav)?;
+            map.serialize_entry(&n_human, &m.human)?;
+            map.serialize_entry(&r, &m.per_100vkm)?;
+            map.serialize_entry(&r_cav, &m.per_100vkm_cav)?;
+            map.serialize_entry(&r_human, &m.per_100vkm_human)?;
+        }
+        map.end()
+    }
+}
+
+/// A histogram of the hard-braking episodes' peak decelerations by kind: bin i holds the
+/// peaks in [`lower_edges_mps2`][i], next edge) (the last bin is open).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct BrakingPeaks {
+    pub lower_edges_mps2: Vec<f64>,
+    pub cav: Vec<u64>,
+    pub human: Vec<u64>,
 }
 
 /// One detector, lane and aggregation interval (`detectors.csv`). `lane` is the lane number

@@ -39,6 +39,7 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
             String::new(),
         ),
     };
+    let count = |name: &str| s.counted.get(name).cloned().unwrap_or_default();
     let text = format!(
         "{name}: {dur} s simulated in steps of {dt} s (measured after the {warm} s warm-up) with \
          {pen} % CAV, {demand}, strategy {strategy}, seed {seed}. \
@@ -47,9 +48,12 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
          the measurement window; highest {agg} s flow {qmax:.1} veh/h/lane.{network} Lane changes per \
          vehicle {lc} ({counted} vehicles; per CAV {lc_cav}, per human {lc_human}); \
          average platoon length {lbar} and platooning probability {pp} ({cavs} CAVs). \
-         Safety after the warm-up: {eb} emergency brakings ({eb_cav} CAV, {eb_human} human), \
-         {conflicts} conflicts (TTC below {ttc_star} s), TET {tet:.1} s, TIT {tit:.1} s², \
-         minimum TTC {min_ttc}; largest deceleration {max_decel:.2} m/s² over the whole run. \
+         Safety after the warm-up, over {vkm:.0} veh-km: {hard} hard brakings beyond 4 m/s² \
+         ({hard_cav} CAV, {hard_human} human; {hard_rate} per 100 veh-km), {severe} severe \
+         (6 m/s² or more; {severe_rate} per 100 veh-km), {at_limit} at the emergency limit; \
+         {rear_end} rear-end and {lane_change} lane-change conflicts (TTC below {ttc_star} s), \
+         TET {tet:.1} s, TIT {tit:.1} s², minimum TTC {min_ttc}; largest deceleration \
+         {max_decel:.2} m/s² over the whole run. \
          Collisions: {collisions}. {updates} vehicle updates in {wall:.2} s{rate}. \
          Files in {dir}: summary.json, detectors.csv, scenario.json, scenario.toml{collisions_file}.",
         name = s.scenario,
@@ -73,10 +77,16 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
         lbar = maybe(s.avg_platoon_length, 2),
         pp = maybe(s.platooning_probability, 3),
         cavs = s.cavs_counted,
-        eb = s.emergency_brakings,
-        eb_cav = s.emergency_brakings_cav,
-        eb_human = s.emergency_brakings_human,
-        conflicts = s.conflicts,
+        vkm = s.vehicle_km,
+        hard = count("hard_brakings").total(),
+        hard_cav = count("hard_brakings").cav,
+        hard_human = count("hard_brakings").human,
+        hard_rate = maybe(count("hard_brakings").per_100vkm, 3),
+        severe = count("severe_brakings").total(),
+        severe_rate = maybe(count("severe_brakings").per_100vkm, 3),
+        at_limit = count("brakings_at_limit").total(),
+        rear_end = count("rear_end_conflicts").total(),
+        lane_change = count("lane_change_conflicts").total(),
         ttc_star = config.safety.ttc_threshold_s,
         tet = s.tet_s,
         tit = s.tit_s2,

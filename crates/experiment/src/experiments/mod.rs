@@ -365,7 +365,7 @@ pub fn run_experiment_with(
         ExperimentName::Energy => energy::markdown(settings, &cells, &outcomes, &rows),
     };
     let (body, checks) = with_safety(name, &cells, &outcomes, body, checks);
-    let figures = match name {
+    let mut figures = match name {
         ExperimentName::Capacity => figures::capacity(&dir, &cells, &rows)?,
         ExperimentName::Sensitivity => figures::sensitivity(&dir, &cells, &rows)?,
         ExperimentName::FlowAware => Vec::new(),
@@ -374,6 +374,9 @@ pub fn run_experiment_with(
         ExperimentName::Sr99Demand => sr99_demand::figures(&dir, &extra)?,
         ExperimentName::Energy => energy::figure(&dir, &cells, &rows)?,
     };
+    if name != ExperimentName::CalibrateFlowAware {
+        figures.extend(safety::braking_figure(&dir, &cells, &outcomes)?);
+    }
     if name == ExperimentName::CalibrateFlowAware {
         for (file, bytes) in calibrate::files(settings, &cells, &rows)? {
             // `thresholds.toml` also goes where the Flow-Aware defaults are read from, if asked.

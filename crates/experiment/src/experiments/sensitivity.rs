@@ -156,8 +156,8 @@ pub(super) fn markdown(
         "P_P DL (fraction)",
         "ΔQ PO (%)",
         "ΔQ DL (%)",
-        "conflicts PO (episodes)",
-        "conflicts DL (episodes)",
+        "rear-end conflicts PO (per 100 veh-km)",
+        "rear-end conflicts DL (per 100 veh-km)",
     ]
     .iter()
     .map(|h| h.to_string())
@@ -171,7 +171,7 @@ pub(super) fn markdown(
             "avg_platoon_length",
             "platooning_probability",
             "discharge_change_pct",
-            "conflicts",
+            "rear_end_conflicts_per_100vkm",
         ] {
             for strategy in ["pd", "dedicated"] {
                 let dec = decimals(metric);

@@ -13,15 +13,16 @@ use platoonsim_plot::{bar_chart, line_chart, Bars, Chart, Series, Style};
 use std::path::Path;
 
 /// The metrics shown when the spec names none (those the runs have).
-pub const DEFAULT_METRICS: [&str; 8] = [
+pub const DEFAULT_METRICS: [&str; 9] = [
     "discharge_flow_vphpl",
     "max_sustained_flow_vphpl",
     "network_discharge_vph",
     "lane_changes_per_vehicle",
     "avg_platoon_length",
     "platooning_probability",
-    "conflicts",
-    "tet_s",
+    "severe_brakings_per_100vkm",
+    "rear_end_conflicts_per_100vkm",
+    "lane_change_conflicts_per_100vkm",
 ];
 
 /// The metrics to show: the spec's (each must be a metric of the runs), or the defaults.
