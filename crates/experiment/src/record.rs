@@ -39,7 +39,7 @@ pub const NOT_METRICS: [&str; 10] = [
 
 /// The summary's metrics that count things (integers in `summary.json`); `runs.csv` writes
 /// them without a decimal point, every other metric with one (`crate::table`).
-pub const COUNTS: [&str; 18] = [
+pub const COUNTS: [&str; 20] = [
     "vehicles_entered",
     "vehicles_exited",
     "vehicles_in_network",
@@ -54,6 +54,8 @@ pub const COUNTS: [&str; 18] = [
     "conflicts",
     "conflicts_cav",
     "conflicts_human",
+    "aeb_interventions",
+    "cacc_fallbacks",
     "vehicle_updates",
     "steps",
     "runs_with_collisions",

@@ -80,6 +80,8 @@ pub(crate) fn decide(
                 change: None,
                 why: LaneChangeReason::Discretionary,
                 takeover: false,
+                aeb: false,
+                fallback: false,
             },
         );
     }
@@ -232,14 +234,15 @@ impl View<'_> {
                         auto: true,
                     };
                 }
-                return a;
+                return self.actuate(v, a);
             }
             return self.before_lane_change(s, v, nb, leader, d).0;
         }
 
         // 2. Automated CAV: ACC / CACC / speed regulation (spec 3).
         if v.automated() {
-            return self.automated_decision(s, v, nb, leader, wall);
+            let d = self.automated_decision(s, v, nb, leader, wall);
+            return self.actuate(v, d);
         }
         let yield_to = self.agreed_request(v, nb, false);
 
@@ -272,6 +275,8 @@ impl View<'_> {
             change: None,
             why: LaneChangeReason::Discretionary,
             takeover: false,
+            aeb: false,
+            fallback: false,
         }
     }
 
@@ -308,6 +313,17 @@ impl View<'_> {
         d
     }
 
+    /// The automation's demand `d.accel` through its actuators (spec 9.3): bounded by
+    /// `cav.max_automated_decel_mps2` (beyond it AEB applies the demand and the decision says
+    /// so) and lagged by `cav.actuator_lag_s` from the acceleration realized in the last step.
+    /// Both off (no lag, demand within the bound): `d` unchanged.
+    #[inline]
+    fn actuate(&self, v: &Vehicle, mut d: Decision) -> Decision {
+        let auto = &self.traffic.auto;
+        (d.accel, d.aeb) = cav::actuate(v.a, d.accel, auto.lag_gain, auto.bound);
+        d
+    }
+
     /// Automated CAV control (spec 3.9).
     fn cav_control(&self, s: u32, v: &Vehicle, leader: Option<Leader>, wall: bool) -> Decision {
         let p = &self.cfg.cav;
@@ -315,21 +331,39 @@ impl View<'_> {
         let ld = self.sensed[s as usize].nb.leader;
         let leader = leader.filter(|l| l.gap_m <= p.sensor_range_m);
         let mut time_gap = v.cacc.time_gap_s;
+        let mut fallback = false;
+        // The leader's speed as the CACC law knows it: from the V2V beacons (spec 9.3), or
+        // `None` when they timed out (the law falls back to ACC). Without delay and loss, the
+        // leader's current speed.
+        let beacon = |l: Leader| match &self.traffic.auto.beacons {
+            None => Some(l),
+            Some(b) => b
+                .received_speed(v.id, ld, self.clock.step)
+                .map(|v_mps| Leader { v_mps, ..l }),
+        };
         let cmd = match leader {
             None => cav::Command {
                 accel: cav::speed_regulation(p, v.v, v_des),
                 mode: cav::CavMode::SpeedRegulation,
                 family: Family::Speed,
             },
-            Some(l) if !wall && self.is_cav(ld) => {
-                let target = if !self.sensed[s as usize].linked {
-                    p.inter_platoon_gap_s
-                } else {
-                    v.cacc.gap_s
-                };
-                time_gap = cav::ramp_time_gap(p, time_gap, target, self.clock.dt);
-                cav::cacc(p, v.v, v.a, v_des, l, time_gap, v.cacc.family)
-            }
+            Some(l) if !wall && self.is_cav(ld) => match beacon(l) {
+                Some(known) => {
+                    let target = if !self.sensed[s as usize].linked {
+                        p.inter_platoon_gap_s
+                    } else {
+                        v.cacc.gap_s
+                    };
+                    time_gap = cav::ramp_time_gap(p, time_gap, target, self.clock.dt);
+                    cav::cacc(p, v.v, v.a, v_des, known, time_gap, v.cacc.family)
+                }
+                None => {
+                    // spec 9.3: no beacon within the timeout, ACC on the radar alone.
+                    fallback = true;
+                    time_gap = cav::ramp_time_gap(p, time_gap, p.acc_time_gap_s, self.clock.dt);
+                    cav::acc(p, v.v, v_des, Some(l), time_gap, v.cacc.family)
+                }
+            },
             Some(l) => {
                 time_gap = cav::ramp_time_gap(p, time_gap, p.acc_time_gap_s, self.clock.dt);
                 cav::acc(p, v.v, v_des, Some(l), time_gap, v.cacc.family)
@@ -344,6 +378,8 @@ impl View<'_> {
             change: None,
             why: LaneChangeReason::Discretionary,
             takeover: false,
+            aeb: false,
+            fallback,
         }
     }
 
@@ -439,6 +475,8 @@ impl View<'_> {
                     LaneChangeReason::Discretionary
                 },
                 takeover,
+                aeb: false,
+                fallback: false,
             },
             Gaps {
                 lead_ok: blc.lead_ok,

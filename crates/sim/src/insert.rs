@@ -184,6 +184,8 @@ fn create(cfg: &Config, id: u64, x: f64, t: f64, origin: u32) -> Vehicle {
             gap_s: cacc_gap_s,
             family: Family::Speed,
             regime: None,
+            aeb: false,
+            degraded: false,
             max_platoon: 1,
             max_platoon_tg2: 1,
         },

@@ -78,8 +78,13 @@ fn move_vehicles(
     // vehicle), and the slot-indexed arrays as long as `vehicles`: one bounds check per
     // vehicle for the three.
     let Traffic {
-        lanes, vehicles, ..
+        lanes,
+        vehicles,
+        auto,
+        ..
     } = traffic;
+    // spec 9.3: every vehicle's speed goes into the V2V broadcast log (when there is one).
+    let mut beacons = auto.beacons.as_mut();
     let Scratch {
         decisions,
         sensed,
@@ -91,6 +96,8 @@ fn move_vehicles(
     let Measures {
         vehicle_updates,
         safety,
+        aeb_interventions,
+        cacc_fallbacks,
         ..
     } = measures;
     let step = clock.step;
@@ -143,6 +150,18 @@ fn move_vehicles(
             veh.cacc.family = d.family;
             veh.cacc.regime = d.regime;
             veh.cacc.time_gap_s = d.time_gap;
+            if let Some(b) = &mut beacons {
+                b.broadcast(s, step + 1, veh.v);
+            }
+            // spec 9.3: AEB interventions and CACC fallbacks, as episodes (rare: one branch).
+            if d.aeb | d.fallback | veh.cacc.aeb | veh.cacc.degraded {
+                if in_window {
+                    *aeb_interventions += u64::from(d.aeb && !veh.cacc.aeb);
+                    *cacc_fallbacks += u64::from(d.fallback && !veh.cacc.degraded);
+                }
+                veh.cacc.aeb = d.aeb;
+                veh.cacc.degraded = d.fallback;
+            }
             if d.takeover {
                 veh.lcs.relax = Relaxation::since(step);
             }

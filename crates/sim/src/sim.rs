@@ -34,6 +34,10 @@ pub(crate) struct Decision {
     pub why: crate::events::LaneChangeReason,
     /// An automated CAV hands over to its driver in this step: relaxation starts (spec 4.6).
     pub takeover: bool,
+    /// AEB intervenes: the automation's demand exceeds its braking bound (spec 9.3).
+    pub aeb: bool,
+    /// An automated CAV behind a CAV runs ACC for want of V2V beacons (spec 9.3).
+    pub fallback: bool,
 }
 
 /// The whole simulation state.
@@ -106,6 +110,7 @@ impl Simulation {
             },
             traffic: Traffic {
                 lanes: vec![Vec::new(); n_lanes],
+                auto: crate::automation::Automation::new(&cfg),
                 ..Traffic::default()
             },
             entrances: Entrance::all(&cfg),
@@ -135,6 +140,8 @@ impl Simulation {
                 safety: Safety::new(&cfg),
                 vehicle_updates: 0,
                 missed_exits: 0,
+                aeb_interventions: 0,
+                cacc_fallbacks: 0,
             },
             control: Control {
                 organizer: Box::new(crate::organize::NoOrganizer),
@@ -505,6 +512,8 @@ impl Simulation {
                 .min_ttc_s
                 .is_finite()
                 .then_some(sf.exposure.min_ttc_s),
+            aeb_interventions: self.measures.aeb_interventions,
+            cacc_fallbacks: self.measures.cacc_fallbacks,
             energy: self.energy.as_ref().map(|e| e.summary()),
             vehicle_updates: self.measures.vehicle_updates,
             steps: self.clock.step,
@@ -610,13 +619,21 @@ impl Simulation {
     fn compact(&mut self) {
         let on_road = self.vehicles_in_network();
         let mut packed = Vec::with_capacity(on_road.max(self.traffic.vehicles.len()));
+        let logging = self.traffic.auto.beacons.is_some();
+        let mut order = Vec::new();
         for lane in &mut self.traffic.lanes {
             for s in lane.iter_mut() {
                 packed.push(self.traffic.vehicles[*s as usize].clone());
+                if logging {
+                    order.push(*s);
+                }
                 *s = (packed.len() - 1) as u32;
             }
         }
         self.traffic.vehicles = packed;
+        if let Some(b) = &mut self.traffic.auto.beacons {
+            b.renumber(&order);
+        }
         self.traffic.free.clear();
         self.scratch.changed_this_step.fill(u64::MAX);
     }

@@ -124,6 +124,12 @@ pub struct CaccState {
     /// The CAV controller's regime in the last step while automated (spec 3.9); `None` for a
     /// human driver or a CAV driven manually.
     pub regime: Option<CavMode>,
+    /// AEB braked this CAV in the last step: the automation's demand exceeded
+    /// `cav.max_automated_decel_mps2` (spec 9.3; an intervention is a run of such steps).
+    pub aeb: bool,
+    /// The CAV's CACC fell back to ACC in the last step: no V2V beacon from its CAV leader
+    /// within `cav.beacon_timeout_s` (spec 9.3).
+    pub degraded: bool,
     /// Largest platoon this CAV has been in (1 = never), paper definition: a chain of CAVs each
     /// directly following the previous one under CACC within sensor range (`sense.rs`).
     pub max_platoon: u32,
