@@ -628,17 +628,27 @@ pub fn actuate(a_real: f64, a_req: f64, gain: f64, bound: f64) -> (f64, bool) {
     (a_real + (a_req - a_real) * gain, false)
 }
 
-/// Age (steps) of the freshest beacon a follower holds at a step (spec 9.3): the smallest
-/// i in 0..=`timeout_steps` for which `lost(i)` (the reception i steps ago failed) is false;
-/// `None` if all failed: the beacon timed out and the follower falls back to ACC.
+/// Age (steps) of the freshest beacon a CAV holds after this step's reception (spec 9.3): 0 if
+/// a beacon arrived (`lost` false), else one step older than before (saturating).
 #[inline]
-pub fn beacon_age(timeout_steps: u64, mut lost: impl FnMut(u64) -> bool) -> Option<u64> {
-    (0..=timeout_steps).find(|&i| !lost(i))
+pub fn next_beacon_age(age: u32, lost: bool) -> u32 {
+    if lost {
+        age.saturating_add(1)
+    } else {
+        0
+    }
+}
+
+/// Whether a beacon `age` steps old is still held (spec 9.3): age ≤ the timeout in steps.
+/// Past it the follower falls back to ACC.
+#[inline]
+pub fn beacon_held(age: u32, timeout_steps: u64) -> bool {
+    u64::from(age) <= timeout_steps
 }
 
 /// The step whose broadcast the follower uses at `step` with a beacon `age` steps old and a
 /// delay of `delay_steps` (spec 9.3): step − age − delay, not before step 0.
 #[inline]
-pub fn broadcast_step(step: u64, age: u64, delay_steps: u64) -> u64 {
-    step.saturating_sub(age + delay_steps)
+pub fn broadcast_step(step: u64, age: u32, delay_steps: u64) -> u64 {
+    step.saturating_sub(u64::from(age) + delay_steps)
 }

@@ -13,7 +13,7 @@
 //! Packet loss uses a hash of (vehicle, step), as the engine's counter-based stream does.
 
 use platoonsim_model::cav::{
-    acc, actuate, beacon_age, broadcast_step, cacc, cacc_equilibrium_gap, finalize, lag_gain,
+    acc, actuate, beacon_held, broadcast_step, next_beacon_age, cacc, cacc_equilibrium_gap, finalize, lag_gain,
     whole_steps, CavParams, Family,
 };
 use platoonsim_model::safety::braking_limited;
@@ -67,17 +67,21 @@ fn actuate_lags_the_command_and_bounds_automated_braking() {
 
 #[test]
 fn beacon_age_holds_the_last_beacon_until_the_timeout() {
-    // Received now: age 0 (the lost draws of older steps are not even looked at).
-    assert_eq!(beacon_age(5, |i| i > 0), Some(0));
-    // Lost now and one step ago: the beacon of two steps ago, held.
-    assert_eq!(beacon_age(5, |i| i < 2), Some(2));
-    // Lost for exactly the timeout: still held at age T.
-    assert_eq!(beacon_age(5, |i| i < 5), Some(5));
-    // Lost for longer than the timeout: fall back (None).
-    assert_eq!(beacon_age(5, |_| true), None);
+    // A reception resets the age; a loss adds a step.
+    assert_eq!(next_beacon_age(7, false), 0);
+    assert_eq!(next_beacon_age(0, true), 1);
+    assert_eq!(next_beacon_age(u32::MAX, true), u32::MAX);
+    // Lost 5 times in a row with a 5-step timeout: still held; the 6th: fall back.
+    let mut age = 0;
+    for _ in 0..5 {
+        age = next_beacon_age(age, true);
+    }
+    assert!(beacon_held(age, 5));
+    assert!(!beacon_held(next_beacon_age(age, true), 5));
+    // Back as soon as one beacon arrives.
+    assert!(beacon_held(next_beacon_age(age, false), 5));
     // Timeout 0: one lost beacon is a fallback.
-    assert_eq!(beacon_age(0, |_| true), None);
-    assert_eq!(beacon_age(0, |_| false), Some(0));
+    assert!(beacon_held(0, 0) && !beacon_held(1, 0));
 }
 
 #[test]
@@ -181,6 +185,7 @@ fn run(r: Realism, n: usize, tc: f64, decel: f64, dur: f64, t_end: f64) -> Outco
     let mut v = vec![V0; n];
     let mut a = vec![0.0; n];
     let mut fam = vec![Family::Gap; n];
+    let mut age = vec![0u32; n];
     // Broadcast speeds by step (index k: the speed at the start of step k).
     let mut sent: Vec<Vec<f64>> = vec![Vec::new(); n];
     let mut out = Outcome {
@@ -204,19 +209,16 @@ fn run(r: Realism, n: usize, tc: f64, decel: f64, dur: f64, t_end: f64) -> Outco
                 gap_m: x[i - 1] - LEN - x[i],
                 v_mps: v[i - 1],
             };
-            let age = beacon_age(timeout, |j| {
-                k.checked_sub(j)
-                    .is_some_and(|kk| uniform(i, kk) < p.packet_loss)
-            });
-            let cmd = match age {
-                Some(age) => {
+            age[i] = next_beacon_age(age[i], uniform(i, k) < p.packet_loss);
+            let cmd = match beacon_held(age[i], timeout) {
+                true => {
                     let known = Leader {
-                        v_mps: sent[i - 1][broadcast_step(k, age, d) as usize],
+                        v_mps: sent[i - 1][broadcast_step(k, age[i], d) as usize],
                         ..radar
                     };
                     cacc(&p, v[i], a[i], V_DES, known, tc, fam[i])
                 }
-                None => {
+                false => {
                     out.fallback_steps += 1;
                     acc(&p, v[i], V_DES, Some(radar), p.acc_time_gap_s, fam[i])
                 }
@@ -351,7 +353,7 @@ fn a_string_without_beacons_falls_back_to_acc_and_stays_collision_free() {
         3.0,
         150.0,
     );
-    // The first 5 steps still hold a (pre-run) beacon, then every follower-step falls back.
+    // The first 5 steps still hold the (pre-run) beacon, then every follower-step falls back.
     assert_eq!(o.fallback_steps, 9 * (1500 - 5));
     assert!(o.min_gap > 0.0, "{}", o.min_gap);
 }

@@ -14,6 +14,7 @@
 use crate::config::Config;
 use crate::rng::{self, Purpose};
 use crate::sim::Simulation;
+use crate::vehicle::Vehicle;
 use platoonsim_model::cav;
 
 /// The per-run constants of the automation's realism, and the broadcast log.
@@ -80,23 +81,36 @@ impl Beacons {
         }
     }
 
-    /// The leader speed a follower (`receiver` id) uses at `step` from the beacons of the
-    /// leader in slot `leader` (spec 9.3): its broadcast of step k − age − d, or `None` when no
-    /// beacon arrived within the timeout (fall back to ACC).
+    /// The leader speed a follower whose freshest beacon is `age` steps old uses at `step`
+    /// from the beacons of the leader in slot `leader` (spec 9.3): its broadcast of step
+    /// k − age − d, or `None` past the timeout (fall back to ACC).
     #[inline]
-    pub fn received_speed(&self, receiver: u64, leader: u32, step: u64) -> Option<f64> {
-        let age = if self.loss > 0.0 {
-            cav::beacon_age(self.timeout_steps, |i| {
-                // Steps before the run's start count as received.
-                step.checked_sub(i).is_some_and(|k| {
-                    rng::uniform_at(self.seed, Purpose::Beacons, receiver, k) < self.loss
-                })
-            })?
-        } else {
-            0
-        };
+    pub fn received_speed(&self, age: u32, leader: u32, step: u64) -> Option<f64> {
+        if !cav::beacon_held(age, self.timeout_steps) {
+            return None;
+        }
         let k = cav::broadcast_step(step, age, self.delay_steps);
         Some(self.log[leader as usize * self.depth + (k % self.depth as u64) as usize])
+    }
+
+    /// This step's receptions (spec 9.3), before the sense phase: each CAV's beacon age is 0
+    /// if a beacon reached it, else one step more; a reception fails with probability
+    /// `loss`, drawn from the CAV's counter-based stream (seed, `Beacons`, id, step). Nothing
+    /// to do without loss.
+    pub fn receive(&self, step: u64, lanes: &[Vec<u32>], vehicles: &mut [Vehicle]) {
+        if self.loss <= 0.0 {
+            return;
+        }
+        for lane in lanes {
+            for &s in lane {
+                let v = &mut vehicles[s as usize];
+                if v.is_cav() {
+                    let lost =
+                        rng::uniform_at(self.seed, Purpose::Beacons, v.id, step) < self.loss;
+                    v.cacc.beacon_age = cav::next_beacon_age(v.cacc.beacon_age, lost);
+                }
+            }
+        }
     }
 
     /// Slot `s` broadcasts speed `v` for step `step` (the state at that step's start).
@@ -138,6 +152,12 @@ impl Simulation {
             )));
         }
         self.cfg.cav.packet_loss = p;
+        if p == 0.0 {
+            // Every reception of the next step succeeds (`receive` draws nothing at p = 0).
+            for v in &mut self.traffic.vehicles {
+                v.cacc.beacon_age = 0;
+            }
+        }
         let auto = &mut self.traffic.auto;
         match &mut auto.beacons {
             Some(b) => b.loss = p,

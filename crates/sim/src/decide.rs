@@ -338,7 +338,7 @@ impl View<'_> {
         let beacon = |l: Leader| match &self.traffic.auto.beacons {
             None => Some(l),
             Some(b) => b
-                .received_speed(v.id, ld, self.clock.step)
+                .received_speed(v.cacc.beacon_age, ld, self.clock.step)
                 .map(|v_mps| Leader { v_mps, ..l }),
         };
         let cmd = match leader {

@@ -188,6 +188,7 @@ fn create(cfg: &Config, id: u64, x: f64, t: f64, origin: u32) -> Vehicle {
             degraded: false,
             max_platoon: 1,
             max_platoon_tg2: 1,
+            beacon_age: 0,
         },
         lcs: LaneChangeState {
             relax: Relaxation::NONE,

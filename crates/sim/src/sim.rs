@@ -302,6 +302,13 @@ impl Simulation {
     /// 6. **detectors**: crossings and occupancy; interval close and broadcast.
     /// 7. **invariants**: no overlap (counted; a panic in debug builds), all states finite.
     pub fn step(&mut self) -> Result<(), SimError> {
+        if let Some(b) = &self.traffic.auto.beacons {
+            b.receive(
+                self.clock.step,
+                &self.traffic.lanes,
+                &mut self.traffic.vehicles,
+            );
+        }
         crate::sense::sense(
             &self.cfg.cav,
             &mut self.traffic,

@@ -135,6 +135,8 @@ pub struct CaccState {
     pub max_platoon: u32,
     /// The same with the spec 6.15 link criterion (follower not in speed regulation, tg ≤ 2 s).
     pub max_platoon_tg2: u32,
+    /// Steps since the CAV last received a V2V beacon (spec 9.3; 0 without packet loss).
+    pub beacon_age: u32,
 }
 
 /// Lane-change history.
