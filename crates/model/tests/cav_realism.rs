@@ -13,8 +13,8 @@
 //! Packet loss uses a hash of (vehicle, step), as the engine's counter-based stream does.
 
 use platoonsim_model::cav::{
-    acc, actuate, beacon_held, broadcast_step, next_beacon_age, cacc, cacc_equilibrium_gap, finalize, lag_gain,
-    whole_steps, CavParams, Family,
+    acc, actuate, beacon_held, broadcast_step, cacc, cacc_equilibrium_gap, finalize, lag_gain,
+    next_beacon_age, whole_steps, CavParams, Family,
 };
 use platoonsim_model::safety::braking_limited;
 use platoonsim_model::Leader;
@@ -55,7 +55,10 @@ fn actuate_lags_the_command_and_bounds_automated_braking() {
     for _ in 0..5 {
         real = actuate(real, -2.0, g, 5.0).0;
     }
-    assert!((real - (-2.0 * (1.0 - (-1.0f64).exp()))).abs() < 1e-12, "{real}");
+    assert!(
+        (real - (-2.0 * (1.0 - (-1.0f64).exp()))).abs() < 1e-12,
+        "{real}"
+    );
     // Beyond the bound: AEB applies the demand itself, within the step, lag or not.
     assert_eq!(actuate(0.0, -7.0, g, 5.0), (-7.0, true));
     assert_eq!(actuate(0.0, -7.0, 1.0, 5.0), (-7.0, true));
@@ -153,7 +156,8 @@ fn leader_accel(decel: f64, dur: f64, t: f64, v: f64) -> f64 {
 
 /// A uniform deviate for (vehicle, step): the engine's loss draws are a hash of this kind.
 fn uniform(i: usize, k: u64) -> f64 {
-    let mut z = (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ k.wrapping_mul(0xD6E8_FEB8_6659_FD93);
+    let mut z =
+        (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ k.wrapping_mul(0xD6E8_FEB8_6659_FD93);
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     z ^= z >> 31;
@@ -286,7 +290,11 @@ fn lag_and_delay_make_the_0p6_s_string_amplify_but_it_stays_collision_free() {
     assert!(real.peak[9] > 1.2 * real.peak[0], "{}", fmt(&real.peak));
     assert!(worst_ratio(&real.peak) > 1.02, "{}", fmt(&real.peak));
     // Physics: no collision, no braking beyond b_e, and the gap never below s_min.
-    assert!(real.min_gap > CavParams::default().standstill_gap_m, "{}", real.min_gap);
+    assert!(
+        real.min_gap > CavParams::default().standstill_gap_m,
+        "{}",
+        real.min_gap
+    );
     assert!(real.min_accel >= -CavParams::default().emergency_decel_mps2);
 }
 
@@ -297,18 +305,36 @@ fn lag_breaks_string_stability_at_0p6_and_0p7_s_but_not_from_0p9_s() {
     // h > 2(Δ + τ) without feed-forward).
     let lag = Realism { lag: 0.5, ..NONE };
     let none = run(NONE, 10, 0.7, -1.0, 1.0, 150.0);
-    assert!(none.peak.windows(2).all(|w| w[1] <= w[0]), "{}", fmt(&none.peak));
+    assert!(
+        none.peak.windows(2).all(|w| w[1] <= w[0]),
+        "{}",
+        fmt(&none.peak)
+    );
     let lagged = run(lag, 10, 0.7, -1.0, 1.0, 150.0);
     assert!(worst_ratio(&lagged.peak) > 1.2, "{}", fmt(&lagged.peak));
-    assert!(lagged.peak[9] > 2.0 * lagged.peak[0], "{}", fmt(&lagged.peak));
+    assert!(
+        lagged.peak[9] > 2.0 * lagged.peak[0],
+        "{}",
+        fmt(&lagged.peak)
+    );
     // At 0.6 s the same gentle dip ends, ten vehicles back, in braking beyond the automation's
     // bound: AEB (collision-free).
     let short = run(lag, 10, 0.6, -1.0, 1.0, 150.0);
-    assert!(short.aeb_steps > 0 && short.min_accel < -5.0, "{}", short.min_accel);
+    assert!(
+        short.aeb_steps > 0 && short.min_accel < -5.0,
+        "{}",
+        short.min_accel
+    );
     assert!(short.min_gap > CavParams::default().standstill_gap_m);
     // From 0.9 s on, every dip and oscillation still shrinks monotonically with all three.
     for tc in [0.9, 1.1] {
-        for (decel, dur) in [(-2.0, 3.0), (-1.0, 1.0), (0.0, 10.0), (0.0, 20.0), (0.0, 40.0)] {
+        for (decel, dur) in [
+            (-2.0, 3.0),
+            (-1.0, 1.0),
+            (0.0, 10.0),
+            (0.0, 20.0),
+            (0.0, 40.0),
+        ] {
             let o = run(ALL, 10, tc, decel, dur, 200.0);
             assert!(
                 o.peak.windows(2).all(|w| w[1] <= w[0]),
@@ -323,36 +349,21 @@ fn lag_breaks_string_stability_at_0p6_and_0p7_s_but_not_from_0p9_s() {
 fn packet_loss_alone_barely_changes_the_string() {
     // 10 % loss ages the held beacon by a step now and then: peaks move by less than 1 %.
     let none = run(NONE, 10, 0.6, -2.0, 3.0, 150.0);
-    let loss = run(
-        Realism {
-            loss: 0.1,
-            ..NONE
-        },
-        10,
-        0.6,
-        -2.0,
-        3.0,
-        150.0,
-    );
+    let loss = run(Realism { loss: 0.1, ..NONE }, 10, 0.6, -2.0, 3.0, 150.0);
     for (a, b) in none.peak.iter().zip(&loss.peak) {
-        assert!((a - b).abs() < 0.01 * a.max(0.1), "{} / {}", fmt(&none.peak), fmt(&loss.peak));
+        assert!(
+            (a - b).abs() < 0.01 * a.max(0.1),
+            "{} / {}",
+            fmt(&none.peak),
+            fmt(&loss.peak)
+        );
     }
 }
 
 #[test]
 fn a_string_without_beacons_falls_back_to_acc_and_stays_collision_free() {
     // Every beacon lost: after the timeout every follower runs ACC at its CACC gap.
-    let o = run(
-        Realism {
-            loss: 1.0,
-            ..ALL
-        },
-        10,
-        0.6,
-        -2.0,
-        3.0,
-        150.0,
-    );
+    let o = run(Realism { loss: 1.0, ..ALL }, 10, 0.6, -2.0, 3.0, 150.0);
     // The first 5 steps still hold the (pre-run) beacon, then every follower-step falls back.
     assert_eq!(o.fallback_steps, 9 * (1500 - 5));
     assert!(o.min_gap > 0.0, "{}", o.min_gap);
@@ -364,27 +375,9 @@ fn a_string_without_beacons_falls_back_to_acc_and_stays_collision_free() {
 fn print_tables() {
     let cases: [(&str, Realism); 5] = [
         ("none", NONE),
-        (
-            "lag 0.5 s",
-            Realism {
-                lag: 0.5,
-                ..NONE
-            },
-        ),
-        (
-            "delay 0.2 s",
-            Realism {
-                delay: 0.2,
-                ..NONE
-            },
-        ),
-        (
-            "loss 10 %",
-            Realism {
-                loss: 0.1,
-                ..NONE
-            },
-        ),
+        ("lag 0.5 s", Realism { lag: 0.5, ..NONE }),
+        ("delay 0.2 s", Realism { delay: 0.2, ..NONE }),
+        ("loss 10 %", Realism { loss: 0.1, ..NONE }),
         ("all three", ALL),
     ];
     for (decel, dur, what) in [

@@ -105,8 +105,7 @@ impl Beacons {
             for &s in lane {
                 let v = &mut vehicles[s as usize];
                 if v.is_cav() {
-                    let lost =
-                        rng::uniform_at(self.seed, Purpose::Beacons, v.id, step) < self.loss;
+                    let lost = rng::uniform_at(self.seed, Purpose::Beacons, v.id, step) < self.loss;
                     v.cacc.beacon_age = cav::next_beacon_age(v.cacc.beacon_age, lost);
                 }
             }

@@ -30,8 +30,7 @@ fn followers(sim: &Simulation) -> Vec<(u64, bool, f64, f64)> {
         let vs: Vec<_> = sim.lane_vehicles(lane).collect();
         for w in vs.windows(2) {
             let (l, f) = (w[0], w[1]);
-            if l.is_cav() && f.is_cav() && l.rear() - f.x < 100.0 && f.automated() && f.x > 1000.0
-            {
+            if l.is_cav() && f.is_cav() && l.rear() - f.x < 100.0 && f.automated() && f.x > 1000.0 {
                 out.push((f.id, f.cacc.degraded, f.cacc.time_gap_s, f.cacc.gap_s));
             }
         }
@@ -58,8 +57,15 @@ fn a_follower_without_beacons_falls_back_to_acc_and_returns_to_cacc() {
     // from any t_C.
     step(&mut sim, 200);
     let later = followers(&sim);
-    let widened = later.iter().filter(|f| f.1 && (f.2 - 1.1).abs() < 1e-9).count();
-    assert!(widened * 10 >= later.len() * 9, "{widened} of {}", later.len());
+    let widened = later
+        .iter()
+        .filter(|f| f.1 && (f.2 - 1.1).abs() < 1e-9)
+        .count();
+    assert!(
+        widened * 10 >= later.len() * 9,
+        "{widened} of {}",
+        later.len()
+    );
     // V2V back: CACC from the next step on, the time gap ramps back to the CACC setting (t_C,
     // or 1.5 s behind a full platoon): after 30 s no follower keeps the ACC gap but those
     // whose t_C is 1.1 s.
@@ -74,7 +80,12 @@ fn a_follower_without_beacons_falls_back_to_acc_and_returns_to_cacc() {
     let out = sim.finish(0.0);
     // One fallback episode per follower that lost its beacons (and none before or after).
     let s = &out.summary;
-    assert!(s.cacc_fallbacks as usize >= down.len(), "{} {}", s.cacc_fallbacks, down.len());
+    assert!(
+        s.cacc_fallbacks as usize >= down.len(),
+        "{} {}",
+        s.cacc_fallbacks,
+        down.len()
+    );
     assert!((s.cacc_fallbacks as usize) < 2 * down.len());
     assert_eq!(s.collisions, 0);
 }
@@ -98,10 +109,13 @@ fn a_lagged_platoon_brakes_behind_a_hard_braking_leader_without_collision() {
         })
         .collect();
     for &id in &leaders {
-        sim.command(id, Command::Accelerate {
-            accel_mps2: -6.0,
-            steps: 30,
-        })
+        sim.command(
+            id,
+            Command::Accelerate {
+                accel_mps2: -6.0,
+                steps: 30,
+            },
+        )
         .unwrap();
     }
     let mut hardest: f64 = 0.0;
