@@ -11,7 +11,7 @@ use crate::organize::Organizer;
 use crate::sense::{Neighbours, Sensed, NONE};
 use crate::sim::Decision;
 use crate::state::{Clock, Control, RoadState, Scratch, Traffic};
-use crate::vehicle::{Mode, Relaxation, Vehicle};
+use crate::vehicle::{AutoFlags, Mode, Relaxation, Vehicle};
 use platoonsim_model::cav::{self, Family};
 use platoonsim_model::driver;
 use platoonsim_model::human;
@@ -80,8 +80,7 @@ pub(crate) fn decide(
                 change: None,
                 why: LaneChangeReason::Discretionary,
                 takeover: false,
-                aeb: false,
-                fallback: false,
+                auto: AutoFlags::NONE,
             },
         );
     }
@@ -225,8 +224,8 @@ impl View<'_> {
                 if g.lead_ok && g.lag_ok {
                     return blc;
                 }
-                let mut a = self.automated_decision(s, v, nb, leader, wall);
-                a.accel = driver::held_back(a.accel, g.lag_ok, g.a_ant);
+                let held = Some((g.lag_ok, g.a_ant));
+                let mut a = self.automated_decision(s, v, nb, leader, wall, held);
                 if a.mode == Mode::Cf {
                     a.mode = Mode::Blc {
                         side: d.side,
@@ -234,15 +233,14 @@ impl View<'_> {
                         auto: true,
                     };
                 }
-                return self.actuate(v, a);
+                return a;
             }
             return self.before_lane_change(s, v, nb, leader, d).0;
         }
 
         // 2. Automated CAV: ACC / CACC / speed regulation (spec 3).
         if v.automated() {
-            let d = self.automated_decision(s, v, nb, leader, wall);
-            return self.actuate(v, d);
+            return self.automated_decision(s, v, nb, leader, wall, None);
         }
         let yield_to = self.agreed_request(v, nb, false);
 
@@ -275,15 +273,15 @@ impl View<'_> {
             change: None,
             why: LaneChangeReason::Discretionary,
             takeover: false,
-            aeb: false,
-            fallback: false,
+            auto: AutoFlags::NONE,
         }
     }
 
     /// An automated CAV's decision: ACC / CACC / speed regulation (spec 3). With the spec 6.5
     /// flag the automation also answers a mandatory yield request it agrees to: it follows the
     /// requester as a virtual leader as a yielding driver would (spec 4.5), without leaving
-    /// automation [D].
+    /// automation [D]. `held`: (lag gap acceptable, a_ant) of a CAV waiting for a PD-lane gap
+    /// (`driver::held_back`). Then the demand goes through the actuators (spec 9.3).
     fn automated_decision(
         &self,
         s: u32,
@@ -291,6 +289,7 @@ impl View<'_> {
         nb: &Neighbours,
         leader: Option<Leader>,
         wall: bool,
+        held: Option<(bool, f64)>,
     ) -> Decision {
         let mut d = self.cav_control(s, v, leader, wall);
         if self.cfg.cav.yield_while_automated {
@@ -310,6 +309,10 @@ impl View<'_> {
                 };
             }
         }
+        if let Some((lag_ok, a_ant)) = held {
+            d.accel = driver::held_back(d.accel, lag_ok, a_ant);
+        }
+        self.actuate(v, &mut d);
         d
     }
 
@@ -318,10 +321,13 @@ impl View<'_> {
     /// so) and lagged by `cav.actuator_lag_s` from the acceleration realized in the last step.
     /// Both off (no lag, demand within the bound): `d` unchanged.
     #[inline]
-    fn actuate(&self, v: &Vehicle, mut d: Decision) -> Decision {
+    fn actuate(&self, v: &Vehicle, d: &mut Decision) {
         let auto = &self.traffic.auto;
-        (d.accel, d.aeb) = cav::actuate(v.a, d.accel, auto.lag_gain, auto.bound);
-        d
+        let (a, aeb) = cav::actuate(v.a, d.accel, auto.lag_gain, auto.bound);
+        d.accel = a;
+        if aeb {
+            d.auto = d.auto.union(AutoFlags::new(true, false));
+        }
     }
 
     /// Automated CAV control (spec 3.9).
@@ -331,40 +337,34 @@ impl View<'_> {
         let ld = self.sensed[s as usize].nb.leader;
         let leader = leader.filter(|l| l.gap_m <= p.sensor_range_m);
         let mut time_gap = v.cacc.time_gap_s;
-        let mut fallback = false;
-        // The leader's speed as the CACC law knows it: from the V2V beacons (spec 9.3), or
-        // `None` when they timed out (the law falls back to ACC). Without delay and loss, the
-        // leader's current speed.
-        let beacon = |l: Leader| match &self.traffic.auto.beacons {
-            None => Some(l),
-            Some(b) => b
+        // CACC behind a CAV, on the leader's speed as the law knows it: from the V2V beacons
+        // (spec 9.3; `None` when they timed out: ACC on the radar alone, a fallback), without
+        // delay and loss the leader's current speed.
+        let cav_ahead = !wall && self.is_cav(ld);
+        let known = match (leader, &self.traffic.auto.beacons) {
+            (Some(l), None) if cav_ahead => Some(l),
+            (Some(l), Some(b)) if cav_ahead => b
                 .received_speed(v.cacc.beacon_age, ld, self.clock.step)
                 .map(|v_mps| Leader { v_mps, ..l }),
+            _ => None,
         };
-        let cmd = match leader {
-            None => cav::Command {
+        let fallback = cav_ahead && leader.is_some() && known.is_none();
+        let cmd = match (leader, known) {
+            (None, _) => cav::Command {
                 accel: cav::speed_regulation(p, v.v, v_des),
                 mode: cav::CavMode::SpeedRegulation,
                 family: Family::Speed,
             },
-            Some(l) if !wall && self.is_cav(ld) => match beacon(l) {
-                Some(known) => {
-                    let target = if !self.sensed[s as usize].linked {
-                        p.inter_platoon_gap_s
-                    } else {
-                        v.cacc.gap_s
-                    };
-                    time_gap = cav::ramp_time_gap(p, time_gap, target, self.clock.dt);
-                    cav::cacc(p, v.v, v.a, v_des, known, time_gap, v.cacc.family)
-                }
-                None => {
-                    // spec 9.3: no beacon within the timeout, ACC on the radar alone.
-                    fallback = true;
-                    time_gap = cav::ramp_time_gap(p, time_gap, p.acc_time_gap_s, self.clock.dt);
-                    cav::acc(p, v.v, v_des, Some(l), time_gap, v.cacc.family)
-                }
-            },
-            Some(l) => {
+            (Some(_), Some(known)) => {
+                let target = if !self.sensed[s as usize].linked {
+                    p.inter_platoon_gap_s
+                } else {
+                    v.cacc.gap_s
+                };
+                time_gap = cav::ramp_time_gap(p, time_gap, target, self.clock.dt);
+                cav::cacc(p, v.v, v.a, v_des, known, time_gap, v.cacc.family)
+            }
+            (Some(l), None) => {
                 time_gap = cav::ramp_time_gap(p, time_gap, p.acc_time_gap_s, self.clock.dt);
                 cav::acc(p, v.v, v_des, Some(l), time_gap, v.cacc.family)
             }
@@ -378,8 +378,7 @@ impl View<'_> {
             change: None,
             why: LaneChangeReason::Discretionary,
             takeover: false,
-            aeb: false,
-            fallback,
+            auto: AutoFlags::new(false, fallback),
         }
     }
 
@@ -475,8 +474,7 @@ impl View<'_> {
                     LaneChangeReason::Discretionary
                 },
                 takeover,
-                aeb: false,
-                fallback: false,
+                auto: AutoFlags::NONE,
             },
             Gaps {
                 lead_ok: blc.lead_ok,

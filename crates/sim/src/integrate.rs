@@ -83,8 +83,6 @@ fn move_vehicles(
         auto,
         ..
     } = traffic;
-    // spec 9.3: every vehicle's speed goes into the V2V broadcast log (when there is one).
-    let mut beacons = auto.beacons.as_mut();
     let Scratch {
         decisions,
         sensed,
@@ -150,17 +148,14 @@ fn move_vehicles(
             veh.cacc.family = d.family;
             veh.cacc.regime = d.regime;
             veh.cacc.time_gap_s = d.time_gap;
-            if let Some(b) = &mut beacons {
-                b.broadcast(s, step + 1, veh.v);
-            }
             // spec 9.3: AEB interventions and CACC fallbacks, as episodes (rare: one branch).
-            if d.aeb | d.fallback | veh.cacc.aeb | veh.cacc.degraded {
+            if !d.auto.union(veh.cacc.auto).is_none() {
+                let (now, was) = (d.auto, veh.cacc.auto);
                 if in_window {
-                    *aeb_interventions += u64::from(d.aeb && !veh.cacc.aeb);
-                    *cacc_fallbacks += u64::from(d.fallback && !veh.cacc.degraded);
+                    *aeb_interventions += u64::from(now.aeb() && !was.aeb());
+                    *cacc_fallbacks += u64::from(now.degraded() && !was.degraded());
                 }
-                veh.cacc.aeb = d.aeb;
-                veh.cacc.degraded = d.fallback;
+                veh.cacc.auto = now;
             }
             if d.takeover {
                 veh.lcs.relax = Relaxation::since(step);
@@ -175,4 +170,13 @@ fn move_vehicles(
         *vehicle_updates += lane.len() as u64;
     }
     *lanes_sorted = sorted;
+    // spec 9.3: every vehicle's new speed is its V2V broadcast for the next step (only with
+    // a broadcast log: its own pass, so that without one the loop above is unchanged).
+    if let Some(b) = auto.beacons.as_mut() {
+        for lane in lanes.iter() {
+            for &s in lane {
+                b.broadcast(s, step + 1, vehicles[s as usize].v);
+            }
+        }
+    }
 }

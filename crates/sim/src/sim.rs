@@ -34,10 +34,9 @@ pub(crate) struct Decision {
     pub why: crate::events::LaneChangeReason,
     /// An automated CAV hands over to its driver in this step: relaxation starts (spec 4.6).
     pub takeover: bool,
-    /// AEB intervenes: the automation's demand exceeds its braking bound (spec 9.3).
-    pub aeb: bool,
-    /// An automated CAV behind a CAV runs ACC for want of V2V beacons (spec 9.3).
-    pub fallback: bool,
+    /// Spec 9.3: AEB intervenes (the automation's demand exceeds its braking bound); an
+    /// automated CAV behind a CAV runs ACC for want of V2V beacons.
+    pub auto: crate::vehicle::AutoFlags,
 }
 
 /// The whole simulation state.

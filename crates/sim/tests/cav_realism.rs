@@ -31,7 +31,12 @@ fn followers(sim: &Simulation) -> Vec<(u64, bool, f64, f64)> {
         for w in vs.windows(2) {
             let (l, f) = (w[0], w[1]);
             if l.is_cav() && f.is_cav() && l.rear() - f.x < 100.0 && f.automated() && f.x > 1000.0 {
-                out.push((f.id, f.cacc.degraded, f.cacc.time_gap_s, f.cacc.gap_s));
+                out.push((
+                    f.id,
+                    f.cacc.auto.degraded(),
+                    f.cacc.time_gap_s,
+                    f.cacc.gap_s,
+                ));
             }
         }
     }
