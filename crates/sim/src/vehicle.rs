@@ -150,7 +150,7 @@ impl AutoFlags {
     /// it; `fallback`: no V2V beacon from the CAV leader within `cav.beacon_timeout_s`, ACC.
     #[inline]
     pub fn new(aeb: bool, fallback: bool) -> AutoFlags {
-        AutoFlags(u8::from(aeb) * Self::AEB | u8::from(fallback) * Self::FALLBACK)
+        AutoFlags((u8::from(aeb) * Self::AEB) | (u8::from(fallback) * Self::FALLBACK))
     }
 
     /// AEB braked the CAV.
