@@ -40,7 +40,7 @@ pub const NOT_METRICS: [&str; 10] = [
 /// The summary's metrics that count things (integers in `summary.json`) besides the
 /// counted safety measures ([`is_count`]); `runs.csv` writes them without a decimal point,
 /// every other metric with one (`crate::table`).
-pub const COUNTS: [&str; 13] = [
+pub const COUNTS: [&str; 14] = [
     "vehicles_entered",
     "vehicles_exited",
     "vehicles_in_network",
@@ -50,6 +50,7 @@ pub const COUNTS: [&str; 13] = [
     "vehicles_counted",
     "missed_exits",
     "collisions",
+    "cacc_fallbacks",
     "vehicle_updates",
     "steps",
     "runs_with_collisions",

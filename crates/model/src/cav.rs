@@ -31,6 +31,23 @@
 //! limits:     (v_new − v)/Δt ∈ [b, a_M], 0 ≤ v_new ≤ v_F
 //! ```
 //!
+//! CACC realism (spec 9.3; all off by default except the braking bound, which only relabels):
+//!
+//! ```text
+//! V2V beacon: every CAV broadcasts its speed each step; the CACC law uses the leader's speed
+//!             v_l from the freshest received beacon, sent d = round(comm_delay_s/Δt) steps
+//!             before it arrived; the gap g stays the radar's (current); so does the v_l of
+//!             the safety override (radar range rate)
+//! loss:       each step a follower's reception fails with probability p (packet_loss);
+//!             age a = steps since the last reception; v_l = broadcast of step k − a − d;
+//!             a·Δt > T_b (beacon_timeout_s) → ACC (fallback) until a beacon arrives again
+//! lag:        a_real(k+1) = a_cmd + (a_real(k) − a_cmd) e^{−Δt/τ_a}   (exact for a_cmd held
+//!             over the step; τ_a = actuator_lag_s; τ_a = 0: a_real = a_cmd)
+//! bound:      a_cmd = max(a_req, −D_auto), a_req = the automation's demand after the
+//!             override and the limits; if a_req < −D_auto: AEB, applied a = a_req (no lag,
+//!             bounded by b_e in integrate), counted as an intervention
+//! ```
+//!
 //! | symbol | field | default | unit | source |
 //! |---|---|---|---|---|
 //! | k0 | `speed_gain` | 0.4 | 1/s | SUMO, [P15-code] |
@@ -63,6 +80,11 @@
 //! | – | `cooperative_lane_change` | false | – | \[D\] spec 9.2: cooperative lane changes under automation (`cooperative.rs`) |
 //! | b_co | `cooperative_gap_decel_mps2` | 2.0 | m/s² (positive) | spec 9.2: b_c = 0.5 b_f of spec 4.3 [P15-doc] |
 //! | t_T | `cooperative_timeout_s` | 10 | s | \[D\] spec 9.2: request lifetime |
+//! | τ_a | `actuator_lag_s` | 0 | s | spec 9.3: first-order lag; Plexe 0.5 s |
+//! | – | `comm_delay_s` | 0 | s | spec 9.3: age of the V2V beacon, whole steps |
+//! | p | `packet_loss` | 0 | – | spec 9.3: share of lost beacons, per follower and step |
+//! | T_b | `beacon_timeout_s` | 0.5 | s | spec 9.3 \[D\]: 5 beacons at 10 Hz, then ACC (Ploeg 2015) |
+//! | D_auto | `max_automated_decel_mps2` | 5.0 | m/s² (positive) | spec 9.3: ISO 15622 \[R\]; harder = AEB |
 //!
 //! Yielding through the automation (spec 4.5 applied to an automated CAV, \[D\]):
 //! a = min(a_auto, max(a_virtual, b_c)), a_virtual = the driver's relaxed car-following
@@ -153,6 +175,21 @@ pub struct CavParams {
     /// it is the default, so that older configurations keep their identity.
     #[serde(skip_serializing_if = "crate::energy::Powertrain::is_default")]
     pub powertrain: crate::energy::Powertrain,
+    /// τ_a (s): first-order lag between the automation's commanded and realized acceleration
+    /// (spec 9.3). 0 = none (the command applies within the step).
+    pub actuator_lag_s: f64,
+    /// Age (s) of the leader's V2V beacon when the CACC law uses it (spec 9.3), rounded to
+    /// whole steps. 0 = the leader's current speed.
+    pub comm_delay_s: f64,
+    /// Probability that a follower receives no beacon in a step (spec 9.3), in [0, 1]; 1 = no
+    /// V2V at all (every CACC falls back to ACC after the timeout).
+    pub packet_loss: f64,
+    /// T_b (s): a follower without a beacon for longer than this falls back to ACC until
+    /// beacons return (spec 9.3), rounded to whole steps.
+    pub beacon_timeout_s: f64,
+    /// D_auto (m/s², positive): the hardest braking the automation commands (spec 9.3);
+    /// a safety override that needs more is an AEB intervention (counted).
+    pub max_automated_decel_mps2: f64,
 }
 
 impl Default for CavParams {
@@ -190,6 +227,11 @@ impl Default for CavParams {
             cooperative_gap_decel_mps2: 2.0,
             cooperative_timeout_s: 10.0,
             powertrain: crate::energy::Powertrain::Combustion,
+            actuator_lag_s: 0.0,
+            comm_delay_s: 0.0,
+            packet_loss: 0.0,
+            beacon_timeout_s: DEFAULT_BEACON_TIMEOUT_S,
+            max_automated_decel_mps2: DEFAULT_MAX_AUTOMATED_DECEL_MPS2,
         }
     }
 }
@@ -550,4 +592,81 @@ pub fn draw_time_gap(p: &CavParams, u: f64) -> f64 {
         }
     }
     last_gap
+}
+
+/// Default beacon timeout T_b (s, spec 9.3) \[D\]: five missed beacons at the 10 Hz rate of
+/// CACC field tests; longer is the "persistent packet loss" after which Ploeg et al. (2015)
+/// degrade CACC to ACC.
+pub const DEFAULT_BEACON_TIMEOUT_S: f64 = 0.5;
+
+/// Default bound D_auto (m/s², positive) on the automation's braking (spec 9.3): the largest
+/// automatic deceleration ISO 15622 allows an ACC (at low speed; 3.5 m/s² above 20 m/s) \[R\].
+pub const DEFAULT_MAX_AUTOMATED_DECEL_MPS2: f64 = 5.0;
+
+/// Whole steps in `seconds` at step `dt` (spec 9.3: delays and timeouts are rounded to
+/// steps); 0 for a non-positive or non-finite duration.
+#[inline]
+pub fn whole_steps(seconds: f64, dt: f64) -> u64 {
+    let n = (seconds / dt.max(MIN_DT_S)).round();
+    if n.is_finite() && n > 0.0 {
+        n as u64
+    } else {
+        0
+    }
+}
+
+/// The share of the gap to the command that a first-order lag with time constant `tau` (s)
+/// closes in one step of `dt` (s): 1 − e^{−Δt/τ} (spec 9.3), the exact solution for a command
+/// held over the step (Plexe's `FirstOrderLagModel` uses the backward-Euler Δt/(τ + Δt),
+/// which agrees to first order in Δt/τ). 1 for τ ≤ 0 (no lag).
+#[inline]
+pub fn lag_gain(dt: f64, tau: f64) -> f64 {
+    if tau > 0.0 {
+        1.0 - (-dt.max(MIN_DT_S) / tau).exp()
+    } else {
+        1.0
+    }
+}
+
+/// What the automation applies this step (spec 9.3), and whether AEB intervenes: `a_req` is
+/// the automation's demand (the control law after the safety override, the limits, yielding),
+/// `a_real` the acceleration realized in the last step, `gain` from [`lag_gain`] (1 = no lag),
+/// `bound` = D_auto (positive). The command is bounded, a_cmd = max(a_req, −D_auto), and lags:
+/// a_real + (a_cmd − a_real)·gain. A demand beyond the bound is an AEB intervention, which
+/// applies a_req itself (within the step; the engine bounds it by b_e). Without lag and
+/// within the bound the result is `a_req`, bit for bit.
+#[inline]
+pub fn actuate(a_real: f64, a_req: f64, gain: f64, bound: f64) -> (f64, bool) {
+    if a_req < -bound {
+        return (a_req, true);
+    }
+    if gain >= 1.0 {
+        return (a_req, false);
+    }
+    (a_real + (a_req - a_real) * gain, false)
+}
+
+/// Age (steps) of the freshest beacon a CAV holds after this step's reception (spec 9.3): 0 if
+/// a beacon arrived (`lost` false), else one step older than before (saturating).
+#[inline]
+pub fn next_beacon_age(age: u32, lost: bool) -> u32 {
+    if lost {
+        age.saturating_add(1)
+    } else {
+        0
+    }
+}
+
+/// Whether a beacon `age` steps old is still held (spec 9.3): age ≤ the timeout in steps.
+/// Past it the follower falls back to ACC.
+#[inline]
+pub fn beacon_held(age: u32, timeout_steps: u64) -> bool {
+    u64::from(age) <= timeout_steps
+}
+
+/// The step whose broadcast the follower uses at `step` with a beacon `age` steps old and a
+/// delay of `delay_steps` (spec 9.3): step − age − delay, not before step 0.
+#[inline]
+pub fn broadcast_step(step: u64, age: u32, delay_steps: u64) -> u64 {
+    step.saturating_sub(u64::from(age) + delay_steps)
 }

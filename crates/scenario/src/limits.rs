@@ -49,3 +49,7 @@ pub const MAX_SPEED_THRESHOLD_KMH: f64 = 1_000.0;
 /// 350 times the 4-hour SR-99 run. A vehicle waiting in an entry queue takes some 300 bytes,
 /// so an entrance overloaded for days could otherwise take gigabytes.
 pub const MAX_ARRIVALS: f64 = 10_000_000.0;
+/// Longest `cav.actuator_lag_s`, `cav.comm_delay_s` and `cav.beacon_timeout_s` (s, spec 9.3):
+/// far above the literature's tenths of a second; the V2V log keeps (delay + timeout)/Δt
+/// speeds per vehicle.
+pub const MAX_CAV_REALISM_S: f64 = 10.0;

@@ -257,6 +257,31 @@ pub(super) fn check_cav(c: &mut Checker, p: &CavParams) {
         p.cooperative_timeout_s > 0.0 && p.cooperative_timeout_s <= 600.0,
         "must be in (0, 600] s",
     );
+    // spec 9.3: the automation's realism.
+    for (f, v) in [
+        ("cav.actuator_lag_s", p.actuator_lag_s),
+        ("cav.comm_delay_s", p.comm_delay_s),
+        ("cav.beacon_timeout_s", p.beacon_timeout_s),
+    ] {
+        c.value(
+            f,
+            v,
+            (0.0..=limits::MAX_CAV_REALISM_S).contains(&v),
+            &format!("must be in [0, {}] s", num(limits::MAX_CAV_REALISM_S)),
+        );
+    }
+    c.value(
+        "cav.packet_loss",
+        p.packet_loss,
+        (0.0..=1.0).contains(&p.packet_loss),
+        "must be in [0, 1] (a probability; 1 = no V2V)",
+    );
+    c.value(
+        "cav.max_automated_decel_mps2",
+        p.max_automated_decel_mps2,
+        p.max_automated_decel_mps2 > 0.0,
+        "must be > 0 m/s² (a braking magnitude, positive)",
+    );
 
     let shares = &p.time_gap_shares;
     let text = || {

@@ -410,6 +410,31 @@ fn other_ranges() {
             "cav.cooperative_timeout_s=0",
             "cav.cooperative_timeout_s = 0: must be in (0, 600] s",
         ),
+        // spec 9.3: the CACC realism keys.
+        (
+            "cav.actuator_lag_s=-0.1",
+            "cav.actuator_lag_s = -0.1: must be in [0, 10] s",
+        ),
+        (
+            "cav.comm_delay_s=11",
+            "cav.comm_delay_s = 11: must be in [0, 10] s",
+        ),
+        (
+            "cav.beacon_timeout_s=-1",
+            "cav.beacon_timeout_s = -1: must be in [0, 10] s",
+        ),
+        (
+            "cav.packet_loss=1.5",
+            "cav.packet_loss = 1.5: must be in [0, 1] (a probability; 1 = no V2V)",
+        ),
+        (
+            "cav.packet_loss=-0.1",
+            "cav.packet_loss = -0.1: must be in [0, 1] (a probability; 1 = no V2V)",
+        ),
+        (
+            "cav.max_automated_decel_mps2=-5",
+            "cav.max_automated_decel_mps2 = -5: must be > 0 m/s² (a braking magnitude, positive)",
+        ),
     ];
     for (set, expected) in cases {
         let p = problems(with_set(HOMOGENEOUS, &[set]));
@@ -420,6 +445,10 @@ fn other_ranges() {
         "measurement.aggregation_s=60",
         "measurement.aggregation_s=0.3",
         "measurement.aggregation_s=7200",
+        "cav.actuator_lag_s=0.5",
+        "cav.comm_delay_s=0.2",
+        "cav.packet_loss=1",
+        "cav.beacon_timeout_s=0",
     ] {
         with_set(HOMOGENEOUS, &[ok]).unwrap_or_else(|e| panic!("{ok}: {e}"));
     }

@@ -170,6 +170,8 @@ pub(crate) fn apply_commands(
             Command::Accelerate { accel_mps2, .. } => {
                 // Under external control: the commanded acceleration, and no lane change.
                 decisions[s as usize].accel = accel_mps2;
+                let d = &mut decisions[s as usize];
+                d.auto = crate::vehicle::AutoFlags::new(false, d.auto.degraded());
                 decisions[s as usize].change = None;
                 commands[k].left -= 1;
                 commands[k].left == 0

@@ -11,7 +11,7 @@ use crate::organize::Organizer;
 use crate::sense::{Neighbours, Sensed, NONE};
 use crate::sim::Decision;
 use crate::state::{Clock, Control, RoadState, Scratch, Traffic};
-use crate::vehicle::{Mode, Relaxation, Vehicle};
+use crate::vehicle::{AutoFlags, Mode, Relaxation, Vehicle};
 use platoonsim_model::cav::{self, Family};
 use platoonsim_model::cooperative as coop;
 use platoonsim_model::driver;
@@ -82,6 +82,7 @@ pub(crate) fn decide(
                 why: LaneChangeReason::Discretionary,
                 takeover: false,
                 coop: false,
+                auto: AutoFlags::NONE,
             },
         );
     }
@@ -228,7 +229,7 @@ impl View<'_> {
                     return d;
                 }
             }
-            return self.automated_decision(s, v, nb, leader, wall);
+            return self.automated_decision(s, v, nb, leader, wall, None);
         }
         let yield_to = self.agreed_request(v, nb, false);
 
@@ -263,6 +264,7 @@ impl View<'_> {
             why: LaneChangeReason::Discretionary,
             takeover: false,
             coop: false,
+            auto: AutoFlags::NONE,
         }
     }
 
@@ -293,8 +295,8 @@ impl View<'_> {
                 if g.lead_ok && g.lag_ok {
                     return blc;
                 }
-                let mut a = self.automated_decision(s, v, nb, leader, wall);
-                a.accel = driver::held_back(a.accel, g.lag_ok, g.a_ant);
+                let held = Some((g.lag_ok, g.a_ant));
+                let mut a = self.automated_decision(s, v, nb, leader, wall, held);
                 if a.mode == Mode::Cf {
                     a.mode = Mode::Blc {
                         side: d.side,
@@ -312,7 +314,8 @@ impl View<'_> {
     /// An automated CAV's decision: ACC / CACC / speed regulation (spec 3). With the spec 6.5
     /// flag the automation also answers a mandatory yield request it agrees to: it follows the
     /// requester as a virtual leader as a yielding driver would (spec 4.5), without leaving
-    /// automation [D].
+    /// automation [D]. `held`: (lag gap acceptable, a_ant) of a CAV waiting for a PD-lane gap
+    /// (`driver::held_back`). Then the demand goes through the actuators (spec 9.3).
     fn automated_decision(
         &self,
         s: u32,
@@ -320,6 +323,7 @@ impl View<'_> {
         nb: &Neighbours,
         leader: Option<Leader>,
         wall: bool,
+        held: Option<(bool, f64)>,
     ) -> Decision {
         let mut d = self.cav_control(s, v, leader, wall);
         if self.cfg.cav.yield_while_automated {
@@ -340,7 +344,25 @@ impl View<'_> {
                 };
             }
         }
+        if let Some((lag_ok, a_ant)) = held {
+            d.accel = driver::held_back(d.accel, lag_ok, a_ant);
+        }
+        self.actuate(v, &mut d);
         d
+    }
+
+    /// The automation's demand `d.accel` through its actuators (spec 9.3): bounded by
+    /// `cav.max_automated_decel_mps2` (beyond it AEB applies the demand and the decision says
+    /// so) and lagged by `cav.actuator_lag_s` from the acceleration realized in the last step.
+    /// Both off (no lag, demand within the bound): `d` unchanged.
+    #[inline]
+    fn actuate(&self, v: &Vehicle, d: &mut Decision) {
+        let auto = &self.traffic.auto;
+        let (a, aeb) = cav::actuate(v.a, d.accel, auto.lag_gain, auto.bound);
+        d.accel = a;
+        if aeb {
+            d.auto = d.auto.union(AutoFlags::new(true, false));
+        }
     }
 
     /// Automated CAV control (spec 3.9).
@@ -350,22 +372,34 @@ impl View<'_> {
         let ld = self.sensed[s as usize].nb.leader;
         let leader = leader.filter(|l| l.gap_m <= p.sensor_range_m);
         let mut time_gap = v.cacc.time_gap_s;
-        let cmd = match leader {
-            None => cav::Command {
+        // CACC behind a CAV, on the leader's speed as the law knows it: from the V2V beacons
+        // (spec 9.3; `None` when they timed out: ACC on the radar alone, a fallback), without
+        // delay and loss the leader's current speed.
+        let cav_ahead = !wall && self.is_cav(ld);
+        let known = match (leader, &self.traffic.auto.beacons) {
+            (Some(l), None) if cav_ahead => Some(l),
+            (Some(l), Some(b)) if cav_ahead => b
+                .received_speed(v.cacc.beacon_age, ld, self.clock.step)
+                .map(|v_mps| Leader { v_mps, ..l }),
+            _ => None,
+        };
+        let fallback = cav_ahead && leader.is_some() && known.is_none();
+        let cmd = match (leader, known) {
+            (None, _) => cav::Command {
                 accel: cav::speed_regulation(p, v.v, v_des),
                 mode: cav::CavMode::SpeedRegulation,
                 family: Family::Speed,
             },
-            Some(l) if !wall && self.is_cav(ld) => {
+            (Some(_), Some(known)) => {
                 let target = if !self.sensed[s as usize].linked {
                     p.inter_platoon_gap_s
                 } else {
                     v.cacc.gap_s
                 };
                 time_gap = cav::ramp_time_gap(p, time_gap, target, self.clock.dt);
-                cav::cacc(p, v.v, v.a, v_des, l, time_gap, v.cacc.family)
+                cav::cacc(p, v.v, v.a, v_des, known, time_gap, v.cacc.family)
             }
-            Some(l) => {
+            (Some(l), None) => {
                 time_gap = cav::ramp_time_gap(p, time_gap, p.acc_time_gap_s, self.clock.dt);
                 cav::acc(p, v.v, v_des, Some(l), time_gap, v.cacc.family)
             }
@@ -380,6 +414,7 @@ impl View<'_> {
             why: LaneChangeReason::Discretionary,
             takeover: false,
             coop: false,
+            auto: AutoFlags::new(false, fallback),
         }
     }
 
@@ -477,6 +512,7 @@ impl View<'_> {
                 },
                 takeover,
                 coop: false,
+                auto: AutoFlags::NONE,
             },
             Gaps {
                 lead_ok: blc.lead_ok,
@@ -687,6 +723,8 @@ impl View<'_> {
                     coop::join_safe(p, v.v, v.a, v_des_target, l, cav_l, t_own, b_co, dt)
                 });
         }
+        // The demand goes through the actuators (spec 9.3), as every automated one.
+        self.actuate(v, &mut dec);
         dec.mode = Mode::Blc {
             side: d.side,
             mandatory: d.mandatory,
@@ -736,6 +774,7 @@ impl View<'_> {
             t_open,
             p.cooperative_gap_decel_mps2,
         ));
+        self.actuate(v, &mut dec);
         dec.mode = Mode::Ycf {
             to: rv.id,
             auto: true,

@@ -21,8 +21,8 @@ use crate::rng::{Purpose, Stream};
 use crate::sense::Sensed;
 use crate::state::{Clock, RoadState, Traffic, Watch};
 use crate::vehicle::{
-    CaccState, Driver, Kind, LaneChangeState, Mode, ModeLabel, Relaxation, Route, Stats, Vehicle,
-    NEVER, NO_EXIT,
+    AutoFlags, CaccState, Driver, Kind, LaneChangeState, Mode, ModeLabel, Relaxation, Route, Stats,
+    Vehicle, NEVER, NO_EXIT,
 };
 use platoonsim_model::cav::{self, Family};
 use platoonsim_model::human::{self, HUMAN_DRAWS};
@@ -184,8 +184,10 @@ pub(crate) fn create(cfg: &Config, id: u64, x: f64, t: f64, origin: u32) -> Vehi
             gap_s: cacc_gap_s,
             family: Family::Speed,
             regime: None,
+            auto: AutoFlags::NONE,
             max_platoon: 1,
             max_platoon_tg2: 1,
+            beacon_age: 0,
         },
         lcs: LaneChangeState {
             relax: Relaxation::NONE,

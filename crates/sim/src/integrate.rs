@@ -4,6 +4,7 @@
 
 use crate::events::Departure;
 use crate::network::Geometry;
+use crate::safety::Counted;
 use crate::sim::Simulation;
 use crate::state::{Clock, Measures, Scratch, Traffic};
 use crate::summary::CollisionKind;
@@ -78,7 +79,10 @@ fn move_vehicles(
     // vehicle), and the slot-indexed arrays as long as `vehicles`: one bounds check per
     // vehicle for the three.
     let Traffic {
-        lanes, vehicles, ..
+        lanes,
+        vehicles,
+        auto,
+        ..
     } = traffic;
     let Scratch {
         decisions,
@@ -91,6 +95,7 @@ fn move_vehicles(
     let Measures {
         vehicle_updates,
         safety,
+        cacc_fallbacks,
         ..
     } = measures;
     let step = clock.step;
@@ -146,6 +151,17 @@ fn move_vehicles(
             veh.cacc.family = d.family;
             veh.cacc.regime = d.regime;
             veh.cacc.time_gap_s = d.time_gap;
+            // spec 9.3: AEB interventions and CACC fallbacks, as episodes (rare: one branch).
+            if !d.auto.union(veh.cacc.auto).is_none() {
+                let (now, was) = (d.auto, veh.cacc.auto);
+                if in_window {
+                    if now.aeb() && !was.aeb() {
+                        safety.counts.count(Counted::AebInterventions, veh.kind);
+                    }
+                    *cacc_fallbacks += u64::from(now.degraded() && !was.degraded());
+                }
+                veh.cacc.auto = now;
+            }
             if d.takeover {
                 veh.lcs.relax = Relaxation::since(step);
             }
@@ -163,5 +179,14 @@ fn move_vehicles(
         let km = &mut safety.counts.vehicle_km;
         km.human += driven[0] / 1000.0;
         km.cav += driven[1] / 1000.0;
+    }
+    // spec 9.3: every vehicle's new speed is its V2V broadcast for the next step (only with
+    // a broadcast log: its own pass, so that without one the loop above is unchanged).
+    if let Some(b) = auto.beacons.as_mut() {
+        for lane in lanes.iter() {
+            for &s in lane {
+                b.broadcast(s, step + 1, vehicles[s as usize].v);
+            }
+        }
     }
 }

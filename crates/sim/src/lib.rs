@@ -10,6 +10,7 @@
 //! accelerations), `execute` (lane changes), `insert` (arrivals, insertion), `detector`,
 //! `metrics`, `organize` (platoon organization: the `Organizer` trait and the strategies), `rng` (named random streams).
 
+mod automation;
 pub mod command;
 pub mod config;
 mod decide;

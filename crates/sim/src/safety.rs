@@ -61,16 +61,20 @@ pub enum Counted {
     RearEndConflicts,
     /// TTC conflicts of a pair formed by a lane change in the step they start.
     LaneChangeConflicts,
+    /// AEB interventions (spec 9.3): episodes in which an automated CAV needed harder braking
+    /// than `cav.max_automated_decel_mps2` and the emergency system applied it.
+    AebInterventions,
 }
 
 impl Counted {
     /// Every counted measure, in output order.
-    pub const ALL: [Counted; 5] = [
+    pub const ALL: [Counted; 6] = [
         Counted::HardBrakings,
         Counted::SevereBrakings,
         Counted::BrakingsAtLimit,
         Counted::RearEndConflicts,
         Counted::LaneChangeConflicts,
+        Counted::AebInterventions,
     ];
 
     /// The measure's name in the outputs (`summary.json`, the CSVs).
@@ -81,6 +85,7 @@ impl Counted {
             Counted::BrakingsAtLimit => "brakings_at_limit",
             Counted::RearEndConflicts => "rear_end_conflicts",
             Counted::LaneChangeConflicts => "lane_change_conflicts",
+            Counted::AebInterventions => "aeb_interventions",
         }
     }
 }
@@ -494,7 +499,8 @@ mod tests {
                 "severe_brakings",
                 "brakings_at_limit",
                 "rear_end_conflicts",
-                "lane_change_conflicts"
+                "lane_change_conflicts",
+                "aeb_interventions"
             ]
         );
     }

@@ -36,6 +36,9 @@ pub(crate) struct Decision {
     pub takeover: bool,
     /// The change is a cooperative one, made under automation (spec 9.2).
     pub coop: bool,
+    /// Spec 9.3: AEB intervenes (the automation's demand exceeds its braking bound); an
+    /// automated CAV behind a CAV runs ACC for want of V2V beacons.
+    pub auto: crate::vehicle::AutoFlags,
 }
 
 /// The whole simulation state.
@@ -108,6 +111,7 @@ impl Simulation {
             },
             traffic: Traffic {
                 lanes: vec![Vec::new(); n_lanes],
+                auto: crate::automation::Automation::new(&cfg),
                 ..Traffic::default()
             },
             entrances: Entrance::all(&cfg),
@@ -137,6 +141,7 @@ impl Simulation {
                 safety: Safety::new(&cfg),
                 vehicle_updates: 0,
                 missed_exits: 0,
+                cacc_fallbacks: 0,
             },
             control: Control {
                 organizer: Box::new(crate::organize::NoOrganizer),
@@ -297,6 +302,13 @@ impl Simulation {
     /// 6. **detectors**: crossings and occupancy; interval close and broadcast.
     /// 7. **invariants**: no overlap (counted; a panic in debug builds), all states finite.
     pub fn step(&mut self) -> Result<(), SimError> {
+        if let Some(b) = &self.traffic.auto.beacons {
+            b.receive(
+                self.clock.step,
+                &self.traffic.lanes,
+                &mut self.traffic.vehicles,
+            );
+        }
         crate::sense::sense(
             &self.cfg.cav,
             &mut self.traffic,
@@ -508,6 +520,7 @@ impl Simulation {
                 .min_ttc_s
                 .is_finite()
                 .then_some(sf.exposure.min_ttc_s),
+            cacc_fallbacks: self.measures.cacc_fallbacks,
             energy: self.energy.as_ref().map(|e| e.summary()),
             vehicle_updates: self.measures.vehicle_updates,
             steps: self.clock.step,
@@ -613,13 +626,21 @@ impl Simulation {
     fn compact(&mut self) {
         let on_road = self.vehicles_in_network();
         let mut packed = Vec::with_capacity(on_road.max(self.traffic.vehicles.len()));
+        let logging = self.traffic.auto.beacons.is_some();
+        let mut order = Vec::new();
         for lane in &mut self.traffic.lanes {
             for s in lane.iter_mut() {
                 packed.push(self.traffic.vehicles[*s as usize].clone());
+                if logging {
+                    order.push(*s);
+                }
                 *s = (packed.len() - 1) as u32;
             }
         }
         self.traffic.vehicles = packed;
+        if let Some(b) = &mut self.traffic.auto.beacons {
+            b.renumber(&order);
+        }
         self.traffic.free.clear();
         self.scratch.changed_this_step.fill(u64::MAX);
     }

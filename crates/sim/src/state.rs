@@ -1,6 +1,7 @@
 //! The simulation state, split by responsibility. [`crate::Simulation`] holds one of each;
 //! ARCHITECTURE.md lists which phase reads and writes which part.
 
+use crate::automation::Automation;
 use crate::command::Active;
 use crate::detector::Detector;
 use crate::events::{Event, Observer};
@@ -39,18 +40,25 @@ pub(crate) struct Traffic {
     pub lanes: Vec<Vec<u32>>,
     /// The id of the next vehicle to enter.
     pub next_id: u64,
+    /// The automation's realism (spec 9.3): its constants and the V2V broadcast log by slot.
+    pub auto: Automation,
 }
 
 impl Traffic {
     /// Allocate a slot for a new vehicle.
     pub fn alloc(&mut self, v: Vehicle) -> u32 {
-        if let Some(s) = self.free.pop() {
+        let speed = v.v;
+        let s = if let Some(s) = self.free.pop() {
             self.vehicles[s as usize] = v;
             s
         } else {
             self.vehicles.push(v);
             (self.vehicles.len() - 1) as u32
+        };
+        if let Some(b) = &mut self.auto.beacons {
+            b.fill(s, speed);
         }
+        s
     }
 }
 
@@ -137,6 +145,8 @@ pub(crate) struct Measures {
     pub safety: Safety,
     pub vehicle_updates: u64,
     pub missed_exits: u64,
+    /// CACC fallbacks to ACC for want of V2V beacons in the measurement window (spec 9.3).
+    pub cacc_fallbacks: u64,
 }
 
 /// What steers the vehicles besides their models: the platoon-organization strategy and the

@@ -90,6 +90,9 @@ pub struct Summary {
     /// Smallest TTC seen in the window (s); `None` (null) if no follower ever closed in on its
     /// leader.
     pub min_ttc_s: Option<f64>,
+    /// CACC fallbacks to ACC (spec 9.3) in the measurement window: episodes in which a CAV
+    /// behind a CAV received no V2V beacon within `cav.beacon_timeout_s`.
+    pub cacc_fallbacks: u64,
     /// Fuel and electricity (docs/energy.md), with `energy.enabled` only.
     #[serde(flatten)]
     pub energy: Option<crate::energy::EnergySummary>,

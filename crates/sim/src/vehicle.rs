@@ -128,11 +128,58 @@ pub struct CaccState {
     /// The CAV controller's regime in the last step while automated (spec 3.9); `None` for a
     /// human driver or a CAV driven manually.
     pub regime: Option<CavMode>,
+    /// What the automation's realism did in the last step (spec 9.3): AEB braked this CAV,
+    /// its CACC fell back to ACC.
+    pub auto: AutoFlags,
     /// Largest platoon this CAV has been in (1 = never), paper definition: a chain of CAVs each
     /// directly following the previous one under CACC within sensor range (`sense.rs`).
     pub max_platoon: u32,
     /// The same with the spec 6.15 link criterion (follower not in speed regulation, tg ≤ 2 s).
     pub max_platoon_tg2: u32,
+    /// Steps since the CAV last received a V2V beacon (spec 9.3; 0 without packet loss).
+    pub beacon_age: u32,
+}
+
+/// What the automation's realism did to a CAV in a step (spec 9.3), as bit flags in one byte
+/// (the decision and the vehicle carry it; one test per vehicle and step).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct AutoFlags(u8);
+
+impl AutoFlags {
+    pub const NONE: AutoFlags = AutoFlags(0);
+    const AEB: u8 = 1;
+    const FALLBACK: u8 = 2;
+
+    /// `aeb`: the automation's demand exceeded `cav.max_automated_decel_mps2` and AEB applied
+    /// it; `fallback`: no V2V beacon from the CAV leader within `cav.beacon_timeout_s`, ACC.
+    #[inline]
+    pub fn new(aeb: bool, fallback: bool) -> AutoFlags {
+        AutoFlags((u8::from(aeb) * Self::AEB) | (u8::from(fallback) * Self::FALLBACK))
+    }
+
+    /// AEB braked the CAV.
+    #[inline]
+    pub fn aeb(self) -> bool {
+        self.0 & Self::AEB != 0
+    }
+
+    /// The CAV's CACC fell back to ACC for want of beacons.
+    #[inline]
+    pub fn degraded(self) -> bool {
+        self.0 & Self::FALLBACK != 0
+    }
+
+    /// Neither.
+    #[inline]
+    pub fn is_none(self) -> bool {
+        self.0 == 0
+    }
+
+    /// Either flag in `self` or `other`.
+    #[inline]
+    pub fn union(self, other: AutoFlags) -> AutoFlags {
+        AutoFlags(self.0 | other.0)
+    }
 }
 
 /// Lane-change history.
