@@ -34,6 +34,8 @@ pub(crate) struct Decision {
     pub why: crate::events::LaneChangeReason,
     /// An automated CAV hands over to its driver in this step: relaxation starts (spec 4.6).
     pub takeover: bool,
+    /// The change is mandatory with γ ≥ 1: the safe rule's harder bound (spec 9.1).
+    pub urgent: bool,
 }
 
 /// The whole simulation state.
@@ -313,6 +315,7 @@ impl Simulation {
         self.integrate();
         let origin = self.origin_m();
         crate::execute::apply_lane_changes(
+            &self.cfg,
             &self.clock,
             origin,
             &self.road,
