@@ -14,6 +14,7 @@
 //! | only a platoon leader changes: a follower splits first | [`change_now`] | 3.6.4 |
 //! | BLC-Sync, BLC-Slow, discretionary sync | [`blc_target`] | 4.3 |
 //! | the deadlock exceptions to BLC-Slow | [`keeps_pace`] | 4.3 \[D\] |
+//! | a commanded change never brakes for it, and lets a faster follower pass | [`commanded_target`] | \[D\] (sim `command.rs`) |
 //! | automation held back while the driver waits to organize | [`held_back`] | 6.20 `cav.organize_while_automated` \[D\] |
 //! | the whole before-lane-change step over a neighbourhood view | [`before_lane_change`] | 4.3 |
 //!
@@ -162,6 +163,28 @@ pub fn keeps_pace(follower_yields: bool, follower_v: f64, v: f64, in_accel_lane:
     follower_yields || (follower_v > v && (v < CREEP_SPEED_MPS || in_accel_lane))
 }
 
+/// A commanded change (`commanded`) never brakes for the change: BLC-Sync and BLC-Slow may
+/// not take `target` below min(a_cur, 0), the driver's own car following; and while a faster
+/// target-lane follower (`follower_faster`) closes the lag gap it holds its speed,
+/// min(a_cur, 0), so that the follower goes by instead of running alongside \[D\] (sim
+/// `command.rs`). Other changes: `target` unchanged.
+#[inline]
+pub fn commanded_target(
+    target: f64,
+    a_cur: f64,
+    commanded: bool,
+    lag_ok: bool,
+    follower_faster: bool,
+) -> f64 {
+    if !commanded {
+        target
+    } else if !lag_ok && follower_faster {
+        a_cur.min(0.0)
+    } else {
+        target.max(a_cur.min(0.0))
+    }
+}
+
 /// An automated CAV whose driver waits for a gap toward its organized lane: with the lag gap
 /// open, no acceleration beyond what the target-lane leader allows (and never braking for it).
 #[inline]
@@ -282,6 +305,8 @@ pub fn before_lane_change(h: &HumanParams, lc: &LaneChangeParams, w: &BlcView) -
         lag_ok,
         slow,
     );
+    let faster = w.target_follower.is_some_and(|f| f.v_mps > w.v);
+    let target = commanded_target(target, a_cur, w.commanded, lag_ok, faster);
     Blc {
         accel: human::smooth_accel(w.a, target, h.smoothing),
         change,
@@ -571,6 +596,32 @@ mod tests {
         assert!(blc(&w).accel < 0.0, "BLC-Slow");
         w.commanded = true;
         let out = blc(&w);
-        assert!(!out.change && out.accel > 0.0, "accel = {}", out.accel);
+        assert!(
+            !out.change && out.accel == 0.0,
+            "holds its speed: {}",
+            out.accel
+        );
+        assert_eq!(commanded_target(-2.0, 1.0, true, false, true), 0.0);
+        assert_eq!(
+            commanded_target(-2.0, -0.5, true, false, true),
+            -0.5,
+            "own law brakes"
+        );
+        assert_eq!(
+            commanded_target(-2.0, 1.0, true, true, false),
+            0.0,
+            "no sync braking"
+        );
+        assert_eq!(commanded_target(0.5, 1.0, true, true, false), 0.5);
+        assert_eq!(
+            commanded_target(1.0, 1.0, true, false, true),
+            0.0,
+            "not alongside"
+        );
+        assert_eq!(
+            commanded_target(-2.0, 1.0, false, false, true),
+            -2.0,
+            "not commanded"
+        );
     }
 }
