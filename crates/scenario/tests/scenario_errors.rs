@@ -398,6 +398,14 @@ fn other_ranges() {
             "cav.time_gap_ramp_per_s=-0.5",
             "cav.time_gap_ramp_per_s = -0.5: must be >= 0",
         ),
+        (
+            "lane_change.safe_follower_decel_mps2=-3",
+            "lane_change.safe_follower_decel_mps2 = -3: must be > 0 m/s² (a deceleration, written positive)",
+        ),
+        (
+            "lane_change.mandatory_safe_decel_mps2=2.5",
+            "lane_change.mandatory_safe_decel_mps2 = 2.5: must be >= lane_change.safe_follower_decel_mps2 = 3 m/s² (positive)",
+        ),
     ];
     for (set, expected) in cases {
         let p = problems(with_set(HOMOGENEOUS, &[set]));
