@@ -100,3 +100,31 @@ def test_a_bad_command_raises_and_changes_nothing():
     assert sim.commanded() == []
     sim.step(10)
     assert sim.finish()["collisions"] == 0
+
+
+@pytest.mark.parametrize("speed", [10.0, 20.0])
+def test_set_desired_speed_then_change_lane_completes_without_braking(speed):
+    # An open road (600 veh/h/lane): a CAV set to a low speed and then commanded left changes
+    # within a few seconds and never brakes for it (before issue 29 it dropped back to
+    # 2.2 m/s behind the faster traffic of the target lane and waited 10 s). The engine side
+    # is pinned by crates/sim/tests/commanded_change.rs.
+    overrides = {**RUN, "demand.vph_per_lane": 600, "run.penetration": 0.5}
+    sim = platoonsim.Simulation("homogeneous", seed=2, overrides=overrides)
+    sim.run_until(200.0)
+    v = sim.vehicles()
+    pick = (v["lane"] == 0) & (v["kind"] == 1) & (v["mode"] == 1) & (v["x_m"] > 1000) & (v["x_m"] < 3000)
+    vid = int(v["id"][pick][0])
+    sim.set_desired_speed(vid, speed)
+    sim.step(300)
+    assert abs(row(sim, vid)["v_mps"] - speed) < 0.5
+    sim.change_lane(vid, "left")
+    accels = []
+    for _ in range(60):
+        sim.step()
+        r = row(sim, vid)
+        accels.append(r["a_mps2"])
+        if r["lane"] == 1:
+            break
+    assert row(sim, vid)["lane"] == 1, "changed within 6 s"
+    assert min(accels) > -0.1, f"no braking for the change: {min(accels)}"
+    assert sim.finish()["collisions"] == 0

@@ -322,13 +322,16 @@ fn lane_drop_is_collision_free() {
 /// or above −b_e, the limit is reached (so it binds), there are hard brakings and brakings
 /// at the limit, and the summary's largest deceleration is b_e. Run with b_e = 9 m/s² (the default) and with
 /// `human.emergency_decel_mps2 = cav.emergency_decel_mps2 = 6`: the bound follows the keys.
+/// The hard cut-ins are those of the published gap rule (spec 4.3): the safe rule (spec 9.1,
+/// the default) refuses them, and this road then has no deceleration beyond 4 m/s² at all.
 #[test]
 fn braking_in_hard_cut_ins_stays_within_the_emergency_limit() {
     let cases: [(f64, &[&str]); 2] = [
-        (9.0, &[]),
+        (9.0, &["lane_change.gap_rule=published"]),
         (
             6.0,
             &[
+                "lane_change.gap_rule=published",
                 "human.emergency_decel_mps2=6.0",
                 "cav.emergency_decel_mps2=6.0",
             ],

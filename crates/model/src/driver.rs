@@ -10,9 +10,11 @@
 //! | organizing: toward the organized lane, none in it | [`toward`] | 4.7 |
 //! | a change needs γ above the threshold | [`wants_change`] | 4.2 |
 //! | the lead gap: discretionary changes must not brake behind the new leader | [`lead_acceptable`] | 4.3, 6.22 |
+//! | the safe rule: nobody brakes harder than b_safe by its own law | [`crate::safegap`] | 9.1 |
 //! | only a platoon leader changes: a follower splits first | [`change_now`] | 3.6.4 |
 //! | BLC-Sync, BLC-Slow, discretionary sync | [`blc_target`] | 4.3 |
 //! | the deadlock exceptions to BLC-Slow | [`keeps_pace`] | 4.3 \[D\] |
+//! | a commanded change never brakes for it, and lets a faster follower pass | [`commanded_target`] | \[D\] (sim `command.rs`) |
 //! | automation held back while the driver waits to organize | [`held_back`] | 6.20 `cav.organize_while_automated` \[D\] |
 //! | the whole before-lane-change step over a neighbourhood view | [`before_lane_change`] | 4.3 |
 //!
@@ -22,6 +24,7 @@
 
 use crate::human::{self, HumanParams};
 use crate::lanechange::{self as lcm, LaneChangeParams, Side};
+use crate::safegap::{self, SafeDecel};
 use crate::{Leader, Relax};
 
 /// Creep speed of spec 4.3 (5 mph, m/s).
@@ -160,6 +163,28 @@ pub fn keeps_pace(follower_yields: bool, follower_v: f64, v: f64, in_accel_lane:
     follower_yields || (follower_v > v && (v < CREEP_SPEED_MPS || in_accel_lane))
 }
 
+/// A commanded change (`commanded`) never brakes for the change: BLC-Sync and BLC-Slow may
+/// not take `target` below min(a_cur, 0), the driver's own car following; and while a faster
+/// target-lane follower (`follower_faster`) closes the lag gap it holds its speed,
+/// min(a_cur, 0), so that the follower goes by instead of running alongside \[D\] (sim
+/// `command.rs`). Other changes: `target` unchanged.
+#[inline]
+pub fn commanded_target(
+    target: f64,
+    a_cur: f64,
+    commanded: bool,
+    lag_ok: bool,
+    follower_faster: bool,
+) -> f64 {
+    if !commanded {
+        target
+    } else if !lag_ok && follower_faster {
+        a_cur.min(0.0)
+    } else {
+        target.max(a_cur.min(0.0))
+    }
+}
+
 /// An automated CAV whose driver waits for a gap toward its organized lane: with the lag gap
 /// open, no acceleration beyond what the target-lane leader allows (and never braking for it).
 #[inline]
@@ -199,6 +224,11 @@ pub struct BlcView {
     pub must_split: bool,
     /// The vehicle is in an acceleration lane.
     pub in_accel_lane: bool,
+    /// A commanded change (`sim::Command::ChangeLane`): like a merge from an acceleration
+    /// lane, it never drops back (BLC-Slow) behind a faster target-lane follower.
+    pub commanded: bool,
+    /// The safe rule's decelerations (spec 9.1); `None` under the published rule (spec 4.3).
+    pub safe: Option<SafeDecel>,
 }
 
 /// The target lane's follower as the lag-gap rule sees it.
@@ -209,6 +239,9 @@ pub struct TargetFollower {
     pub v_mps: f64,
     /// It is yielding to this vehicle.
     pub yields: bool,
+    /// Its acceleration by its own law with this vehicle as its new leader (spec 9.1); only
+    /// read under the safe rule (the engine computes it only then).
+    pub a_after: f64,
 }
 
 /// The outcome of the before-lane-change step.
@@ -227,16 +260,22 @@ pub struct Blc {
 
 /// The before-lane-change step (spec 4.3), in order: the acceleration behind the current
 /// leader and, with relaxed gaps, behind the target-lane leader; gap acceptance
-/// ([`lead_acceptable`], the lag rule); [`change_now`]; BLC-Slow only for a mandatory desire
+/// ([`lead_acceptable`], the lag rule; under the safe rule both also need
+/// [`safegap::brakes_safely`], spec 9.1); [`change_now`]; BLC-Slow only for a mandatory desire
 /// above the slow-down threshold with the lag gap closed and no [`keeps_pace`] exception;
 /// the target from [`blc_target`], smoothed.
 pub fn before_lane_change(h: &HumanParams, lc: &LaneChangeParams, w: &BlcView) -> Blc {
     let a_cur = human::target_accel(h, w.v, w.v_des, w.leader, w.relax);
     let a_ant = human::target_accel(h, w.v, w.v_des_target, w.target_leader, lcm::gap_relax(lc));
+    // spec 9.1: the bound of this change, if the safe rule applies.
+    let bound = w
+        .safe
+        .map(|s| s.bound(safegap::urgent(w.mandatory, w.gamma)));
     let lead_ok = match w.target_leader {
         None => true,
         Some(l) => lead_acceptable(
-            lcm::accept_lead_gap(h, lc, l.gap_m, w.v, l.v_mps),
+            lcm::accept_lead_gap(h, lc, l.gap_m, w.v, l.v_mps)
+                && bound.is_none_or(|b| safegap::brakes_safely(a_ant, b)),
             w.mandatory,
             w.organize_regardless,
             a_ant,
@@ -244,7 +283,10 @@ pub fn before_lane_change(h: &HumanParams, lc: &LaneChangeParams, w: &BlcView) -
     };
     let lag_ok = match w.target_follower {
         None => true,
-        Some(f) => lcm::accept_lag_gap(h, lc, f.gap_m, w.v, f.v_mps, a_ant),
+        Some(f) => {
+            lcm::accept_lag_gap(h, lc, f.gap_m, w.v, f.v_mps, a_ant)
+                && bound.is_none_or(|b| safegap::brakes_safely(f.a_after, b))
+        }
     };
     let change = change_now(lead_ok, lag_ok, w.must_split);
     let slow = w.mandatory
@@ -252,7 +294,7 @@ pub fn before_lane_change(h: &HumanParams, lc: &LaneChangeParams, w: &BlcView) -
         && w.gamma > lc.slow_down_desire
         && !w
             .target_follower
-            .is_some_and(|f| keeps_pace(f.yields, f.v_mps, w.v, w.in_accel_lane));
+            .is_some_and(|f| keeps_pace(f.yields, f.v_mps, w.v, w.in_accel_lane || w.commanded));
     let target = blc_target(
         a_cur,
         a_ant,
@@ -263,6 +305,8 @@ pub fn before_lane_change(h: &HumanParams, lc: &LaneChangeParams, w: &BlcView) -
         lag_ok,
         slow,
     );
+    let faster = w.target_follower.is_some_and(|f| f.v_mps > w.v);
+    let target = commanded_target(target, a_cur, w.commanded, lag_ok, faster);
     Blc {
         accel: human::smooth_accel(w.a, target, h.smoothing),
         change,
@@ -430,12 +474,15 @@ mod tests {
                 gap_m: g,
                 v_mps: 20.0,
                 yields: false,
+                a_after: 0.0,
             }),
             mandatory,
             gamma,
             organize_regardless: false,
             must_split: false,
             in_accel_lane: false,
+            commanded: false,
+            safe: None,
         }
     }
 
@@ -485,5 +532,96 @@ mod tests {
     fn blc_a_weak_mandatory_desire_does_not_slow_down() {
         let out = blc(&blc_scene(Some(1.0), true, 0.5 * p().slow_down_desire));
         assert!(!out.change && out.accel > 0.0);
+    }
+
+    /// spec 9.1: the same cut-in (a follower 30 m back at 30 m/s, the changer at 26 m/s, whose
+    /// own law asks for more than 6 m/s² after the change) is made under the published rule
+    /// and refused under the safe rule; a follower that need not brake hard is no obstacle.
+    #[test]
+    fn blc_the_safe_rule_refuses_a_cut_in_the_published_rule_accepts() {
+        let h = HumanParams::default();
+        let changer = Leader {
+            gap_m: 30.0,
+            v_mps: 26.0,
+        };
+        let a_after =
+            crate::safegap::human_follower_accel(&h, &p(), 30.0, h.desired_speed, changer);
+        let mut w = blc_scene(Some(30.0), false, 0.5);
+        w.v = 26.0;
+        w.target_leader = None;
+        w.target_follower = Some(TargetFollower {
+            gap_m: 30.0,
+            v_mps: 30.0,
+            yields: false,
+            a_after,
+        });
+        let published = blc(&w);
+        assert!(published.change && published.lag_ok);
+        let safe = SafeDecel {
+            normal_mps2: 3.0,
+            mandatory_mps2: 4.0,
+        };
+        w.safe = Some(safe);
+        let refused = blc(&w);
+        assert!(!refused.change && !refused.lag_ok && refused.lead_ok);
+        // The same follower when it would only need 2.9 m/s².
+        w.target_follower = w
+            .target_follower
+            .map(|f| TargetFollower { a_after: -2.9, ..f });
+        assert!(blc(&w).change);
+        // The lead gap: the changer's own law behind its new leader (a_ant) is bounded too.
+        let mut m = blc_scene(None, true, 0.5);
+        m.target_leader = Some(Leader {
+            gap_m: 30.0,
+            v_mps: 14.0,
+        });
+        let open = blc(&m);
+        assert!(open.change && open.a_ant < -3.0, "a_ant = {}", open.a_ant);
+        m.safe = Some(safe);
+        assert!(
+            !blc(&m).lead_ok,
+            "a mandatory desire below 1: b_safe = 3 m/s²"
+        );
+        m.gamma = 1.0;
+        assert!(!blc(&m).lead_ok, "γ = 1: b_safe,m = 4 m/s² < 4.13");
+    }
+
+    /// A commanded change (mandatory, γ = 1) does not drop back behind a faster follower.
+    #[test]
+    fn blc_a_commanded_change_does_not_slow_for_a_faster_follower() {
+        let mut w = blc_scene(Some(1.0), true, 1.0);
+        w.target_follower = w
+            .target_follower
+            .map(|f| TargetFollower { v_mps: 30.0, ..f });
+        assert!(blc(&w).accel < 0.0, "BLC-Slow");
+        w.commanded = true;
+        let out = blc(&w);
+        assert!(
+            !out.change && out.accel == 0.0,
+            "holds its speed: {}",
+            out.accel
+        );
+        assert_eq!(commanded_target(-2.0, 1.0, true, false, true), 0.0);
+        assert_eq!(
+            commanded_target(-2.0, -0.5, true, false, true),
+            -0.5,
+            "own law brakes"
+        );
+        assert_eq!(
+            commanded_target(-2.0, 1.0, true, true, false),
+            0.0,
+            "no sync braking"
+        );
+        assert_eq!(commanded_target(0.5, 1.0, true, true, false), 0.5);
+        assert_eq!(
+            commanded_target(1.0, 1.0, true, false, true),
+            0.0,
+            "not alongside"
+        );
+        assert_eq!(
+            commanded_target(-2.0, 1.0, false, false, true),
+            -2.0,
+            "not commanded"
+        );
     }
 }

@@ -39,6 +39,9 @@
 //! | – | `yield_range_m` | 100 | fixed; farthest yield requester (rear ahead of the driver's front) \[D\] | m |
 //! | v_ref floor | `min_reference_speed_mps` | 2.3 | fixed | m/s |
 //! | – | `min_speed_gain_mps` | 2.34 (5 mph) | fixed; γ_d = 0 below this gain ([P15-doc] gate) | m/s |
+//! | – | `gap_rule` | safe | `safe` (spec 9.1) or `published` (spec 4.3 alone) | – |
+//! | b_safe | `safe_follower_decel_mps2` | 3.0 | fixed; MOBIL b_safe (spec 9.1) | m/s² (positive) |
+//! | b_safe,m | `mandatory_safe_decel_mps2` | 4.0 | fixed; mandatory change with γ ≥ 1 (spec 9.1) | m/s² (positive) |
 
 use crate::dist::Dist;
 use crate::human::HumanParams;
@@ -131,6 +134,15 @@ pub struct LaneChangeDists {
     /// A driver answers a yield request only from a requester whose rear is at most this far
     /// ahead of its front (spec 4.5 "immediate leaders in the adjacent lanes"; \[D\]) (m).
     pub yield_range_m: f64,
+    /// The gap-acceptance rule: `safe` (spec 4.3 and the safe decelerations of spec 9.1, the
+    /// default) or `published` (spec 4.3 alone).
+    pub gap_rule: crate::safegap::GapRule,
+    /// b_safe (m/s², positive): under the safe rule no change may make the new follower, or
+    /// the changer behind its new leader, brake harder than this by its own law (spec 9.1).
+    pub safe_follower_decel_mps2: f64,
+    /// b_safe,m (m/s², positive): the bound for a mandatory change whose desire has reached 1
+    /// (spec 9.1).
+    pub mandatory_safe_decel_mps2: f64,
 }
 
 impl Default for LaneChangeDists {
@@ -170,6 +182,10 @@ impl Default for LaneChangeDists {
             exit_no_change_m: 300.0,
             exit_lane_penalty: 0.5,
             yield_range_m: 100.0,
+            gap_rule: crate::safegap::GapRule::Safe,
+            // spec 9.1: MOBIL's b_safe (Kesting et al. 2007) kept below b_f = 4 m/s².
+            safe_follower_decel_mps2: 3.0,
+            mandatory_safe_decel_mps2: 4.0,
         }
     }
 }

@@ -11,6 +11,7 @@
 //! | [`human`] | human car following: min(Newell, IDM free term, Gipps), smoothing | 2 |
 //! | [`cav`] | CAV control: speed regulation, ACC, CACC, safety override, limits | 3 |
 //! | [`lanechange`] | lane-change desire, anticipated-minimum-gap acceptance, relaxation | 4 |
+//! | [`safegap`] | the safe-deceleration constraint on lag and lead gaps (an extension) | 9.1 |
 //! | [`cooperative`] | cooperative lane changes of automated CAVs (request, gap opening, safe join) | 9.2 |
 //! | [`driver`] | the lane-change decision procedure, rule by rule | 4.2, 4.3, 4.7 |
 //! | [`safety`] | emergency braking limit, time to collision, TET/TIT exposure | docs/safety.md |
@@ -27,6 +28,7 @@ pub mod driver;
 pub mod energy;
 pub mod human;
 pub mod lanechange;
+pub mod safegap;
 pub mod safety;
 
 /// What a follower knows about its leader: the net gap and the leader's speed.

@@ -441,6 +441,22 @@ pub(super) fn check_lane_change(c: &mut Checker, l: &LaneChangeDists, road_lengt
         l.min_reference_speed_mps > 0.0,
         "must be > 0 m/s",
     );
+    // spec 9.1: decelerations, positive; the urgent bound is the harder one.
+    c.value(
+        "lane_change.safe_follower_decel_mps2",
+        l.safe_follower_decel_mps2,
+        l.safe_follower_decel_mps2 > 0.0,
+        "must be > 0 m/s² (a deceleration, written positive)",
+    );
+    c.value(
+        "lane_change.mandatory_safe_decel_mps2",
+        l.mandatory_safe_decel_mps2,
+        l.mandatory_safe_decel_mps2 >= l.safe_follower_decel_mps2,
+        &format!(
+            "must be >= lane_change.safe_follower_decel_mps2 = {} m/s² (positive)",
+            num(l.safe_follower_decel_mps2)
+        ),
+    );
     match road_length {
         Some(len) => c.value(
             "lane_change.forbid_zone_m",

@@ -3,6 +3,7 @@
 mod common;
 
 use common::*;
+use platoonsim_model::safegap::GapRule;
 use platoonsim_scenario::{
     builtin, from_toml, load, load_with, to_toml, Overrides, ScenarioError, StrategyKind, BUILTINS,
 };
@@ -179,10 +180,14 @@ fn set_round_trips() {
             "detectors[0].position_m=4800",
             "human.desired_speed_kmh.mean=115",
             "lane_change.threshold={ mean = 0.3, sd = 0.1, min = 0.2, max = 0.5 }",
+            "lane_change.gap_rule=published",
+            "lane_change.safe_follower_decel_mps2=3.5",
             "name=renamed",
         ],
     )
     .unwrap();
+    assert_eq!(c.lane_change.gap_rule, GapRule::Published);
+    assert_eq!(c.lane_change.safe_follower_decel_mps2, 3.5);
     assert_eq!(c.seed, 3);
     assert_eq!(c.human.buffer_s, 0.2);
     assert_eq!(c.cav.time_gap_shares, vec![(0.6, 1.0)]);

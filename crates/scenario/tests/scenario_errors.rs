@@ -435,6 +435,14 @@ fn other_ranges() {
             "cav.max_automated_decel_mps2=-5",
             "cav.max_automated_decel_mps2 = -5: must be > 0 m/s² (a braking magnitude, positive)",
         ),
+        (
+            "lane_change.safe_follower_decel_mps2=-3",
+            "lane_change.safe_follower_decel_mps2 = -3: must be > 0 m/s² (a deceleration, written positive)",
+        ),
+        (
+            "lane_change.mandatory_safe_decel_mps2=2.5",
+            "lane_change.mandatory_safe_decel_mps2 = 2.5: must be >= lane_change.safe_follower_decel_mps2 = 3 m/s² (positive)",
+        ),
     ];
     for (set, expected) in cases {
         let p = problems(with_set(HOMOGENEOUS, &[set]));

@@ -11,7 +11,7 @@
 //! |---|---|---|
 //! | `Accelerate { accel_mps2, steps }` | this acceleration (m/s²) instead of the model's, and no lane change | after `steps` steps |
 //! | `DesiredSpeed { speed_mps }` | the model drives with this desired speed (CAV: set speed) | on `Release` |
-//! | `ChangeLane { side }` | a mandatory lane-change desire toward `side` (gap acceptance and before-lane-change behaviour of spec 4.3) | once in the target lane |
+//! | `ChangeLane { side }` | a mandatory lane-change desire toward `side` (gap acceptance of spec 4.3 and 9.1, before-lane-change behaviour of spec 4.3 without braking for the change: `driver::commanded_target`) | once in the target lane |
 //! | `Release` | every command of the vehicle ends; the model drives | at once |
 
 use crate::decide::View;

@@ -17,6 +17,7 @@ use platoonsim_model::cooperative as coop;
 use platoonsim_model::driver;
 use platoonsim_model::human;
 use platoonsim_model::lanechange::{self as lcm, Side};
+use platoonsim_model::safegap::{self, AutomatedFollower, GapRule, SafeDecel};
 use platoonsim_model::{Leader, Relax};
 
 /// Gap acceptance toward the target lane (spec 4.3) and the anticipated acceleration behind
@@ -83,6 +84,7 @@ pub(crate) fn decide(
                 takeover: false,
                 coop: false,
                 auto: AutoFlags::NONE,
+                urgent: false,
             },
         );
     }
@@ -154,7 +156,7 @@ impl View<'_> {
             mandatory: true,
             organize: false,
         };
-        self.before_lane_change(s, v, nb, leader, d).0
+        self.before_lane_change(s, v, nb, leader, d, true).0
     }
 
     /// The leader view (net gap, speed) of slot `ld` for vehicle `v`.
@@ -265,6 +267,7 @@ impl View<'_> {
             takeover: false,
             coop: false,
             auto: AutoFlags::NONE,
+            urgent: false,
         }
     }
 
@@ -291,7 +294,7 @@ impl View<'_> {
                 && self.cfg.cav.organize_while_automated
                 && v.lcs.relax == Relaxation::NONE
             {
-                let (blc, g) = self.before_lane_change(s, v, nb, leader, d);
+                let (blc, g) = self.before_lane_change(s, v, nb, leader, d, false);
                 if g.lead_ok && g.lag_ok {
                     return blc;
                 }
@@ -307,7 +310,7 @@ impl View<'_> {
                 }
                 return a;
             }
-            self.before_lane_change(s, v, nb, leader, d).0
+            self.before_lane_change(s, v, nb, leader, d, false).0
         }
     }
 
@@ -415,6 +418,7 @@ impl View<'_> {
             takeover: false,
             coop: false,
             auto: AutoFlags::new(false, fallback),
+            urgent: false,
         }
     }
 
@@ -435,6 +439,7 @@ impl View<'_> {
 
     /// BLC (spec 4.3): gap acceptance and the before-change behaviour; also whether both gaps
     /// are acceptable now (a follower that must split first does not change yet).
+    /// `commanded`: a change commanded from outside (command.rs).
     fn before_lane_change(
         &self,
         s: u32,
@@ -442,6 +447,7 @@ impl View<'_> {
         nb: &Neighbours,
         leader: Option<Leader>,
         d: Desire,
+        commanded: bool,
     ) -> (Decision, Gaps) {
         let tl = match d.side {
             Side::Left => nb.left_leader,
@@ -464,12 +470,32 @@ impl View<'_> {
         } else {
             self.relax_now(v)
         };
+        let safe = safe_decel(self.cfg);
         let target_follower = (tf != NONE).then(|| {
             let f = &self.traffic.vehicles[tf as usize];
-            driver::TargetFollower {
+            let changer = Leader {
                 gap_m: v.rear() - f.x,
+                v_mps: v.v,
+            };
+            driver::TargetFollower {
+                gap_m: changer.gap_m,
                 v_mps: f.v,
                 yields: matches!(f.mode, Mode::Ycf { to, .. } if to == v.id),
+                // spec 9.1: the follower's own law, evaluated only under the safe rule.
+                a_after: if safe.is_some() {
+                    follower_accel_after(
+                        self.cfg,
+                        self.road,
+                        self.sensed,
+                        self.clock.dt,
+                        f,
+                        tf,
+                        v,
+                        changer,
+                    )
+                } else {
+                    0.0
+                },
             }
         });
         let view = driver::BlcView {
@@ -488,6 +514,8 @@ impl View<'_> {
             organize_regardless: d.organize && self.cfg.cav.organize_regardless_of_speed,
             must_split: self.sensed[s as usize].linked,
             in_accel_lane: !self.road.geom.plain && self.sensed[s as usize].here.accel,
+            commanded,
+            safe,
         };
         let blc = driver::before_lane_change(&v.driver.human, &v.driver.lc, &view);
         (
@@ -513,6 +541,7 @@ impl View<'_> {
                 takeover,
                 coop: false,
                 auto: AutoFlags::NONE,
+                urgent: safegap::urgent(d.mandatory, d.gamma),
             },
             Gaps {
                 lead_ok: blc.lead_ok,
@@ -521,6 +550,66 @@ impl View<'_> {
             },
         )
     }
+}
+
+/// The safe rule's decelerations (spec 9.1), `None` under the published rule.
+#[inline]
+pub(crate) fn safe_decel(cfg: &Config) -> Option<SafeDecel> {
+    let l = &cfg.lane_change;
+    (l.gap_rule == GapRule::Safe).then_some(SafeDecel {
+        normal_mps2: l.safe_follower_decel_mps2,
+        mandatory_mps2: l.mandatory_safe_decel_mps2,
+    })
+}
+
+/// The acceleration the new follower `f` (slot `fs`, in the target lane) would ask for by its
+/// own law with the changer `c` cut in ahead of it at `changer` (net gap, speed), spec 9.1:
+/// a human driver (or a CAV driven by hand) by the human model relaxed as after a cut-in (the
+/// engine relaxes it, `execute.rs`); an automated CAV by its ACC or CACC controller with its
+/// limits, not relaxed (spec 4.6). Shared by the decide phase and the re-check at execution.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn follower_accel_after(
+    cfg: &Config,
+    road: &RoadState,
+    sensed: &[Sensed],
+    dt: f64,
+    f: &Vehicle,
+    fs: u32,
+    c: &Vehicle,
+    changer: Leader,
+) -> f64 {
+    let v_des = road.desired_speed_in(v_des_of(f), f.lane as usize, sensed[fs as usize].here.right);
+    if !f.automated() {
+        return safegap::human_follower_accel(&f.driver.human, &f.driver.lc, f.v, v_des, changer);
+    }
+    let p = &cfg.cav;
+    let changer_is_cav = c.is_cav();
+    // The sense phase's link test (sense.rs): a CAV within the 2 s band joins the changer's
+    // string with its own t_C, otherwise it keeps the inter-platoon gap (spec 3.6).
+    let joins = changer_is_cav
+        && changer.gap_m
+            <= p.cacc_tg_band_s[1] * f.v + p.standstill_gap_m + p.speed_control_min_gap_m;
+    let target_gap_s = if !changer_is_cav {
+        p.acc_time_gap_s
+    } else if joins {
+        f.cacc.gap_s
+    } else {
+        p.inter_platoon_gap_s
+    };
+    safegap::automated_follower_accel(
+        p,
+        &AutomatedFollower {
+            v: f.v,
+            a: f.a,
+            v_des,
+            time_gap_s: f.cacc.time_gap_s,
+            target_gap_s,
+            family: f.cacc.family,
+            changer_is_cav,
+        },
+        changer,
+        dt,
+    )
 }
 
 /// ρ_jam of the anticipation rule (spec 4.2): 1000/6 veh/km.
@@ -699,7 +788,7 @@ impl View<'_> {
         }
         let mut change = false;
         if answered {
-            let (_, g) = self.before_lane_change(s, v, nb, leader, d);
+            let (_, g) = self.before_lane_change(s, v, nb, leader, d, false);
             let lag = Leader {
                 gap_m: v.rear() - f.x,
                 v_mps: v.v,

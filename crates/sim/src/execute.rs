@@ -1,7 +1,9 @@
 //! Phase 4 (lane changes): accepted changes are applied instantaneously (spec 4.4, 6.14),
 //! front to back and lane by lane, each re-checked against the positions after integration
-//! and after the changes already applied in this step.
+//! and after the changes already applied in this step; under the safe rule (spec 9.1) the
+//! re-check includes the safe decelerations of both gaps.
 
+use crate::config::Config;
 use crate::events::Event;
 use crate::sense::NONE;
 use crate::state::{Clock, RoadState, Scratch, Traffic, Watch};
@@ -10,12 +12,13 @@ use platoonsim_model::cav::CavParams;
 use platoonsim_model::cooperative as coop;
 use platoonsim_model::human;
 use platoonsim_model::lanechange::{self as lcm, Side};
+use platoonsim_model::safegap;
 use platoonsim_model::Leader;
 
 /// Phase 4: reads the clock, the road and the decisions; writes the vehicles and lanes, the
 /// lane-change bookkeeping and, with an observer, the step's events.
 pub(crate) fn apply_lane_changes(
-    cav: &CavParams,
+    cfg: &Config,
     clock: &Clock,
     origin_m: f64,
     road: &RoadState,
@@ -41,14 +44,14 @@ pub(crate) fn apply_lane_changes(
     }
     for i in 0..scratch.change_list.len() {
         let (s, side) = scratch.change_list[i];
-        try_change(cav, clock, origin_m, road, traffic, scratch, watch, s, side);
+        try_change(cfg, clock, origin_m, road, traffic, scratch, watch, s, side);
     }
 }
 
 /// One accepted change, re-checked on the current positions.
 #[allow(clippy::too_many_arguments)]
 fn try_change(
-    cav: &CavParams,
+    cfg: &Config,
     clock: &Clock,
     origin_m: f64,
     road: &RoadState,
@@ -91,8 +94,10 @@ fn try_change(
             return;
         }
     }
-    if tf != NONE {
-        let f = &traffic.vehicles[tf as usize];
+    // spec 9.1: the bound of this change under the safe rule.
+    let bound =
+        crate::decide::safe_decel(cfg).map(|b| b.bound(scratch.decisions[s as usize].urgent));
+    if tf != NONE || (bound.is_some() && lead.is_some()) {
         let a_ant = human::target_accel(
             &v.driver.human,
             v.v,
@@ -104,21 +109,48 @@ fn try_change(
             lead,
             lcm::gap_relax(&v.driver.lc),
         );
-        if !lcm::accept_lag_gap(
-            &v.driver.human,
-            &v.driver.lc,
-            v.rear() - f.x,
-            v.v,
-            f.v,
-            a_ant,
-        ) {
-            return;
+        if let Some(b) = bound {
+            if lead.is_some() && !safegap::brakes_safely(a_ant, b) {
+                return;
+            }
+        }
+        if tf != NONE {
+            let f = &traffic.vehicles[tf as usize];
+            let changer = Leader {
+                gap_m: v.rear() - f.x,
+                v_mps: v.v,
+            };
+            if !lcm::accept_lag_gap(
+                &v.driver.human,
+                &v.driver.lc,
+                changer.gap_m,
+                v.v,
+                f.v,
+                a_ant,
+            ) {
+                return;
+            }
+            if let Some(b) = bound {
+                let a_f = crate::decide::follower_accel_after(
+                    cfg,
+                    road,
+                    &scratch.sensed,
+                    clock.dt,
+                    f,
+                    tf,
+                    v,
+                    changer,
+                );
+                if !safegap::brakes_safely(a_f, b) {
+                    return;
+                }
+            }
         }
     }
     // A cooperative change (spec 9.2) stays safe by construction on the updated positions:
     // neither new pair needs braking harder than b_co under its own automated law.
     let cooperative = scratch.decisions[s as usize].coop;
-    if cooperative && !coop_still_safe(cav, clock.dt, road, traffic, scratch, s, to, tl, tf) {
+    if cooperative && !coop_still_safe(&cfg.cav, clock.dt, road, traffic, scratch, s, to, tl, tf) {
         return;
     }
     // Execute.

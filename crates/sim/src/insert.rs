@@ -216,6 +216,40 @@ pub(crate) fn create(cfg: &Config, id: u64, x: f64, t: f64, origin: u32) -> Vehi
     }
 }
 
+/// Tests: put a vehicle of `kind` with the mean driver (spec 2.6, 4.9) in `lane` at `x` with
+/// speed `v`, in steady state (a = 0), automated if a CAV; returns its id. The lane list stays
+/// sorted front first.
+#[cfg(test)]
+pub(crate) fn place_for_test(
+    sim: &mut crate::Simulation,
+    kind: Kind,
+    lane: usize,
+    x: f64,
+    v: f64,
+) -> u64 {
+    let id = sim.traffic.next_id;
+    sim.traffic.next_id += 1;
+    let mut veh = create(&sim.cfg, id, x, 0.0, 0);
+    veh.kind = kind;
+    veh.driver.human = sim.cfg.human.mean();
+    veh.driver.lc = sim.cfg.lane_change.mean();
+    veh.lane = lane as u32;
+    veh.x = x;
+    veh.x_prev = x;
+    veh.v = v;
+    if kind == Kind::Cav {
+        veh.cacc.gap_s = sim.cfg.cav.acc_time_gap_s;
+        veh.cacc.time_gap_s = sim.cfg.cav.acc_time_gap_s;
+        veh.cacc.family = Family::Gap;
+    }
+    veh.stats.entered_step = sim.clock.step;
+    let s = sim.traffic.alloc(veh);
+    let list = &sim.traffic.lanes[lane];
+    let at = list.partition_point(|&o| sim.traffic.vehicles[o as usize].x > x);
+    sim.traffic.lanes[lane].insert(at, s);
+    id
+}
+
 /// What the insertion phase reads and writes.
 pub(crate) struct Inserting<'a> {
     pub cfg: &'a Config,

@@ -38,6 +38,8 @@ mod sim;
 pub mod snapshot;
 mod state;
 pub mod summary;
+#[cfg(test)]
+mod tests_safe_gaps;
 pub mod vehicle;
 mod yielding;
 

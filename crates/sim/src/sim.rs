@@ -39,6 +39,8 @@ pub(crate) struct Decision {
     /// Spec 9.3: AEB intervenes (the automation's demand exceeds its braking bound); an
     /// automated CAV behind a CAV runs ACC for want of V2V beacons.
     pub auto: crate::vehicle::AutoFlags,
+    /// The change is mandatory with γ ≥ 1: the safe rule's harder bound (spec 9.1).
+    pub urgent: bool,
 }
 
 /// The whole simulation state.
@@ -327,7 +329,7 @@ impl Simulation {
         self.integrate();
         let origin = self.origin_m();
         crate::execute::apply_lane_changes(
-            &self.cfg.cav,
+            &self.cfg,
             &self.clock,
             origin,
             &self.road,

@@ -169,9 +169,11 @@ fn packet_loss_is_deterministic_per_seed() {
 #[test]
 fn with_every_option_off_the_bound_only_relabels_braking() {
     // Defaults: no lag, no delay, no loss, D_auto = 5 m/s². A bound of 100 m/s² (no AEB ever)
-    // gives the same run except for the count. Mixed traffic with PD at 2,500 veh/h/lane, where
-    // the CAVs' safety override does brake beyond 5 m/s² (after cut-ins).
-    let base = Config::homogeneous(0.5, 2500.0, 1800.0, 0.0, 1).with_pd();
+    // gives the same run except for the count. Mixed traffic with PD at 2,500 veh/h/lane under
+    // the published gap rule (spec 4.3), where the CAVs' safety override does brake beyond
+    // 5 m/s² after cut-ins (the safe rule of spec 9.1 prevents those cut-ins).
+    let mut base = Config::homogeneous(0.5, 2500.0, 1800.0, 0.0, 1).with_pd();
+    base.lane_change.gap_rule = platoonsim_model::safegap::GapRule::Published;
     let mut loose = base.clone();
     loose.cav.max_automated_decel_mps2 = 100.0;
     let a = strip_wall(run(&base, None).unwrap());
