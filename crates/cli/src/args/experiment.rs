@@ -30,6 +30,9 @@ pub enum ExperimentArg {
     /// Flow-Aware PD and the dedicated lane, on the homogeneous road at the Table 3 demands
     /// (50 % CAV) and on SR-99 at --penetrations strictly between 0 and 1 (docs/energy.md).
     Energy,
+    /// Beyond the paper: the paper's Table 3 set-up under the published gap rule, the safe
+    /// one (the default) and with cooperative lane changes of automated CAVs (issue 29).
+    Behaviour,
 }
 
 impl From<ExperimentArg> for ExperimentName {
@@ -42,6 +45,7 @@ impl From<ExperimentArg> for ExperimentName {
             ExperimentArg::Sr99 => ExperimentName::Sr99,
             ExperimentArg::Sr99Demand => ExperimentName::Sr99Demand,
             ExperimentArg::Energy => ExperimentName::Energy,
+            ExperimentArg::Behaviour => ExperimentName::Behaviour,
         }
     }
 }

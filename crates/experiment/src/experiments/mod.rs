@@ -2,13 +2,15 @@
 //! `flow-aware` (issue 3's acceptance test of the Flow-Aware strategy),
 //! `calibrate-flow-aware` (a grid search for the Flow-Aware thresholds), `sr99` (the SR-99
 //! corridor: paper Table 4 and Figs. 6-8), `sr99-demand` (the search for the SR-99 demand
-//! scale at which the recurrent bottlenecks show) and, beyond the paper, `energy` (fuel with
-//! and without organization, docs/energy.md).
+//! scale at which the recurrent bottlenecks show) and, beyond the paper, `behaviour` (Table 3
+//! under the published and the safe gap rule and with cooperative lane changes) and `energy`
+//! (fuel with and without organization, docs/energy.md).
 //!
 //! [`run_experiment`] runs one into `<out>/<name>/`: the run files in `runs/`, then
 //! `runs.csv`, `summary.csv`, `summary.md`, `run.json` and the figures (`capacity.png`/`.svg`,
 //! `sensitivity.png`/`.svg`, …), all written atomically.
 
+mod behaviour;
 pub mod calibrate;
 mod capacity;
 pub mod energy;
@@ -46,6 +48,9 @@ pub enum ExperimentName {
     Sr99Demand,
     /// Beyond the paper: fuel with and without organization (issue 23).
     Energy,
+    /// Beyond the paper: Table 3 under the published and the safe gap rule and with
+    /// cooperative lane changes (issue 29).
+    Behaviour,
 }
 
 impl ExperimentName {
@@ -61,7 +66,7 @@ impl ExperimentName {
     pub const NETWORK: [ExperimentName; 2] = [ExperimentName::Sr99, ExperimentName::Sr99Demand];
 
     /// The experiments beyond the paper that `reproduce` runs last.
-    pub const BEYOND: [ExperimentName; 1] = [ExperimentName::Energy];
+    pub const BEYOND: [ExperimentName; 2] = [ExperimentName::Behaviour, ExperimentName::Energy];
 
     /// The name on the command line and of the output directory.
     pub fn as_str(self) -> &'static str {
@@ -73,6 +78,7 @@ impl ExperimentName {
             ExperimentName::Sr99 => "sr99",
             ExperimentName::Sr99Demand => "sr99-demand",
             ExperimentName::Energy => "energy",
+            ExperimentName::Behaviour => "behaviour",
         }
     }
 
@@ -93,6 +99,9 @@ impl ExperimentName {
             }
             ExperimentName::Energy => {
                 "Energy with platoon organization: fuel per vehicle-km (beyond the paper)"
+            }
+            ExperimentName::Behaviour => {
+                "Driver behaviour: the published and the safe gap rule, cooperative lane changes (beyond the paper)"
             }
         }
     }
@@ -116,6 +125,7 @@ impl ExperimentName {
                 ExperimentName::Sr99 => sr99::cell_count(s),
                 ExperimentName::Sr99Demand => sr99_demand::max_cells(s),
                 ExperimentName::Energy => 0,
+                ExperimentName::Behaviour => behaviour::CELLS,
             }
     }
 }
@@ -345,6 +355,7 @@ pub fn run_experiment_with(
         ExperimentName::Sr99 => sr99::run(settings, &runner, &seeds),
         ExperimentName::Sr99Demand => sr99_demand::run(settings, &runner, &seeds),
         ExperimentName::Energy => energy::run(settings, &runner, &seeds),
+        ExperimentName::Behaviour => behaviour::run(settings, &runner, &seeds),
     };
     bar.finish_and_clear();
     let Done {
@@ -363,6 +374,7 @@ pub fn run_experiment_with(
         ExperimentName::Sr99 => sr99::markdown(settings, &cells, &rows),
         ExperimentName::Sr99Demand => sr99_demand::markdown(settings, &cells, &rows, &extra),
         ExperimentName::Energy => energy::markdown(settings, &cells, &outcomes, &rows),
+        ExperimentName::Behaviour => behaviour::markdown(settings, &cells, &outcomes, &rows),
     };
     let (body, checks) = with_safety(name, &cells, &outcomes, body, checks);
     let mut figures = match name {
@@ -373,6 +385,7 @@ pub fn run_experiment_with(
         ExperimentName::Sr99 => sr99_figures::all(&dir, &cells, &rows, &extra)?,
         ExperimentName::Sr99Demand => sr99_demand::figures(&dir, &extra)?,
         ExperimentName::Energy => energy::figure(&dir, &cells, &rows)?,
+        ExperimentName::Behaviour => Vec::new(),
     };
     if name != ExperimentName::CalibrateFlowAware {
         figures.extend(safety::braking_figure(&dir, &cells, &outcomes)?);
@@ -440,6 +453,7 @@ pub(crate) fn with_safety(
         ExperimentName::Sr99 => Some(&["penetration"]),
         ExperimentName::Sr99Demand => Some(&["penetration", "demand_scale"]),
         ExperimentName::Energy => Some(&["road", "penetration", "demand"]),
+        ExperimentName::Behaviour => Some(&["demand_vphpl", "variant"]),
         ExperimentName::CalibrateFlowAware => None,
     };
     let mut md = safety::warning_md(cells, outcomes);
@@ -599,6 +613,7 @@ pub(crate) fn metric_label(metric: &str) -> &str {
         "max_sustained_flow_vphpl" => "capacity = highest 5-min discharge (veh/h/lane)",
         "discharge_change_pct" => "discharge change vs baseline (%)",
         "platoon_length_gain" => "L̄ gain vs baseline",
+        "platoon_length_ratio" => "L̄ relative to the baseline (ratio)",
         other => other,
     }
 }
