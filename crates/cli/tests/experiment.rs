@@ -252,7 +252,8 @@ fn reproduce_writes_the_report() {
         "## 2. Platoon organization at various demands (paper Table 3)",
         "## 3. Flow-Aware",
         "## 4. SR-99 corridor (paper Table 4, Figs. 6-8)",
-        "## 5. Energy with platoon organization: fuel per vehicle-km (beyond the paper)",
+        "## 5. Driver behaviour: the published and the safe gap rule, cooperative lane changes (beyond the paper)",
+        "## 6. Energy with platoon organization: fuel per vehicle-km (beyond the paper)",
         "**Beyond the paper**",
         "**Quick mode**",
         "#### Table 4: ours vs the paper",
@@ -288,8 +289,8 @@ fn reproduce_writes_the_report() {
                 + md.matches("| ✗ **does not hold** |").count()
     );
     // capacity, sensitivity; sr99: contours, lanes, bars; sr99-demand: scales, contours;
-    // energy; and the braking histogram of each of the six experiments (issue 29).
-    assert_eq!(html.matches("src=\"data:image/png;base64,").count(), 8 + 6);
+    // energy; and the braking histogram of each of the seven experiments (issue 29).
+    assert_eq!(html.matches("src=\"data:image/png;base64,").count(), 8 + 7);
     assert!(out.join("capacity/capacity.svg").is_file());
     for exp in [
         "capacity",
@@ -297,6 +298,7 @@ fn reproduce_writes_the_report() {
         "flow-aware",
         "sr99",
         "sr99-demand",
+        "behaviour",
         "energy",
     ] {
         assert!(out.join(exp).join("summary.csv").is_file(), "{exp}");
