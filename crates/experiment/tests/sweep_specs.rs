@@ -84,6 +84,19 @@ fn same_runs(name: ExperimentName, file: &str, derived: &[(&str, &str)]) {
             (!t.is_empty()).then(|| t.parse().unwrap())
         };
         for (m, v) in &o.fields.0 {
+            if m == "platoon_length_ratio" {
+                // L̄_PO / L̄_B per seed pair: the sweep gives the same pair as a percentage.
+                let pct = value("avg_platoon_length_pct");
+                match pct {
+                    Some(p) => assert!(
+                        (1.0 + p / 100.0 - v).abs() <= 1e-12 * v.abs(),
+                        "{labels:?} seed {} {m}: {v} vs {p} %",
+                        o.seed
+                    ),
+                    None => assert!(v.is_nan(), "{labels:?} seed {} {m}: {v} vs empty", o.seed),
+                }
+                continue;
+            }
             let theirs = derived
                 .iter()
                 .find(|(e, _)| e == m)
