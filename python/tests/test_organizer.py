@@ -32,8 +32,10 @@ def organizing_changes(sim):
 
 def test_a_python_organizer_is_asked_every_n_steps_and_moves_cavs():
     org = KeepRight()
-    sim = platoonsim.Simulation("homogeneous", seed=6, overrides=RUN, organizer=org)
-    base = platoonsim.Simulation("homogeneous", seed=6, overrides=RUN)
+    # Under the paper's gap rule (spec 4.3); the safe rule of spec 9.1 refuses some of the gaps.
+    run = {**RUN, "lane_change.gap_rule": "published"}
+    sim = platoonsim.Simulation("homogeneous", seed=6, overrides=run, organizer=org)
+    base = platoonsim.Simulation("homogeneous", seed=6, overrides=run)
     sim.run_until(500.0)
     base.run_until(500.0)
     assert len(org.calls) == 1000  # steps 0, 5, 10, ... 4995

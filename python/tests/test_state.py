@@ -93,7 +93,9 @@ def test_events_agree_with_the_summary():
     times = [e["t_s"] for e in events]
     assert times == sorted(times)
     lc = by["lane_change"][0]
-    assert set(lc) == {"t_s", "type", "id", "kind", "from_lane", "to_lane", "side", "x_m", "reason"}
+    assert set(lc) == {
+        "t_s", "type", "id", "kind", "from_lane", "to_lane", "side", "x_m", "reason", "cooperative",
+    }
     assert abs(lc["from_lane"] - lc["to_lane"]) == 1
     reasons = {e["reason"] for e in by["lane_change"]}
     assert reasons <= {"mandatory", "discretionary", "organizing", "commanded"}
