@@ -164,7 +164,7 @@ impl Serialize for CountedMeasures {
 }
 
 /// A histogram of the hard-braking episodes' peak decelerations by kind: bin i holds the
-/// peaks in [`lower_edges_mps2`][i], next edge) (the last bin is open).
+/// peaks from `lower_edges_mps2[i]` up to the next edge (the last bin is open).
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct BrakingPeaks {
     pub lower_edges_mps2: Vec<f64>,
