@@ -110,6 +110,34 @@ pub fn cell_name(labels: &Labels) -> String {
         .join(", ")
 }
 
+/// A figure panel's title: the labels that tell the cells apart (a label with one value in
+/// every cell is left out), short names first: `variant published, demand 1000, strategy pd`.
+pub fn panel_name(cells: &[Cell], c: usize) -> String {
+    let varies = |k: &str| {
+        let first = cells[0].labels.get(k);
+        cells.iter().any(|x| x.labels.get(k) != first)
+    };
+    fn short(k: &str) -> &str {
+        match k {
+            "demand_vphpl" => "demand",
+            "penetration" => "CAV",
+            other => other,
+        }
+    }
+    let parts: Vec<String> = cells[c]
+        .labels
+        .0
+        .iter()
+        .filter(|(k, _)| varies(k))
+        .map(|(k, v)| format!("{} {v}", short(k)))
+        .collect();
+    if parts.is_empty() {
+        cell_name(&cells[c].labels)
+    } else {
+        parts.join(", ")
+    }
+}
+
 /// The list items of the failed cells (`- <experiment>: <cell>: 2 of 10 runs (seeds 3, 7)`),
 /// `prefix` before each cell (e.g. the experiment's name).
 pub fn failed_list(cells: &[Cell], failed: &[Failed], prefix: &str) -> String {
@@ -347,7 +375,7 @@ pub fn braking_figure(
     let charts: Vec<platoonsim_plot::Bars> = panels
         .into_iter()
         .map(|(c, h, v)| platoonsim_plot::Bars {
-            title: cell_name(&cells[c].labels),
+            title: panel_name(cells, c),
             y_label: "episodes per 100 veh-km".into(),
             groups: bin_labels(),
             series: vec![("human-driven".into(), h, None), ("CAV".into(), v, None)],
@@ -388,6 +416,25 @@ mod tests {
         assert_eq!(
             cell_name(&cells[2].labels),
             "demand_vphpl 1000, strategy pd"
+        );
+    }
+
+    #[test]
+    fn a_panel_names_only_the_labels_that_vary() {
+        let c = platoonsim_sim::Config::homogeneous(0.5, 1000.0, 60.0, 0.0, 1);
+        let cell = |d: &str, k: &str| Cell {
+            labels: Labels::new()
+                .with("penetration", "0.5")
+                .with("demand_vphpl", d)
+                .with("strategy", k),
+            config: c.clone(),
+        };
+        let cells = [cell("1000", "none"), cell("2500", "pd")];
+        assert_eq!(panel_name(&cells, 1), "demand 2500, strategy pd");
+        // A single cell: every label, as in the tables.
+        assert_eq!(
+            panel_name(&cells[..1], 0),
+            "penetration 0.5, demand_vphpl 1000, strategy none"
         );
     }
 }
