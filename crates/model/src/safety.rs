@@ -35,7 +35,7 @@
 //! | b | `human.max_decel`, `cav.max_decel` | −4.0 | m/s² (negative) | seed paper |
 //! | TTC* | `safety.ttc_threshold_s` | 1.5 | s | FHWA SSAM (Gettman & Head 2003) |
 //! | d_hard | `HARD_BRAKING_MPS2` (constant) | 4.0 | m/s² (positive) | the seed paper's normal limit b |
-//! | d_severe | `SEVERE_BRAKING_MPS2` (constant) | 6.0 | m/s² (positive) | 100-Car study near-crash trigger, ~0.6 g [R] |
+//! | d_severe | `SEVERE_BRAKING_MPS2` (constant) | 6.0 | m/s² (positive) | 100-Car study near-crash trigger, ~0.6 g \[R\] |
 
 use serde::{Deserialize, Serialize};
 
