@@ -598,8 +598,11 @@ fn no_value_in_any_key_makes_loading_panic() {
 
 #[test]
 fn readme_example_scenario_is_valid() {
-    let readme = include_str!("../../../README.md");
-    let start = readme.find("```toml\n").expect("README has a TOML example") + "```toml\n".len();
+    let readme = include_str!("../../../docs/scenario-files.md");
+    let start = readme
+        .find("```toml\n")
+        .expect("docs/scenario-files.md has a TOML example")
+        + "```toml\n".len();
     let len = readme[start..].find("```").unwrap();
     let c = parse(&readme[start..start + len]).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(c.name, "two_lane_test");
