@@ -239,30 +239,40 @@ pub fn add_paired(
     name: &str,
     percent: bool,
 ) {
-    let reference: Vec<(u64, f64)> = outcomes
-        .iter()
-        .filter(|o| o.cell == base)
-        .filter_map(|o| o.fields.get(metric).map(|v| (o.seed, v)))
-        .collect();
-    for o in outcomes.iter_mut().filter(|o| o.cell == cell) {
-        let b = reference
-            .iter()
-            .find(|(s, _)| *s == o.seed)
-            .map(|(_, v)| *v);
-        let x = o.fields.get(metric);
-        let d = match (x, b) {
-            (Some(x), Some(b)) if percent && b != 0.0 => 100.0 * (x - b) / b,
-            (Some(x), Some(b)) if !percent => x - b,
-            _ => f64::NAN,
-        };
-        o.fields.set(name, d);
-    }
+    pair_with_base(outcomes, base, cell, metric, name, |x, b| {
+        if !percent {
+            x - b
+        } else if b != 0.0 {
+            100.0 * (x - b) / b
+        } else {
+            f64::NAN
+        }
+    });
 }
 
 /// Add a paired ratio to the runs of `cell`: for each of its runs, the run of `base` with the
 /// same seed gives b, and `name` = x / b (e.g. the L̄ gain L̄_PO / L̄_B). Runs without a
 /// partner, or with b = 0 or a missing value, get NaN.
 pub fn add_ratio(outcomes: &mut [Outcome], base: usize, cell: usize, metric: &str, name: &str) {
+    pair_with_base(outcomes, base, cell, metric, name, |x, b| {
+        if b != 0.0 {
+            x / b
+        } else {
+            f64::NAN
+        }
+    });
+}
+
+/// For each run of `cell`, `name` = `f(x, b)` with x its `metric` and b the `metric` of the
+/// run of `base` with the same seed; NaN without a partner or a value.
+fn pair_with_base(
+    outcomes: &mut [Outcome],
+    base: usize,
+    cell: usize,
+    metric: &str,
+    name: &str,
+    f: impl Fn(f64, f64) -> f64,
+) {
     let reference: Vec<(u64, f64)> = outcomes
         .iter()
         .filter(|o| o.cell == base)
@@ -273,11 +283,11 @@ pub fn add_ratio(outcomes: &mut [Outcome], base: usize, cell: usize, metric: &st
             .iter()
             .find(|(s, _)| *s == o.seed)
             .map(|(_, v)| *v);
-        let r = match (o.fields.get(metric), b) {
-            (Some(x), Some(b)) if b != 0.0 => x / b,
+        let d = match (o.fields.get(metric), b) {
+            (Some(x), Some(b)) => f(x, b),
             _ => f64::NAN,
         };
-        o.fields.set(name, r);
+        o.fields.set(name, d);
     }
 }
 
