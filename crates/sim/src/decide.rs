@@ -284,37 +284,32 @@ impl View<'_> {
         wall: bool,
         d: Desire,
     ) -> Decision {
-        {
-            // With `cav.organize_while_automated` [D] a CAV's automation stays engaged while
-            // its driver waits for a gap toward the PD lane: the driver takes over only once
-            // both gaps are acceptable (a leader then changes at once, a follower splits first,
-            // spec 3.6.4). Meanwhile the request stays visible to neighbours (BLC, spec 4.5)
-            // and, while the lag gap is acceptable, the automation holds back as the driver's
-            // discretionary synchronization would (no acceleration beyond what the target-lane
-            // leader allows; it never brakes for it). A driver who took over and lost the gap
-            // hands back once the relaxation has ended.
-            if d.organize
-                && self.cfg.cav.organize_while_automated
-                && v.lcs.relax == Relaxation::NONE
-            {
-                let (blc, g) = self.before_lane_change(s, v, nb, leader, d, false);
-                if g.lead_ok && g.lag_ok {
-                    return blc;
-                }
-                let held = Some((g.lag_ok, g.a_ant));
-                let mut a = self.automated_decision(s, v, nb, leader, wall, held);
-                if a.mode == Mode::Cf {
-                    a.mode = Mode::Blc {
-                        side: d.side,
-                        mandatory: false,
-                        auto: true,
-                        ask: 0,
-                    };
-                }
-                return a;
+        // With `cav.organize_while_automated` [D] a CAV's automation stays engaged while
+        // its driver waits for a gap toward the PD lane: the driver takes over only once
+        // both gaps are acceptable (a leader then changes at once, a follower splits first,
+        // spec 3.6.4). Meanwhile the request stays visible to neighbours (BLC, spec 4.5)
+        // and, while the lag gap is acceptable, the automation holds back as the driver's
+        // discretionary synchronization would (no acceleration beyond what the target-lane
+        // leader allows; it never brakes for it). A driver who took over and lost the gap
+        // hands back once the relaxation has ended.
+        if d.organize && self.cfg.cav.organize_while_automated && v.lcs.relax == Relaxation::NONE {
+            let (blc, g) = self.before_lane_change(s, v, nb, leader, d, false);
+            if g.lead_ok && g.lag_ok {
+                return blc;
             }
-            self.before_lane_change(s, v, nb, leader, d, false).0
+            let held = Some((g.lag_ok, g.a_ant));
+            let mut a = self.automated_decision(s, v, nb, leader, wall, held);
+            if a.mode == Mode::Cf {
+                a.mode = Mode::Blc {
+                    side: d.side,
+                    mandatory: false,
+                    auto: true,
+                    ask: 0,
+                };
+            }
+            return a;
         }
+        self.before_lane_change(s, v, nb, leader, d, false).0
     }
 
     /// An automated CAV's decision: ACC / CACC / speed regulation (spec 3). With the spec 6.5
