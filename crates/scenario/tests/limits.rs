@@ -213,7 +213,7 @@ fn trajectory_memory_is_estimated_and_refused_above_4_gib() {
         e.contains("--trajectory-window T0,T1, --trajectory-x X0,X1 or a longer period"),
         "{e}"
     );
-    // The README's example fits.
+    // The example of docs/commands.md fits.
     rec(1.0, Some((3600.0, 4500.0)), Some((0.0, 6000.0)))
         .check(&c)
         .unwrap();
