@@ -1,0 +1,85 @@
+//! Field traffic data and how well a simulation fits it.
+//!
+//! No platoonsim dependency: field files in, plain data out, like `plot`. The experiment crate
+//! turns a run's `detectors.csv` into the same [`Obs`] rows and compares them
+//! (`platoonsim compare`, `platoonsim calibrate`; docs/calibration-field.md).
+//!
+//! * [`Obs`]: one station's flow, speed and occupancy over one interval, the tidy row every
+//!   reader produces and every measure reads;
+//! * [`StationMeta`]: a station of a PeMS metadata file; [`Placed`]: a station placed on a
+//!   corridor (x in metres).
+//!
+//! Times are seconds since local midnight of the field day (`start_s`); one file holds one day.
+
+use serde::{Deserialize, Serialize};
+
+/// What a PeMS station measures (the metadata's `Type`).
+#[derive(Clone, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum StationKind {
+    /// `ML`: mainline.
+    Mainline,
+    /// `OR`: on-ramp.
+    OnRamp,
+    /// `FR`: off-ramp.
+    OffRamp,
+    /// `HV`: HOV lane.
+    Hov,
+    /// `FF`: freeway-to-freeway connector.
+    FreewayConnector,
+    /// Any other code, kept as written (`CD`, `CH`, `ML` variants of other districts).
+    Other(String),
+}
+
+/// One station and interval: the tidy row (`station, time, flow_vph, speed_kmh, occupancy`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Obs {
+    /// Station ID (PeMS) or detector name (a simulation).
+    pub station: String,
+    /// Start of the interval, seconds since local midnight of the day.
+    pub start_s: u32,
+    /// Interval length (s), e.g. 300.
+    pub interval_s: u32,
+    /// Flow over all lanes of the station (veh/h).
+    pub flow_vph: f64,
+    /// Mean speed (km/h); `None` where the station has none (ramps, broken loops).
+    pub speed_kmh: Option<f64>,
+    /// Occupancy, 0-1; `None` where missing.
+    pub occupancy: Option<f64>,
+}
+
+/// A station of a PeMS metadata file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StationMeta {
+    /// Station ID.
+    pub id: String,
+    /// Freeway number, e.g. `"99"`.
+    pub freeway: String,
+    /// Direction, e.g. `"N"`.
+    pub direction: String,
+    /// Absolute postmile (miles).
+    pub abs_pm: f64,
+    /// Mainline, ramp, HOV, …
+    pub kind: StationKind,
+    /// Lanes at the station.
+    pub lanes: u32,
+    /// Name, e.g. `"WB Florin Rd"`.
+    pub name: String,
+}
+
+/// A station placed on a corridor.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Placed {
+    /// Station ID.
+    pub station: String,
+    /// Position in the corridor's coordinate (m).
+    pub x_m: f64,
+    /// What it measures.
+    pub kind: StationKind,
+    /// Lanes (0 if unknown).
+    pub lanes: u32,
+    /// Name, for reports.
+    pub name: String,
+}
+
+/// Metres per mile (international mile), for postmiles.
+pub const METRES_PER_MILE: f64 = 1609.344;
