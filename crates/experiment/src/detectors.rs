@@ -148,12 +148,29 @@ fn from_csv_text(bytes: &[u8]) -> Result<Vec<DetectorRecord>, String> {
         .iter()
         .map(String::from)
         .collect();
-    if header != COLUMNS {
-        return Err(format!("unexpected columns {header:?}"));
+    // `platoonsim run` writes a `clock` column when the scenario sets `run.clock_start`: a
+    // label of the outputs, dropped here (the clock follows from interval_start_s).
+    let with_clock = header.len() == COLUMNS.len() + 1 && header[CLOCK_AT] == "clock" && {
+        let mut h = header.clone();
+        h.remove(CLOCK_AT);
+        h == COLUMNS
+    };
+    if header != COLUMNS && !with_clock {
+        return Err(format!(
+            "unexpected columns {header:?}; expected {COLUMNS:?} (a `clock` column after interval_start_s allowed)"
+        ));
     }
     let mut out = Vec::new();
     for (i, rec) in r.records().enumerate() {
-        let rec = rec.map_err(|e| e.to_string())?;
+        let mut rec = rec.map_err(|e| e.to_string())?;
+        if with_clock {
+            rec = rec
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| k != CLOCK_AT)
+                .map(|(_, v)| v)
+                .collect();
+        }
         let row = i + 2;
         let f = |k: usize| -> Result<f64, String> {
             rec[k]
@@ -245,5 +262,20 @@ mod tests {
              A,mainline,100.5,1,0,05:00:00,300,10,4,120,101.25,0.125\n\
              A,mainline,100.5,all,300,05:05:00,300,10,4,120,,0.125\n"
         );
+    }
+
+    #[test]
+    fn a_run_file_with_the_clock_column_reads_back_the_same_records() {
+        let recs = vec![
+            record("A", "1", 0.0, Some(101.25)),
+            record("A", "all", 300.0, None),
+        ];
+        let (bytes, _) = to_csv(&recs, Scope::All, Some(18_000)).unwrap();
+        assert_eq!(from_csv(&bytes).unwrap(), recs);
+        // A `clock` column anywhere else is not the run's layout.
+        let moved = String::from_utf8(bytes)
+            .unwrap()
+            .replacen("interval_start_s,clock", "clock,interval_start_s", 1);
+        assert!(from_csv(moved.as_bytes()).is_err());
     }
 }

@@ -21,6 +21,7 @@ pub mod corridor;
 pub mod design;
 pub mod detectors;
 pub mod experiments;
+pub mod field_obs;
 pub mod hash;
 pub mod paper;
 pub mod progress;
