@@ -132,6 +132,7 @@ fn a_run_cleans_stale_tmp_files_and_writes_the_summary_last() {
     let dir = scratch("tmp");
     std::fs::write(dir.join("trajectories.csv.tmp"), "time_s,id\n0,").unwrap();
     std::fs::write(dir.join("summary.json.tmp"), "{").unwrap();
+    std::fs::write(dir.join("detectors.csv.4242-7.tmp"), "detector").unwrap();
     std::fs::write(dir.join("notes.txt.tmp"), "mine").unwrap();
     let o = platoonsim(&[
         "run",
@@ -150,6 +151,7 @@ fn a_run_cleans_stale_tmp_files_and_writes_the_summary_last() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!dir.join("trajectories.csv.tmp").exists());
     assert!(!dir.join("summary.json.tmp").exists());
+    assert!(!dir.join("detectors.csv.4242-7.tmp").exists());
     assert!(dir.join("notes.txt.tmp").exists(), "not a file of the run");
     let modified = |name: &str| {
         std::fs::metadata(dir.join(name))

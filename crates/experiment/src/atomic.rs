@@ -52,8 +52,13 @@ fn tmp_path(path: &Path) -> io::Result<PathBuf> {
             format!("{} is not a file path", path.display()),
         )
     })?;
+    // Unique per process and write: two processes (the shards of a calibration computing the
+    // same run after a stale wait) or two threads may write one path at once, and each must
+    // rename only its own complete file. The `.tmp` ending is what stale-file cleanup looks for.
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let mut tmp_name = name.to_os_string();
-    tmp_name.push(".tmp");
+    tmp_name.push(format!(".{}-{n}.tmp", std::process::id()));
     Ok(path.with_file_name(tmp_name))
 }
 
@@ -103,10 +108,37 @@ mod tests {
         let blocked = dir.join("blocked");
         fs::create_dir_all(blocked.join("inside")).unwrap();
         assert!(write_atomic(&blocked, b"new").is_err());
-        assert!(!dir.join("blocked.tmp").exists());
+        let left: Vec<_> = fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.ends_with(".tmp"))
+            .collect();
+        assert!(left.is_empty(), "{left:?}");
         assert_eq!(fs::read(&path).unwrap(), b"old");
         // A missing directory is an error, not a panic.
         assert!(write_atomic(&dir.join("missing/x.csv"), b"x").is_err());
+    }
+
+    #[test]
+    fn concurrent_writers_of_one_path_each_rename_a_complete_file() {
+        // Shards that compute the same run write the same path at the same time: every write
+        // succeeds and the file is one writer's whole content, never a mix.
+        let dir = scratch("concurrent");
+        let path = dir.join("run.json");
+        let contents: Vec<Vec<u8>> = (0..8u8).map(|i| vec![b'a' + i; 200_000]).collect();
+        std::thread::scope(|s| {
+            for c in &contents {
+                let path = &path;
+                s.spawn(move || {
+                    for _ in 0..20 {
+                        write_atomic(path, c).unwrap();
+                    }
+                });
+            }
+        });
+        let got = fs::read(&path).unwrap();
+        assert!(contents.contains(&got));
+        assert_eq!(fs::read_dir(&dir).unwrap().count(), 1);
     }
 
     #[test]

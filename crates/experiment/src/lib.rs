@@ -16,6 +16,7 @@
 //! * [`atomic`]: the one atomic file writer (also used by the CLI).
 
 pub mod atomic;
+pub mod calibrate;
 pub mod columnar;
 pub mod corridor;
 pub mod design;

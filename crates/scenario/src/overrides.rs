@@ -198,6 +198,38 @@ pub(crate) fn parse_key(key: &str) -> Result<Vec<Segment>, String> {
     Ok(out)
 }
 
+/// The value at a dotted key (`human.buffer_s`, `network.on_ramps[0].demand_vph`) of a
+/// scenario document, read with the `--set` key syntax; `None` where the document has no such
+/// key. `Err` only for a key that is not well formed.
+pub fn get<'a>(doc: &'a Table, key: &str) -> Result<Option<&'a Value>, ScenarioError> {
+    let path = parse_key(key).map_err(|reason| ScenarioError::Override {
+        arg: key.to_string(),
+        reason,
+    })?;
+    let mut table = doc;
+    let mut found = None;
+    for (depth, seg) in path.iter().enumerate() {
+        let Some(mut v) = table.get(&seg.key) else {
+            return Ok(None);
+        };
+        if let Some(i) = seg.index {
+            match v.as_array().and_then(|a| a.get(i)) {
+                Some(item) => v = item,
+                None => return Ok(None),
+            }
+        }
+        if depth + 1 == path.len() {
+            found = Some(v);
+        } else {
+            match v.as_table() {
+                Some(t) => table = t,
+                None => return Ok(None),
+            }
+        }
+    }
+    Ok(found)
+}
+
 fn describe(path: &[Segment]) -> String {
     path.iter()
         .map(|s| match s.index {
@@ -310,6 +342,22 @@ mod tests {
         assert!(parse_key("a.").is_err());
         assert!(parse_key("a[1").is_err());
         assert!(parse_key("a b").is_err());
+    }
+
+    #[test]
+    fn get_reads_what_set_writes() {
+        let doc: Table = "[human]\nbuffer_s = 0.1\ndesired_speed_kmh = { mean = 110.0 }\n\
+                          [[detectors]]\nposition_m = 5.0\n"
+            .parse()
+            .unwrap();
+        let v = |k| get(&doc, k).unwrap().cloned();
+        assert_eq!(v("human.buffer_s"), Some(Value::Float(0.1)));
+        assert_eq!(v("human.desired_speed_kmh.mean"), Some(Value::Float(110.0)));
+        assert_eq!(v("detectors[0].position_m"), Some(Value::Float(5.0)));
+        assert_eq!(v("detectors[1].position_m"), None);
+        assert_eq!(v("human.buffer_s.x"), None);
+        assert_eq!(v("run.seed"), None);
+        assert!(get(&doc, "a b").is_err());
     }
 
     #[test]

@@ -82,8 +82,20 @@ pub const RUN_FILES: [&str; 11] = [
 /// Before a run into `dir`: remove the `.tmp` files an interrupted earlier run left of its own
 /// outputs. Other files of the directory are left alone.
 pub fn remove_stale_tmp(dir: &Path) -> Result<()> {
-    for name in RUN_FILES {
-        remove_stale(&dir.join(format!("{name}.tmp")))?;
+    // An atomic write's temporary file is `NAME.PID-N.tmp` (older builds: `NAME.tmp`).
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    for e in entries.flatten() {
+        let file = e.file_name().to_string_lossy().into_owned();
+        let ours = RUN_FILES.iter().any(|name| {
+            file.strip_prefix(name)
+                .and_then(|rest| rest.strip_suffix(".tmp"))
+                .is_some_and(|mid| mid.is_empty() || mid.starts_with('.'))
+        });
+        if ours {
+            remove_stale(&e.path())?;
+        }
     }
     Ok(())
 }

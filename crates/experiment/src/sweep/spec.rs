@@ -317,7 +317,7 @@ fn looks_like_path(s: &str) -> bool {
     s.contains(['/', '\\']) || s.ends_with(".toml")
 }
 
-fn valid_name(s: &str) -> bool {
+pub(crate) fn valid_name(s: &str) -> bool {
     !s.is_empty()
         && !s.starts_with('.')
         && s.len() <= 100
@@ -326,7 +326,7 @@ fn valid_name(s: &str) -> bool {
 }
 
 /// A dotted scenario key, as `--set` reads it; the seed is the sweep's own.
-fn check_key(k: &str) -> Result<(), String> {
+pub(crate) fn check_key(k: &str) -> Result<(), String> {
     if let Err(platoonsim_scenario::ScenarioError::Override { reason, .. }) =
         platoonsim_scenario::overrides::check_key(k)
     {

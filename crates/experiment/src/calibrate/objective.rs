@@ -1,0 +1,215 @@
+//! The calibration objective: a weighted sum of goodness-of-fit terms between the field
+//! observations and the mean of a candidate's replications, matched by station (the field
+//! station id equals the simulated detector's name) and interval start (clock time). Smaller
+//! is better; 0 is a perfect fit.
+//!
+//! | term | definition | source |
+//! |---|---|---|
+//! | `speed_rmsne` | √(1/N Σ ((v_sim − v_obs)/v_obs)²) over the pairs with a field speed > 0 | RMSNE, FHWA Traffic Analysis Toolbox III (2019 update), section on calibration measures; Hollander & Liu (2008) |
+//! | `flow_rmsne` | √(1/N Σ ((q_sim − q_obs)/q_obs)²) over the pairs with a field flow > 0 | as above |
+//! | `flow_geh` | mean over the pairs of GEH = √(2 (q_sim − q_obs)² / (q_sim + q_obs)), flows in veh/h (0 where both are 0) | UK DMRB vol. 12; FHWA Toolbox III |
+//!
+//! A simulated interval in which no vehicle crossed has no speed; against a field speed it
+//! counts as 0 km/h (a standstill), so a candidate that jams a detector is penalized rather
+//! than excused. GEH is defined on hourly volumes; here it is applied to the interval's flow
+//! rate in veh/h, as the Toolbox does for sub-hourly flows.
+//!
+//! | weight | default | why |
+//! |---|---|---|
+//! | `speed_rmsne` | 1.0 | speeds carry the congestion pattern the behaviour shapes |
+//! | `flow_rmsne` | 0.0 | off: the relative flow error is what GEH measures more robustly |
+//! | `flow_geh` | 0.1 | a mean GEH of 5 (the usual acceptance threshold) weighs like a speed RMSNE of 0.5 |
+//!
+//! This is the calibration's own small objective; it reads only [`Obs`] and can be replaced
+//! by the fit measures of `platoonsim_field::fit` without touching the optimizer.
+
+use platoonsim_field::Obs;
+use std::collections::BTreeMap;
+use toml::{Table, Value};
+
+/// The terms' names, in `trace.csv` order.
+pub const TERMS: [&str; 3] = ["speed_rmsne", "flow_rmsne", "flow_geh"];
+
+/// Weights of the terms (see the module documentation for the defaults).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Weights(pub [f64; 3]);
+
+impl Default for Weights {
+    fn default() -> Weights {
+        Weights([1.0, 0.0, 0.1])
+    }
+}
+
+impl Weights {
+    /// From the `[objective]` table; a missing term keeps its default. Errors:
+    /// (`objective.KEY`, message).
+    pub fn from_table(t: &Table) -> Result<Weights, (String, String)> {
+        let mut w = Weights::default();
+        for (k, v) in t {
+            let key = format!("objective.{k}");
+            let Some(i) = TERMS.iter().position(|n| n == k) else {
+                return Err((
+                    key,
+                    format!("unknown term; the terms are {}", TERMS.join(", ")),
+                ));
+            };
+            match super::params::number(v) {
+                Some(x) if x >= 0.0 => w.0[i] = x,
+                _ => return Err((key, format!("{v} is not a weight (a number >= 0)"))),
+            }
+        }
+        if w.0.iter().all(|&x| x == 0.0) {
+            return Err((
+                "objective".into(),
+                "every weight is 0: nothing to fit".into(),
+            ));
+        }
+        Ok(w)
+    }
+
+    /// As a TOML table (for the provenance).
+    pub fn to_table(self) -> Table {
+        TERMS
+            .iter()
+            .zip(self.0)
+            .map(|(k, w)| (k.to_string(), Value::Float(w)))
+            .collect()
+    }
+}
+
+/// The terms of one candidate, in [`TERMS`] order, and the number of matched pairs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Terms {
+    pub values: [f64; 3],
+    pub pairs: usize,
+}
+
+impl Terms {
+    /// The weighted sum.
+    pub fn objective(&self, w: &Weights) -> f64 {
+        self.values.iter().zip(w.0).map(|(v, w)| v * w).sum()
+    }
+}
+
+/// The terms between field and simulated observations (see the module documentation).
+/// `Err` names the stations when no (station, interval) pair matches, or when a weighted
+/// term has no pair it can use.
+pub fn terms(field: &[Obs], sim: &[Obs], w: &Weights) -> Result<Terms, String> {
+    let key = |o: &Obs| (o.station.clone(), o.start_s, o.interval_s);
+    let sim: BTreeMap<_, &Obs> = sim.iter().map(|o| (key(o), o)).collect();
+    let (mut speed, mut flow, mut geh) = (Vec::new(), Vec::new(), Vec::new());
+    for f in field {
+        let Some(s) = sim.get(&key(f)) else { continue };
+        if let Some(vf) = f.speed_kmh.filter(|&v| v > 0.0) {
+            let vs = s.speed_kmh.unwrap_or(0.0);
+            speed.push((vs - vf) / vf);
+        }
+        if f.flow_vph > 0.0 {
+            flow.push((s.flow_vph - f.flow_vph) / f.flow_vph);
+        }
+        let sum = s.flow_vph + f.flow_vph;
+        geh.push(if sum > 0.0 {
+            (2.0 * (s.flow_vph - f.flow_vph).powi(2) / sum).sqrt()
+        } else {
+            0.0
+        });
+    }
+    if geh.is_empty() {
+        let names = |v: Vec<&str>| {
+            let mut v = v;
+            v.dedup();
+            v.join(", ")
+        };
+        return Err(format!(
+            "no field observation matches a simulated one (same station/detector name, interval \
+             start and length); field stations: {}; simulated detectors: {}",
+            names(field.iter().map(|o| o.station.as_str()).collect()),
+            names(sim.keys().map(|k| k.0.as_str()).collect())
+        ));
+    }
+    let rms = |v: &[f64]| (v.iter().map(|e| e * e).sum::<f64>() / v.len() as f64).sqrt();
+    let parts: [&[f64]; 3] = [&speed, &flow, &geh];
+    let mut values = [0.0; 3];
+    for (i, p) in parts.iter().enumerate() {
+        if p.is_empty() {
+            if w.0[i] > 0.0 {
+                return Err(format!(
+                    "the term {} has no matched pair with a field value > 0",
+                    TERMS[i]
+                ));
+            }
+            continue;
+        }
+        values[i] = if i == 2 {
+            p.iter().sum::<f64>() / p.len() as f64
+        } else {
+            rms(p)
+        };
+    }
+    Ok(Terms {
+        values,
+        pairs: geh.len(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn obs(station: &str, t: u32, flow: f64, speed: Option<f64>) -> Obs {
+        Obs {
+            station: station.into(),
+            start_s: t,
+            interval_s: 300,
+            flow_vph: flow,
+            speed_kmh: speed,
+            occupancy: None,
+        }
+    }
+
+    #[test]
+    fn exact_values() {
+        let field = [
+            obs("a", 0, 1000.0, Some(100.0)),
+            obs("a", 300, 2000.0, Some(50.0)),
+            // No simulated counterpart: ignored.
+            obs("b", 0, 1000.0, Some(100.0)),
+        ];
+        let sim = [obs("a", 0, 1200.0, Some(90.0)), obs("a", 300, 2000.0, None)];
+        let t = terms(&field, &sim, &Weights::default()).unwrap();
+        assert_eq!(t.pairs, 2);
+        let close = |a: f64, b: f64| assert!((a - b).abs() < 1e-12 * b, "{a} vs {b}");
+        // speed errors -0.1 and -1 (no vehicle: 0 km/h): sqrt((0.01 + 1) / 2)
+        close(t.values[0], (1.01f64 / 2.0).sqrt());
+        // flow errors 0.2 and 0: sqrt(0.04 / 2)
+        close(t.values[1], (0.04f64 / 2.0).sqrt());
+        // GEH sqrt(2 * 200^2 / 2200) and 0, averaged
+        close(t.values[2], (80_000.0f64 / 2200.0).sqrt() / 2.0);
+        let w = Weights([1.0, 2.0, 0.5]);
+        assert_eq!(
+            t.objective(&w),
+            t.values[0] + 2.0 * t.values[1] + 0.5 * t.values[2]
+        );
+        // A perfect fit is 0.
+        assert_eq!(terms(&field, &field, &w).unwrap().objective(&w), 0.0);
+    }
+
+    #[test]
+    fn nothing_matched_names_the_stations() {
+        let e = terms(
+            &[obs("316140", 0, 1.0, None)],
+            &[obs("up", 0, 1.0, None)],
+            &Weights::default(),
+        )
+        .unwrap_err();
+        assert!(e.contains("316140") && e.contains("up"), "{e}");
+        // Flows only, but the speed term is weighted.
+        let e = terms(
+            &[obs("a", 0, 1.0, None)],
+            &[obs("a", 0, 1.0, None)],
+            &Weights::default(),
+        )
+        .unwrap_err();
+        assert!(e.contains("speed_rmsne"), "{e}");
+    }
+}
