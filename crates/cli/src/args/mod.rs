@@ -68,6 +68,12 @@ pub enum Command {
     /// scheduler's job array (--shard I/N, or SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX,
     /// HQ_TASK_ID); see docs/sweeps.md.
     Sweep(crate::commands::sweep::SweepArgs),
+    /// Fit chosen scenario keys to field data (tidy CSV of flows and speeds at stations named
+    /// like the scenario's detectors) with CMA-ES: each candidate is the mean of R replications;
+    /// write calibrated.toml, trace.csv, convergence.png, fit-before.md, fit-after.md and
+    /// run.json to OUT/NAME. Resumable, and shardable like a sweep (--shard I/N or a
+    /// scheduler's array index); see docs/calibrate.md.
+    Calibrate(crate::commands::calibrate::CalibrateArgs),
 }
 
 /// Which scenario, and what to change in it. Overrides act on the scenario file before it

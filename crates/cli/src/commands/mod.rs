@@ -1,7 +1,9 @@
 //! One module per command.
 
 pub mod bench;
+pub mod calibrate;
 pub mod experiment;
+mod field_input;
 pub mod reproduce;
 pub mod run;
 pub mod scenarios;
@@ -27,6 +29,7 @@ pub fn dispatch(cli: Cli) -> Result<ExitCode> {
         Command::TimeSpace(args) => time_space::time_space(&args),
         Command::View(args) => view::view(&args),
         Command::Sweep(args) => return sweep::sweep(&args, cli.quiet),
+        Command::Calibrate(args) => calibrate::calibrate(&args, cli.quiet),
     };
     done.map(|()| ExitCode::SUCCESS)
 }

@@ -54,21 +54,36 @@ pub struct SweepArgs {
 /// Which shard this process runs: the flag, else the environment (unless --collect or
 /// --no-shard).
 fn shard(args: &SweepArgs) -> Result<Option<Shard>> {
-    if let Some(text) = &args.shard {
+    resolve_shard(
+        args.shard.as_deref(),
+        args.shards,
+        args.collect || args.no_shard,
+    )
+}
+
+/// The shard of a sweep or a calibration: `--shard I/N` (checked against `--shards N`), else,
+/// unless `ignore_env`, a scheduler's array index (SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX,
+/// HQ_TASK_ID) with `--shards N` for the count where the scheduler does not give it.
+pub fn resolve_shard(
+    flag: Option<&str>,
+    shards: Option<u32>,
+    ignore_env: bool,
+) -> Result<Option<Shard>> {
+    if let Some(text) = flag {
         let s = Shard::parse(text)?;
-        if let Some(n) = args.shards {
+        if let Some(n) = shards {
             if n as usize != s.count {
                 bail!("--shards {n} contradicts --shard {text}");
             }
         }
         return Ok(Some(s));
     }
-    if args.collect || args.no_shard {
+    if ignore_env {
         return Ok(None);
     }
     let env = |k: &str| std::env::var(k).ok();
-    let s = Shard::from_env(&env, args.shards.map(|n| n as usize))?;
-    if s.is_none() && args.shards.is_some() {
+    let s = Shard::from_env(&env, shards.map(|n| n as usize))?;
+    if s.is_none() && shards.is_some() {
         bail!(
             "--shards is given but no shard index: pass --shard I/N, or run under a scheduler \
              that sets SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX or HQ_TASK_ID"
