@@ -5,70 +5,11 @@
 
 mod common;
 
+use common::calibrate::{dir, field, scenario, BUFFER_S, SPEED_KMH};
 use common::{platoonsim, read_csv, s, scratch, stderr, stdout};
-use platoonsim_experiment::field_obs::{mean_over_runs, to_obs};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Instant;
-
-fn dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/calibrate")
-}
-
-fn scenario() -> String {
-    dir().join("corridor.toml").display().to_string()
-}
-
-/// The field's parameter values.
-const BUFFER_S: f64 = 0.4;
-const SPEED_KMH: f64 = 100.0;
-
-/// "Field" data: the mean of six runs of the corridor with the field's values, at seeds
-/// 101..=106 (none of the calibration's seeds 1..=3, so the fit meets noise it has not seen),
-/// stations s1..s4, as tidy CSV.
-pub fn field(dir: &Path) -> PathBuf {
-    let mut runs = Vec::new();
-    for seed in 101..=106 {
-        let out = dir.join(format!("field-run-{seed}"));
-        let o = platoonsim(&[
-            "-q",
-            "run",
-            &scenario(),
-            "--set",
-            &format!("human.buffer_s={BUFFER_S}"),
-            "--set",
-            &format!("human.desired_speed_kmh.mean={SPEED_KMH}"),
-            "--seed",
-            &seed.to_string(),
-            "--out",
-            s(&out),
-        ]);
-        assert!(o.status.success(), "{}", stderr(&o));
-        let bytes = std::fs::read(out.join("detectors.csv")).unwrap();
-        let records = platoonsim_experiment::detectors::from_csv(&bytes).unwrap();
-        runs.push(to_obs(&records, 7 * 3600));
-    }
-    let mut csv = String::from("station,time,flow_vph,speed_kmh,occupancy\n");
-    for o in mean_over_runs(&runs) {
-        if !o.station.starts_with('s') {
-            continue;
-        }
-        let t = o.start_s;
-        csv.push_str(&format!(
-            "{},{:02}:{:02}:{:02},{},{},{}\n",
-            o.station,
-            t / 3600,
-            t / 60 % 60,
-            t % 60,
-            o.flow_vph,
-            o.speed_kmh.map_or(String::new(), |v| v.to_string()),
-            o.occupancy.map_or(String::new(), |v| v.to_string()),
-        ));
-    }
-    let path = dir.join("field.csv");
-    std::fs::write(&path, csv).unwrap();
-    path
-}
 
 fn calibrate(field: &Path, params: &str, out: &Path, extra: &[&str]) -> std::process::Output {
     let params = dir().join(params);

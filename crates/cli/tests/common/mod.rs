@@ -2,6 +2,8 @@
 //! a part of it).
 #![allow(dead_code)]
 
+pub mod calibrate;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 

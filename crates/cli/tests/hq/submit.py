@@ -1,9 +1,14 @@
-"""Run a platoonsim sweep on a real HyperQueue scheduler (issue 21): start a HyperQueue server
-and one worker on this machine (the `hyperqueue` package from PyPI embeds both), submit one job
-of N shard tasks, each `platoonsim sweep SPEC --shards N` reading its index from HQ_TASK_ID
-(0..N-1), plus a collect task that depends on all of them, wait, and report.
+"""Run a platoonsim sweep (or calibration) on a real HyperQueue scheduler (issue 21): start a
+HyperQueue server and one worker on this machine (the `hyperqueue` package from PyPI embeds
+both), submit one job of N shard tasks, each `platoonsim sweep SPEC --shards N` reading its index
+from HQ_TASK_ID (0..N-1), plus a collect task that depends on all of them
+(`platoonsim sweep SPEC --collect`), wait, and report.
 
-Usage: python3 submit.py PLATOONSIM SPEC OUT SHARDS WORKDIR
+Usage: python3 submit.py PLATOONSIM SPEC OUT SHARDS WORKDIR [COMMAND ARGS...]
+With COMMAND ARGS (e.g. `calibrate SCENARIO --field F --params P`; SPEC is then unused), the
+shard tasks run `platoonsim COMMAND ARGS --shards N` and the last task `platoonsim COMMAND ARGS
+--no-shard`, which reuses the shards' run files and writes the outputs. The worker has 2 cores
+and every task asks for 1: a calibration's shards wait for each other, so N must be at most 2.
 Exit 0 if every task finished; otherwise the failed tasks' errors are printed and it exits 1.
 """
 
@@ -17,6 +22,9 @@ from hyperqueue.cluster import LocalCluster, WorkerConfig
 
 def main():
     exe, spec, out, shards, workdir = sys.argv[1:6]
+    command, collect = ["sweep", spec], ["--collect"]
+    if len(sys.argv) > 6:
+        command, collect = sys.argv[6:], ["--no-shard"]
     shards = int(shards)
     workdir = Path(workdir)
     workdir.mkdir(parents=True, exist_ok=True)
@@ -27,14 +35,14 @@ def main():
         job = Job(default_workdir=str(workdir))
         array = [
             job.program(
-                [exe, "-q", "sweep", spec, "--out", out, "--shards", str(shards), "--jobs", "1"],
+                [exe, "-q", *command, "--out", out, "--shards", str(shards), "--jobs", "1"],
                 stdout=str(workdir / f"shard{i}.out"),
                 stderr=str(workdir / f"shard{i}.err"),
             )
             for i in range(shards)
         ]
         job.program(
-            [exe, "-q", "sweep", spec, "--out", out, "--collect"],
+            [exe, "-q", *command, "--out", out, *collect],
             deps=array,
             stdout=str(workdir / "collect.out"),
             stderr=str(workdir / "collect.err"),
