@@ -21,6 +21,11 @@ pub const SPEED_KMH: f64 = 100.0;
 /// 101..=106 (none of the calibration's seeds 1..=3, so the fit meets noise it has not seen),
 /// stations s1..s4, as tidy CSV.
 pub fn field(dir: &Path) -> PathBuf {
+    field_of(dir, &|station| station.starts_with('s'))
+}
+
+/// [`field`] with every detector of the corridor that `keep` selects as a station.
+pub fn field_of(dir: &Path, keep: &dyn Fn(&str) -> bool) -> PathBuf {
     let mut runs = Vec::new();
     for seed in 101..=106 {
         let out = dir.join(format!("field-run-{seed}"));
@@ -44,7 +49,7 @@ pub fn field(dir: &Path) -> PathBuf {
     }
     let mut csv = String::from("station,time,flow_vph,speed_kmh,occupancy\n");
     for o in mean_over_runs(&runs) {
-        if !o.station.starts_with('s') {
+        if !keep(&o.station) {
             continue;
         }
         let t = o.start_s;

@@ -2,6 +2,8 @@
 //! chosen scenario keys so that the mean of a candidate's replications matches the field's
 //! flows and speeds at the stations.
 //!
+//! * [`demand`]: the optional demand step (`[demand]`): entrance demands and exit fractions
+//!   estimated from the field counts, set as fixed keys before the behaviour fit;
 //! * [`params`]: the parameters file (fitted keys and bounds, budget, weights, `[set]`);
 //! * [`space`]: normalized coordinates, bounds checked through the `--set` machinery;
 //! * [`optimizer`]: CMA-ES as a replayed ask/tell;
@@ -17,6 +19,7 @@
 //! the same parameters file and field data give the same trace and result at any `--jobs`
 //! and any sharding.
 
+pub mod demand;
 pub mod evaluate;
 pub mod objective;
 pub mod optimizer;
@@ -109,6 +112,18 @@ pub fn run_with(
     exec: Executor<'_>,
 ) -> Result<Done, Error> {
     let start = Instant::now();
+    let mut p = p.clone();
+    let demand = match p.demand.is_empty() {
+        true => None,
+        false => {
+            let d = estimate_demand(&p, field, &opts.scenario)?;
+            // The estimate's keys win over [set] entries of the same key.
+            p.set.retain(|(k, _)| !d.set.iter().any(|(dk, _)| dk == k));
+            p.set.extend(d.set.clone());
+            Some(d)
+        }
+    };
+    let p = &p;
     let space = Space::new(&opts.scenario, p).map_err(|e| Error::Other(e.to_string()))?;
     let clock_start_s = space.base.clock_start_s.ok_or_else(|| {
         Error::Other(format!(
@@ -246,7 +261,16 @@ pub fn run_with(
     };
     if opts.shard.is_none() {
         done.wall_seconds = start.elapsed().as_secs_f64();
-        output::write_all(p, field, opts, &space, &reader, &target, &done)?;
+        output::write_all(
+            p,
+            field,
+            opts,
+            &space,
+            &reader,
+            &target,
+            &done,
+            demand.as_ref(),
+        )?;
         done.outputs = true;
     }
     done.wall_seconds = start.elapsed().as_secs_f64();
@@ -262,4 +286,22 @@ pub fn best_index(trace: &[Row]) -> usize {
         }
     }
     best
+}
+
+/// The demand step: the scenario with the fixed keys and no demand offset, then the estimate.
+fn estimate_demand(p: &Params, field: &Field, scenario: &str) -> Result<demand::Demand, Error> {
+    let mut set: Vec<String> = p
+        .set
+        .iter()
+        .map(|(k, v)| crate::sweep::spec::set_arg(k, v))
+        .collect();
+    set.push("network.demand_offset_s=0".into());
+    let overrides = platoonsim_scenario::Overrides {
+        set,
+        ..Default::default()
+    };
+    let config = platoonsim_scenario::load_with(scenario, &overrides)
+        .map_err(|e| Error::Other(format!("{}: [demand]: {e}", p.origin)))?;
+    demand::demand(&config, &field.obs, &p.demand)
+        .map_err(|e| Error::Other(format!("{}: {e}", p.origin)))
 }

@@ -6,6 +6,7 @@
 //! | `calibrated.toml` | the scenario with the fixed keys and the best candidate's values, every key resolved (`platoonsim show` format); it loads and validates as it is |
 //! | `convergence.png` / `.svg` | the objective of every candidate and the best so far, by evaluation |
 //! | `fit-before.md` / `fit-after.md` | the fit of the start point and of the best candidate: the terms and, per station, field and simulated mean flow and speed and the share of intervals with GEH < 5 |
+//! | `demand.csv` | with `[demand]`: the estimated entrance flows and exit fractions per interval (set in `calibrated.toml`) |
 //! | `run.json` | provenance: version, engine, command line, scenario, the parameters file's text, the field files with their FNV-1a 64 hashes, seeds, runs, the start and the best point |
 
 use super::evaluate::{candidate_obs, specs, Target};
@@ -38,6 +39,7 @@ pub fn point(space: &Space, values: &[f64]) -> String {
 }
 
 /// Write every output file of a finished (unsharded) calibration.
+#[allow(clippy::too_many_arguments)]
 pub fn write_all(
     p: &Params,
     field: &Field,
@@ -46,12 +48,16 @@ pub fn write_all(
     reader: &Runner,
     target: &Target,
     done: &Done,
+    demand: Option<&super::demand::Demand>,
 ) -> Result<(), Error> {
     let write = |name: &str, bytes: &[u8]| {
         let path = opts.out.join(name);
         write_atomic(&path, bytes).map_err(|e| Error::io(&path, e))
     };
     write("trace.csv", &trace_csv(space, &done.trace)?)?;
+    if let Some(d) = demand {
+        write("demand.csv", &super::demand::csv(d).map_err(Error::Other)?)?;
+    }
     let best = &done.trace[done.best];
     write(
         "calibrated.toml",

@@ -1,0 +1,207 @@
+//! The demand step of a calibration (`[demand]` in the parameters file): before the
+//! behaviour fit, the scenario's entrance demands and exit fractions are estimated from the
+//! field counts ([`platoonsim_field::demand`]) and set as fixed keys, so every candidate and
+//! `calibrated.toml` carry them.
+//!
+//! * The corridor comes from the scenario's `[network]` (entrance, on- and off-ramps by id).
+//! * Mainline stations: the field stations named like a mainline detector of the scenario,
+//!   at that detector's position. Ramp stations: the `[demand]` table, ramp id = station.
+//! * Intervals: the network's `interval_s`, from `run.clock_start`, as many as cover
+//!   `run.duration_s`. A station's count in an interval is the mean flow of its field
+//!   intervals inside it, used only if they cover it entirely (a gap is never filled).
+//! * Set keys: `network.mainline_vph`, `network.on_ramps[i].demand_vph`,
+//!   `network.off_ramps[j].exit_fraction`, and `network.demand_offset_s = 0`,
+//!   `network.base_demand_multiplier = 1`, `network.demand_scale = 1` (the estimate is the
+//!   flow itself, at clock time).
+
+use platoonsim_field::demand::{estimate, Corridor, Counts, Estimate};
+use platoonsim_field::Obs;
+use platoonsim_scenario::network::split_name;
+use platoonsim_sim::{Config, DetectorKind};
+use std::collections::BTreeMap;
+use toml::Value;
+
+/// The fixed keys that carry the estimate, and the estimate itself (for `demand.csv`).
+pub struct Demand {
+    pub set: Vec<(String, Value)>,
+    pub estimate: Estimate,
+    /// Interval starts (s after midnight).
+    pub starts: Vec<u32>,
+    /// On-ramp and off-ramp ids, in corridor order.
+    pub on_ids: Vec<String>,
+    pub off_ids: Vec<String>,
+}
+
+/// Estimate the demand of `config` (loaded with `network.demand_offset_s = 0`) from the field.
+pub fn demand(
+    config: &Config,
+    field: &[Obs],
+    ramps: &[(String, String)],
+) -> Result<Demand, String> {
+    let net = config.road.network.as_ref().ok_or(
+        "[demand] estimates a network's entrance demands, and the scenario has no [network]",
+    )?;
+    let clock = config
+        .clock_start_s
+        .ok_or("[demand] needs run.clock_start to place the field counts")?;
+    let id = |engine: &str| split_name(engine).0;
+    let corridor = Corridor {
+        entrance_x: 0.0,
+        on_ramps: net.on_ramps.iter().map(|r| (id(&r.name), r.x_m)).collect(),
+        off_ramps: net.off_ramps.iter().map(|r| (id(&r.name), r.x_m)).collect(),
+    };
+    for (ramp, station) in ramps {
+        let known = corridor
+            .on_ramps
+            .iter()
+            .chain(&corridor.off_ramps)
+            .any(|(r, _)| r == ramp);
+        if !known {
+            let ids: Vec<&str> = corridor
+                .on_ramps
+                .iter()
+                .chain(&corridor.off_ramps)
+                .map(|(r, _)| r.as_str())
+                .collect();
+            return Err(format!(
+                "demand.\"{ramp}\" = \"{station}\": the scenario has no ramp '{ramp}'; its ramps are {}",
+                ids.join(", ")
+            ));
+        }
+        if !field.iter().any(|o| &o.station == station) {
+            return Err(format!(
+                "demand.\"{ramp}\" = \"{station}\": the field data have no station '{station}'"
+            ));
+        }
+    }
+    let mainline: BTreeMap<&str, f64> = config
+        .detectors
+        .iter()
+        .filter(|d| d.kind == DetectorKind::Mainline)
+        .map(|d| (d.name.as_str(), d.position_m))
+        .collect();
+    let interval = net.interval_s;
+    let n = (config.duration_s / interval).ceil().max(1.0) as usize;
+    let starts: Vec<u32> = (0..n)
+        .map(|k| clock + (k as f64 * interval).round() as u32)
+        .collect();
+    let mut counts = Vec::with_capacity(n);
+    for &t0 in &starts {
+        let t1 = t0 + interval.round() as u32;
+        let mean = |station: &str| covering_mean(field, station, t0, t1);
+        let mut c = Counts::default();
+        for (station, &x) in &mainline {
+            if let Some(q) = mean(station) {
+                c.mainline.push((x, q));
+            }
+        }
+        for (ramp, station) in ramps {
+            if let Some(q) = mean(station) {
+                c.ramps.push((ramp.clone(), q));
+            }
+        }
+        counts.push(c);
+    }
+    let est = estimate(&corridor, &counts).map_err(|e| {
+        format!(
+            "{e} (intervals of {interval} s from {}; mainline stations are the field stations named \
+             like the scenario's detectors: {})",
+            platoonsim_scenario::clock::format_clock(clock),
+            mainline.keys().copied().collect::<Vec<_>>().join(", ")
+        )
+    })?;
+    let series = |v: &[f64]| Value::Array(v.iter().map(|&x| Value::Float(x)).collect());
+    let mut set = vec![
+        ("network.demand_offset_s".to_string(), Value::Float(0.0)),
+        (
+            "network.base_demand_multiplier".to_string(),
+            Value::Float(1.0),
+        ),
+        ("network.demand_scale".to_string(), Value::Float(1.0)),
+        (
+            "network.mainline_vph".to_string(),
+            series(&est.mainline_vph),
+        ),
+    ];
+    for (i, s) in est.on_ramp_vph.iter().enumerate() {
+        set.push((format!("network.on_ramps[{i}].demand_vph"), series(s)));
+    }
+    for (j, s) in est.exit_fraction.iter().enumerate() {
+        set.push((format!("network.off_ramps[{j}].exit_fraction"), series(s)));
+    }
+    Ok(Demand {
+        set,
+        starts,
+        on_ids: corridor.on_ramps.iter().map(|r| r.0.clone()).collect(),
+        off_ids: corridor.off_ramps.iter().map(|r| r.0.clone()).collect(),
+        estimate: est,
+    })
+}
+
+/// The mean flow of a station's intervals inside [t0, t1), if they cover it exactly.
+fn covering_mean(field: &[Obs], station: &str, t0: u32, t1: u32) -> Option<f64> {
+    let mut covered = 0u32;
+    let mut sum = 0.0;
+    for o in field.iter().filter(|o| o.station == station) {
+        if o.start_s >= t0 && o.start_s + o.interval_s <= t1 {
+            covered += o.interval_s;
+            sum += o.flow_vph * f64::from(o.interval_s);
+        }
+    }
+    (covered == t1 - t0 && covered > 0).then(|| sum / f64::from(covered))
+}
+
+/// `demand.csv`: one row per interval (clock time), the entrance flow, each on-ramp's flow
+/// and each off-ramp's exit flow and fraction.
+pub fn csv(d: &Demand) -> Result<Vec<u8>, String> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let mut header = vec!["time".to_string(), "mainline_vph".to_string()];
+    header.extend(d.on_ids.iter().map(|i| format!("{i}_vph")));
+    for i in &d.off_ids {
+        header.push(format!("{i}_exit_vph"));
+        header.push(format!("{i}_exit_fraction"));
+    }
+    w.write_record(&header).map_err(|e| e.to_string())?;
+    for (k, &t) in d.starts.iter().enumerate() {
+        let mut row = vec![
+            platoonsim_scenario::clock::format_clock(t),
+            format!("{}", d.estimate.mainline_vph[k]),
+        ];
+        row.extend(d.estimate.on_ramp_vph.iter().map(|s| format!("{}", s[k])));
+        for j in 0..d.off_ids.len() {
+            row.push(format!("{}", d.estimate.exit_vph[j][k]));
+            row.push(format!("{}", d.estimate.exit_fraction[j][k]));
+        }
+        w.write_record(&row).map_err(|e| e.to_string())?;
+    }
+    w.into_inner().map_err(|e| e.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn obs(t: u32, interval: u32, flow: f64) -> Obs {
+        Obs {
+            station: "S".into(),
+            start_s: t,
+            interval_s: interval,
+            flow_vph: flow,
+            speed_kmh: None,
+            occupancy: None,
+        }
+    }
+
+    #[test]
+    fn a_count_covers_its_interval_or_is_missing() {
+        let f = [
+            obs(0, 300, 1000.0),
+            obs(300, 300, 2000.0),
+            obs(900, 300, 10.0),
+        ];
+        assert_eq!(covering_mean(&f, "S", 0, 600), Some(1500.0));
+        // 600-900 is missing: never filled in.
+        assert_eq!(covering_mean(&f, "S", 600, 1200), None);
+        assert_eq!(covering_mean(&f, "T", 0, 600), None);
+    }
+}
