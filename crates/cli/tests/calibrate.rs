@@ -7,7 +7,7 @@ mod common;
 
 use common::calibrate::{dir, field, field_of, scenario, BUFFER_S, SPEED_KMH};
 use common::{platoonsim, read_csv, s, scratch, stderr, stdout};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::Instant;
 

@@ -71,23 +71,27 @@ pub fn run(b: &Batch, specs: &[RunSpec], first: usize) -> Result<Vec<Outcome>, E
         b.runner.run(specs)?;
         return b.reader.run(specs);
     };
-    let (mine, mut awaited): (Vec<(usize, &RunSpec)>, Vec<(usize, &RunSpec)>) = specs
-        .iter()
-        .enumerate()
-        .partition(|(i, _)| shard.owns(first + i));
-    let mine: Vec<RunSpec> = mine.into_iter().map(|(_, s)| s.clone()).collect();
+    let mut mine: Vec<RunSpec> = Vec::new();
+    let mut awaited: Vec<&RunSpec> = Vec::new();
+    for (i, s) in specs.iter().enumerate() {
+        if shard.owns(first + i) {
+            mine.push(s.clone());
+        } else {
+            awaited.push(s);
+        }
+    }
     b.runner.run(&mine)?;
     let mut last_seen = Instant::now();
     loop {
         let before = awaited.len();
-        awaited.retain(|(_, s)| !b.reader.is_done(s));
+        awaited.retain(|s| !b.reader.is_done(s));
         if awaited.is_empty() {
             break;
         }
         if awaited.len() < before {
             last_seen = Instant::now();
         } else if last_seen.elapsed() >= b.stale {
-            let missing: Vec<RunSpec> = awaited.iter().map(|(_, s)| (*s).clone()).collect();
+            let missing: Vec<RunSpec> = awaited.iter().map(|s| (*s).clone()).collect();
             b.runner.run(&missing)?;
             break;
         }

@@ -209,7 +209,7 @@ pub fn run_with(
                 })
                 .collect())
         };
-    let mut trace = evaluate(0, &[space.start.clone()], 0)?;
+    let mut trace = evaluate(0, std::slice::from_ref(&space.start), 0)?;
     say(format!(
         "{label}: start, objective {}",
         output::short(trace[0].objective)

@@ -1,9 +1,9 @@
 //! The search space: the fitted keys in normalized coordinates. CMA-ES searches in ℝⁿ; a
-//! coordinate x is folded into [0, 1] by reflection at 0 and 1 (y = x mod 2, then 2 − y above
-//! 1) and mapped to the key's bounds, value = min + y (max − min). Reflection keeps the
+//! coordinate x is folded into [0, 1] by reflection at 0 and 1 (y = x mod 2, then 2 − y where
+//! y > 1) and mapped to the key's bounds, value = min + y (max − min). Reflection keeps the
 //! objective continuous and free of the flat plateaus that clamping would create outside the
-//! box, and every candidate is inside the bounds. Normalizing gives every key the same
-//! initial step (`sigma`), whatever its unit.
+//! box, and every candidate is inside the bounds. Normalizing gives every key the same initial
+//! step (`sigma`), whatever its unit.
 //!
 //! Every value goes through the scenario crate's `--set` machinery, exactly as a sweep's keys:
 //! the fixed `[set]` keys are checked as a sweep checks them ([`crate::sweep::plan::cells`]);
