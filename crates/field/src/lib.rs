@@ -83,3 +83,5 @@ pub struct Placed {
 
 /// Metres per mile (international mile), for postmiles.
 pub const METRES_PER_MILE: f64 = 1609.344;
+
+pub mod fit;
