@@ -84,4 +84,6 @@ pub struct Placed {
 /// Metres per mile (international mile), for postmiles.
 pub const METRES_PER_MILE: f64 = 1609.344;
 
+pub mod bottleneck;
 pub mod fit;
+mod interval;

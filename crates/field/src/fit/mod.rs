@@ -21,7 +21,6 @@
 //! | speed interval | s | 900 ([`SPEED_INTERVAL_S`]) |
 //! | GEH limit | — | 5 ([`GEH_LIMIT`]) |
 
-mod aggregate;
 mod measures;
 
 pub use measures::{flow_within_tolerance, geh, pearson, rmse, rmsne, GEH_LIMIT};
@@ -263,8 +262,8 @@ fn pair(
             .map(|o| ((o.station.clone(), o.start_s), o))
             .collect()
     };
-    let s = index(aggregate::to_interval(sim, interval_s));
-    let f = index(aggregate::to_interval(field, interval_s));
+    let s = index(crate::interval::to_interval(sim, interval_s));
+    let f = index(crate::interval::to_interval(field, interval_s));
     let mut pairs = Vec::new();
     let mut total = Coverage::default();
     let mut by_station: BTreeMap<String, Coverage> = BTreeMap::new();
