@@ -273,9 +273,11 @@ mod tests {
         let (bytes, _) = to_csv(&recs, Scope::All, Some(18_000)).unwrap();
         assert_eq!(from_csv(&bytes).unwrap(), recs);
         // A `clock` column anywhere else is not the run's layout.
-        let moved = String::from_utf8(bytes)
-            .unwrap()
-            .replacen("interval_start_s,clock", "clock,interval_start_s", 1);
+        let moved = String::from_utf8(bytes).unwrap().replacen(
+            "interval_start_s,clock",
+            "clock,interval_start_s",
+            1,
+        );
         assert!(from_csv(moved.as_bytes()).is_err());
     }
 }

@@ -11,6 +11,8 @@
 //!
 //! Times are seconds since local midnight of the field day (`start_s`); one file holds one day.
 
+pub mod combine;
+
 use serde::{Deserialize, Serialize};
 
 /// What a PeMS station measures (the metadata's `Type`).
