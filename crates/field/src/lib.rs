@@ -87,5 +87,6 @@ pub struct Placed {
 pub const METRES_PER_MILE: f64 = 1609.344;
 
 pub mod bottleneck;
+pub mod criteria;
 pub mod fit;
 mod interval;
