@@ -90,3 +90,4 @@ pub mod bottleneck;
 pub mod criteria;
 pub mod fit;
 mod interval;
+pub mod report;
