@@ -85,8 +85,9 @@ pub struct Bottleneck {
     pub active_minutes: f64,
 }
 
-/// A speed for the rule: the measured one, 0 for a standing queue, `None` for no data.
-fn rule_speed(o: &Obs) -> Option<f64> {
+/// A speed for the rule (and for contours): the measured one, 0 for a standing queue (no
+/// vehicle crossed, occupancy above [`STANDING_OCCUPANCY`]), `None` for no data.
+pub fn rule_speed(o: &Obs) -> Option<f64> {
     match (o.speed_kmh, o.occupancy) {
         (Some(v), _) => Some(v),
         (None, Some(occ)) if occ > STANDING_OCCUPANCY => Some(0.0),
