@@ -136,6 +136,29 @@ pub fn markdown(r: &Report<'_>) -> String {
         let _ = writeln!(s, "| {k} | {v} |");
     }
 
+    if !f.hour_sums.is_empty() {
+        let _ = writeln!(s, "\n## Hourly sums over the stations\n");
+        let _ = writeln!(
+            s,
+            "| hour | stations | simulated (veh/h) | counted (veh/h) | difference | GEH |"
+        );
+        let _ = writeln!(s, "|---|---|---|---|---|---|");
+        for h in &f.hour_sums {
+            let _ = writeln!(
+                s,
+                "| {}–{} | {} | {:.0} | {:.0} | {} | {:.2} |",
+                clock(h.start_s),
+                clock(h.start_s + 3600),
+                h.stations,
+                h.sim_vph,
+                h.field_vph,
+                h.diff
+                    .map_or("–".into(), |d| format!("{:+.1} %", 100.0 * d)),
+                h.geh
+            );
+        }
+    }
+
     if let Some(fig) = r.figure {
         let _ = writeln!(s, "\n## Speed contours\n");
         let _ = writeln!(
@@ -319,6 +342,10 @@ mod tests {
         assert!(md.contains("**Verdict:** 4 of 6 criteria do not hold."));
         assert!(md.contains("| A | 1 | 0.0 % | 14.14 | 1000 | 1500 | -33.3 % | 4 | 0.0 |"));
         assert!(md.contains("![speed contours](contours.png)"));
+        assert!(
+            md.contains("| 05:00–06:00 | 1 | 1000 | 1500 | -33.3 % | 14.14 |"),
+            "{md}"
+        );
         assert!(md.contains("- Simulated stations without field data: S."));
         assert!(md.contains("- Field stations without a simulated detector of the same name: F."));
         assert!(md.contains("- a note"));

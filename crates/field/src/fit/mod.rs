@@ -7,8 +7,9 @@
 //! counted as missing ([`Coverage`]), never interpolated.
 //!
 //! * Flows: hourly volumes (aggregates of [`FLOW_INTERVAL_S`]) per station-hour, the
-//!   [`geh`] statistic of each, the share with GEH < 5, the sum over all station-hours and the
-//!   Toolbox's flow tolerance ([`flow_within_tolerance`]). Source: FHWA Traffic Analysis
+//!   [`geh`] statistic of each, the share with GEH < 5, the Toolbox's flow tolerance
+//!   ([`flow_within_tolerance`]), and per clock hour the sum over the stations (its
+//!   difference and GEH). Source: FHWA Traffic Analysis
 //!   Toolbox Vol. III (Dowling, Skabardonis & Halkias 2004), section 5, Table 4 (after
 //!   Wisconsin DOT 2002); GEH as in the UK DMRB Vol. 12. (The 2019 update of Vol. III frames
 //!   acceptance differently, with analyst-set sigma bands; it is not implemented here.)
@@ -53,6 +54,22 @@ pub struct HourFit {
     pub start_s: u32,
     pub sim_vph: f64,
     pub field_vph: f64,
+    pub geh: f64,
+}
+
+/// One clock hour: the sums of the hourly volumes of the stations compared in it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct HourSum {
+    /// Start of the hour, s after midnight.
+    pub start_s: u32,
+    /// Stations compared in this hour.
+    pub stations: usize,
+    /// Σ M and Σ C (veh/h).
+    pub sim_vph: f64,
+    pub field_vph: f64,
+    /// (Σ M − Σ C) / Σ C; `None` if Σ C = 0.
+    pub diff: Option<f64>,
+    /// GEH(Σ M, Σ C).
     pub geh: f64,
 }
 
@@ -111,10 +128,15 @@ pub struct Fit {
     /// station-hours (veh).
     pub total_sim_veh: f64,
     pub total_field_veh: f64,
-    /// (Σ M − Σ C) / Σ C; `None` if Σ C = 0.
+    /// (Σ M − Σ C) / Σ C over the whole period; `None` if Σ C = 0.
     pub total_flow_diff: Option<f64>,
-    /// GEH of the sums (Σ M, Σ C).
-    pub total_geh: Option<f64>,
+    /// Per clock hour, the sums over the stations compared in that hour (the Toolbox's "sum
+    /// of all link flows" is an hourly flow).
+    pub hour_sums: Vec<HourSum>,
+    /// The hourly sum farthest from the counts: (Σ M − Σ C) / Σ C of largest magnitude.
+    pub hour_sum_diff_worst: Option<f64>,
+    /// The largest GEH of an hourly sum.
+    pub hour_sum_geh_max: Option<f64>,
     /// Pooled over all compared 15-min station-intervals with speeds.
     pub speed_intervals: usize,
     pub speed_rmse_kmh: Option<f64>,
@@ -212,6 +234,7 @@ pub fn fit(sim: &[Obs], field: &[Obs]) -> Fit {
         hours.iter().map(|h| h.field_vph).sum::<f64>(),
     );
     let v: Vec<(f64, f64)> = speeds.iter().map(|v| (v.sim_kmh, v.field_kmh)).collect();
+    let hour_sums = sums_by_hour(&hours);
     Fit {
         stations_compared: common.iter().map(|s| s.to_string()).collect(),
         sim_only_stations: sim_names.difference(&field_names).cloned().collect(),
@@ -228,7 +251,15 @@ pub fn fit(sim: &[Obs], field: &[Obs]) -> Fit {
         total_field_veh,
         total_flow_diff: (total_field_veh > 0.0)
             .then(|| (total_sim_veh - total_field_veh) / total_field_veh),
-        total_geh: (!hours.is_empty()).then(|| geh(total_sim_veh, total_field_veh)),
+        hour_sum_diff_worst: hour_sums.iter().filter_map(|h| h.diff).reduce(|a, b| {
+            if b.abs() > a.abs() {
+                b
+            } else {
+                a
+            }
+        }),
+        hour_sum_geh_max: hour_sums.iter().map(|h| h.geh).reduce(f64::max),
+        hour_sums,
         speed_intervals: v.len(),
         speed_rmse_kmh: rmse(&v),
         speed_rmsne: rmsne(&v),
@@ -241,6 +272,27 @@ pub fn fit(sim: &[Obs], field: &[Obs]) -> Fit {
 
 #[cfg(test)]
 mod tests;
+
+/// The hourly volumes summed over the stations of each hour.
+fn sums_by_hour(hours: &[HourFit]) -> Vec<HourSum> {
+    let mut by: BTreeMap<u32, (usize, f64, f64)> = BTreeMap::new();
+    for h in hours {
+        let e = by.entry(h.start_s).or_default();
+        e.0 += 1;
+        e.1 += h.sim_vph;
+        e.2 += h.field_vph;
+    }
+    by.into_iter()
+        .map(|(start_s, (stations, m, c))| HourSum {
+            start_s,
+            stations,
+            sim_vph: m,
+            field_vph: c,
+            diff: (c > 0.0).then(|| (m - c) / c),
+            geh: geh(m, c),
+        })
+        .collect()
+}
 
 /// Share of `items` for which `test` holds; `None` if empty.
 fn share<T>(items: &[&T], test: impl Fn(&T) -> bool) -> Option<f64> {

@@ -57,8 +57,45 @@ fn hourly_geh_of_aggregated_flows() {
     assert_eq!(f.hours[0].geh, geh(1100.0, 1000.0));
     assert_eq!(f.geh_pass_share, Some(1.0));
     assert!((f.total_flow_diff.unwrap() - 0.1).abs() < 1e-12);
-    assert_eq!(f.total_geh, Some(geh(2200.0, 2000.0)));
+    // Per hour, one station: Σ M = 1100, Σ C = 1000.
+    assert_eq!(f.hour_sums.len(), 2);
+    assert_eq!(f.hour_sums[1].start_s, 6 * 3600);
+    assert_eq!(f.hour_sum_geh_max, Some(geh(1100.0, 1000.0)));
+    assert!((f.hour_sum_diff_worst.unwrap() - 0.1).abs() < 1e-12);
     assert_eq!(f.flow_tolerance_share, Some(1.0));
+}
+
+#[test]
+fn hourly_sums_add_the_stations_of_each_hour() {
+    // Hour 05:00: A +10 %, B −10 % of equal counts: the sum matches. Hour 06:00: A and B
+    // both +20 %.
+    let flows = |s: &str, first: f64, second: f64| -> Vec<Obs> {
+        (0..24)
+            .map(|k| {
+                obs(
+                    s,
+                    18_000 + 300 * k,
+                    if k < 12 { first } else { second },
+                    None,
+                )
+            })
+            .collect()
+    };
+    let sim = [flows("A", 1100.0, 1200.0), flows("B", 900.0, 1200.0)].concat();
+    let field = [flows("A", 1000.0, 1000.0), flows("B", 1000.0, 1000.0)].concat();
+    let f = fit(&sim, &field);
+    let sums: Vec<(u32, usize, f64, f64)> = f
+        .hour_sums
+        .iter()
+        .map(|h| (h.start_s, h.stations, h.sim_vph, h.field_vph))
+        .collect();
+    assert_eq!(
+        sums,
+        [(18_000, 2, 2000.0, 2000.0), (21_600, 2, 2400.0, 2000.0)]
+    );
+    assert_eq!(f.hour_sums[0].diff, Some(0.0));
+    assert!((f.hour_sum_diff_worst.unwrap() - 0.2).abs() < 1e-12);
+    assert_eq!(f.hour_sum_geh_max, Some(geh(2400.0, 2000.0)));
 }
 
 #[test]
@@ -144,6 +181,7 @@ fn nothing_matched_has_no_measures() {
     let f = fit(&day("A", 1.0, 1.0), &day("B", 1.0, 1.0));
     assert_eq!(f.geh_pass_share, None);
     assert_eq!(f.total_flow_diff, None);
+    assert_eq!((f.hour_sum_diff_worst, f.hour_sum_geh_max), (None, None));
     assert_eq!(f.speed_correlation, None);
     assert_eq!(f.objective(), None);
 }
