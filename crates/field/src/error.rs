@@ -21,14 +21,15 @@ pub enum FieldError {
     },
     /// A gzip file is truncated or corrupt.
     #[error(
-        "{}: line {line}: the gzip stream is truncated or corrupt ({detail}); expected a whole \
+        "{}: near line {line}: the gzip stream is truncated or corrupt ({detail}); expected a whole \
          gzip stream (download or compress the file again)",
         .file.display()
     )]
     Gzip {
         /// The file.
         file: PathBuf,
-        /// The line of the decompressed text being read when the stream broke.
+        /// The line of the decompressed text being read when the stream broke (reading is
+        /// buffered, so the break may come later in the file).
         line: u64,
         /// What broke, e.g. "file ended inside the gzip stream".
         detail: String,
@@ -123,9 +124,9 @@ pub enum FieldError {
     },
     /// A station's intervals go back in time, repeat or overlap.
     #[error(
-        "{}: line {line}: station {station}: the interval at {time} comes after the one at \
-         {previous}; expected each station's intervals to go forward in time without repeating \
-         or overlapping",
+        "{}: line {line}: station {station}: the interval at {time} follows the one at \
+         {previous} (line {previous_line}); expected each station's intervals to go forward in \
+         time without repeating or overlapping",
         .file.display()
     )]
     NonMonotonic {
@@ -137,6 +138,8 @@ pub enum FieldError {
         station: String,
         /// Start of the station's previous interval (HH:MM:SS).
         previous: String,
+        /// The line of the station's previous row.
+        previous_line: u64,
         /// Start of this row's interval (HH:MM:SS).
         time: String,
     },

@@ -129,13 +129,14 @@ pub fn read_day(path: &Path) -> Result<PemsDay, FieldError> {
                 allowed: "a station ID".into(),
             });
         }
-        if let Some(&(prev, _)) = last.get(station) {
+        if let Some(&(prev, prev_line)) = last.get(station) {
             if start_s < prev + INTERVAL_S {
                 return Err(FieldError::NonMonotonic {
                     file,
                     line,
                     station: station.to_string(),
                     previous: clock::format(prev),
+                    previous_line: prev_line,
                     time: clock::format(start_s),
                 });
             }

@@ -158,21 +158,22 @@ pub fn read(path: &Path) -> Result<Vec<Obs>, FieldError> {
 
 /// Each station's rows go forward in time; with an `interval_s` column, without overlapping.
 fn check_order(file: &Path, rows: &[Row]) -> Result<(), FieldError> {
-    let mut last: HashMap<&str, (u32, u32)> = HashMap::new();
+    let mut last: HashMap<&str, (u32, u32, u64)> = HashMap::new();
     for r in rows {
         let station = r.obs.station.as_str();
-        if let Some(&(prev, len)) = last.get(station) {
+        if let Some(&(prev, len, prev_line)) = last.get(station) {
             if r.obs.start_s < prev.saturating_add(len.max(1)) {
                 return Err(FieldError::NonMonotonic {
                     file: file.to_path_buf(),
                     line: r.line,
                     station: station.to_string(),
                     previous: clock::format(prev),
+                    previous_line: prev_line,
                     time: clock::format(r.obs.start_s),
                 });
             }
         }
-        last.insert(station, (r.obs.start_s, r.interval.unwrap_or(0)));
+        last.insert(station, (r.obs.start_s, r.interval.unwrap_or(0), r.line));
     }
     Ok(())
 }
