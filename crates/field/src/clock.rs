@@ -53,7 +53,16 @@ mod tests {
 
     #[test]
     fn rejects_out_of_range_and_malformed() {
-        for bad in ["24:00", "12:60", "12:00:60", "12", "12:5", "a:00", "12:00:00:00", ""] {
+        for bad in [
+            "24:00",
+            "12:60",
+            "12:00:60",
+            "12",
+            "12:5",
+            "a:00",
+            "12:00:00:00",
+            "",
+        ] {
             assert_eq!(parse(bad), None, "{bad}");
         }
     }

@@ -43,7 +43,10 @@ pub fn sniff(path: &Path) -> Result<Format, FieldError> {
     }
     let line = String::from_utf8_lossy(&first);
     let line = line.trim_end_matches(['\n', '\r']);
-    let fields: Vec<&str> = line.split(',').map(|f| f.trim().trim_matches('"')).collect();
+    let fields: Vec<&str> = line
+        .split(',')
+        .map(|f| f.trim().trim_matches('"'))
+        .collect();
     if tidy::looks_like_header(&fields) {
         return Ok(Format::Tidy);
     }
@@ -65,10 +68,13 @@ pub fn sniff(path: &Path) -> Result<Format, FieldError> {
 fn pems_like(field: &str) -> bool {
     let b = field.as_bytes();
     b.len() >= 10
-        && b[..10]
-            .iter()
-            .enumerate()
-            .all(|(i, c)| if i == 2 || i == 5 { *c == b'/' } else { c.is_ascii_digit() })
+        && b[..10].iter().enumerate().all(|(i, c)| {
+            if i == 2 || i == 5 {
+                *c == b'/'
+            } else {
+                c.is_ascii_digit()
+            }
+        })
 }
 
 /// Reads every file and concatenates the rows (file order, then each file's order).
@@ -118,7 +124,11 @@ fn check_overlaps(files: &[PathBuf], obs: &[Obs], origin: &[usize]) -> Result<()
             let (a, b) = (&obs[w[0]], &obs[w[1]]);
             if b.start_s < a.start_s.saturating_add(a.interval_s.max(1)) {
                 // Report the clash of the earliest row in load order, whatever the hashing.
-                let (earlier, later) = if w[0] < w[1] { (w[0], w[1]) } else { (w[1], w[0]) };
+                let (earlier, later) = if w[0] < w[1] {
+                    (w[0], w[1])
+                } else {
+                    (w[1], w[0])
+                };
                 if clash.is_none_or(|(_, l)| later < l) {
                     clash = Some((earlier, later));
                 }

@@ -151,7 +151,12 @@ pub fn read_day(path: &Path) -> Result<PemsDay, FieldError> {
                 allowed: allowed.into(),
             })
         };
-        let count = number(9, "Total Flow", f64::INFINITY, "a vehicle count >= 0, or empty")?;
+        let count = number(
+            9,
+            "Total Flow",
+            f64::INFINITY,
+            "a vehicle count >= 0, or empty",
+        )?;
         let occupancy = number(10, "Avg Occupancy", 1.0, "a number in 0-1, empty or nan")?;
         let speed_mph = number(11, "Avg Speed", f64::INFINITY, "mph >= 0, empty or nan")?;
         let Some(count) = count else { continue };

@@ -44,7 +44,11 @@ pub fn by_postmile(meta: &[StationMeta], origin_pm: f64, from_m: f64, to_m: f64)
 }
 
 fn sort(placed: &mut [Placed]) {
-    placed.sort_by(|a, b| a.x_m.total_cmp(&b.x_m).then_with(|| a.station.cmp(&b.station)));
+    placed.sort_by(|a, b| {
+        a.x_m
+            .total_cmp(&b.x_m)
+            .then_with(|| a.station.cmp(&b.station))
+    });
 }
 
 /// The kind codes a table may use.
@@ -83,9 +87,21 @@ pub fn from_table(path: &Path) -> Result<Vec<Placed>, FieldError> {
             let (field, value) = (names[i].clone(), get(i).to_string());
             let (file, allowed) = (file.clone(), allowed.to_string());
             if number {
-                FieldError::Number { file, line, field, value, allowed }
+                FieldError::Number {
+                    file,
+                    line,
+                    field,
+                    value,
+                    allowed,
+                }
             } else {
-                FieldError::Value { file, line, field, value, allowed }
+                FieldError::Value {
+                    file,
+                    line,
+                    field,
+                    value,
+                    allowed,
+                }
             }
         };
         let id = get(station);
@@ -105,9 +121,13 @@ pub fn from_table(path: &Path) -> Result<Vec<Placed>, FieldError> {
         }
         let n_lanes = match lanes.map(get) {
             None | Some("") => 0,
-            Some(s) => s
-                .parse::<u32>()
-                .map_err(|_| err(lanes.unwrap_or(0), true, "a whole number of lanes, or empty"))?,
+            Some(s) => s.parse::<u32>().map_err(|_| {
+                err(
+                    lanes.unwrap_or(0),
+                    true,
+                    "a whole number of lanes, or empty",
+                )
+            })?,
         };
         placed.push(Placed {
             station: id.to_string(),
@@ -136,7 +156,11 @@ pub struct Selection {
 pub fn select(obs: &[Obs], placed: &[Placed]) -> Selection {
     let ids: HashSet<&str> = placed.iter().map(|p| p.station.as_str()).collect();
     let with_data: HashSet<&str> = obs.iter().map(|o| o.station.as_str()).collect();
-    let ignored: BTreeSet<&str> = with_data.iter().filter(|s| !ids.contains(*s)).copied().collect();
+    let ignored: BTreeSet<&str> = with_data
+        .iter()
+        .filter(|s| !ids.contains(*s))
+        .copied()
+        .collect();
     Selection {
         obs: obs
             .iter()

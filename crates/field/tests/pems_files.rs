@@ -77,7 +77,10 @@ fn truncated_gzip_is_a_gzip_error() {
     let path = write(dir.path(), "cut.gz", &bytes[..bytes.len() / 2]);
     let e = pems::read_station_5min(&path).unwrap_err();
     assert!(matches!(e, FieldError::Gzip { .. }), "{e:?}");
-    assert_names(&message(e), &["cut.gz", "file ended inside the gzip stream"]);
+    assert_names(
+        &message(e),
+        &["cut.gz", "file ended inside the gzip stream"],
+    );
     let e = load::load(&[path]).unwrap_err();
     assert!(matches!(e, FieldError::Gzip { .. }), "{e:?}");
 }
@@ -88,10 +91,26 @@ fn too_few_fields_is_a_columns_error_naming_the_line() {
     let text = format!("{ROWS}09/18/2014 07:10:00,400001,3,99,N\n");
     let path = write(dir.path(), "short.txt", text.as_bytes());
     let e = pems::read_station_5min(&path).unwrap_err();
-    assert!(matches!(e, FieldError::Columns { line: 4, found: 5, .. }), "{e:?}");
+    assert!(
+        matches!(
+            e,
+            FieldError::Columns {
+                line: 4,
+                found: 5,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
     assert_names(
         &message(e),
-        &["short.txt", "line 4", "5 field(s)", "400001", "at least 12 comma-separated"],
+        &[
+            "short.txt",
+            "line 4",
+            "5 field(s)",
+            "400001",
+            "at least 12 comma-separated",
+        ],
     );
 }
 
@@ -104,7 +123,13 @@ fn a_bad_timestamp_is_a_timestamp_error() {
     assert!(matches!(e, FieldError::Timestamp { line: 1, .. }), "{e:?}");
     assert_names(
         &message(e),
-        &["date.txt", "line 1", "Timestamp", "13/45/2014 07:00:00", "MM/DD/YYYY HH:MM:SS"],
+        &[
+            "date.txt",
+            "line 1",
+            "Timestamp",
+            "13/45/2014 07:00:00",
+            "MM/DD/YYYY HH:MM:SS",
+        ],
     );
 }
 
@@ -112,9 +137,21 @@ fn a_bad_timestamp_is_a_timestamp_error() {
 fn out_of_range_numbers_are_number_errors() {
     let dir = tempfile::tempdir().unwrap();
     for (row, field, value) in [
-        ("09/18/2014 07:00:00,4,3,99,N,ML,,,,-3,0.05,60.0", "Total Flow", "-3"),
-        ("09/18/2014 07:00:00,4,3,99,N,ML,,,,3,1.5,60.0", "Avg Occupancy", "1.5"),
-        ("09/18/2014 07:00:00,4,3,99,N,ML,,,,3,0.1,fast", "Avg Speed", "fast"),
+        (
+            "09/18/2014 07:00:00,4,3,99,N,ML,,,,-3,0.05,60.0",
+            "Total Flow",
+            "-3",
+        ),
+        (
+            "09/18/2014 07:00:00,4,3,99,N,ML,,,,3,1.5,60.0",
+            "Avg Occupancy",
+            "1.5",
+        ),
+        (
+            "09/18/2014 07:00:00,4,3,99,N,ML,,,,3,0.1,fast",
+            "Avg Speed",
+            "fast",
+        ),
     ] {
         let path = write(dir.path(), "num.txt", format!("{row}\n").as_bytes());
         let e = pems::read_station_5min(&path).unwrap_err();
@@ -126,12 +163,22 @@ fn out_of_range_numbers_are_number_errors() {
 #[test]
 fn time_going_back_or_repeating_is_non_monotonic() {
     let dir = tempfile::tempdir().unwrap();
-    for (later, time) in [("06:55:00", "06:55:00"), ("07:05:00", "07:05:00"), ("07:02:00", "07:02:00")] {
+    for (later, time) in [
+        ("06:55:00", "06:55:00"),
+        ("07:05:00", "07:05:00"),
+        ("07:02:00", "07:02:00"),
+    ] {
         let text = format!("{ROWS}09/18/2014 {later},400001,3,99,N,ML,,,,90,0.06,55.5\n");
         let path = write(dir.path(), "back.txt", text.as_bytes());
         let e = pems::read_station_5min(&path).unwrap_err();
-        assert!(matches!(e, FieldError::NonMonotonic { line: 4, .. }), "{e:?}");
-        assert_names(&message(e), &["back.txt", "line 4", "400001", "07:05:00 (line 3)", time]);
+        assert!(
+            matches!(e, FieldError::NonMonotonic { line: 4, .. }),
+            "{e:?}"
+        );
+        assert_names(
+            &message(e),
+            &["back.txt", "line 4", "400001", "07:05:00 (line 3)", time],
+        );
     }
 }
 
@@ -142,10 +189,17 @@ fn two_dates_in_one_file_or_one_load_are_mixed_dates() {
     let path = write(dir.path(), "two.txt", text.as_bytes());
     let e = pems::read_station_5min(&path).unwrap_err();
     assert!(matches!(e, FieldError::MixedDates { line: 4, .. }), "{e:?}");
-    assert_names(&message(e), &["two.txt", "line 4", "2014-09-19", "2014-09-18", "line 1"]);
+    assert_names(
+        &message(e),
+        &["two.txt", "line 4", "2014-09-19", "2014-09-18", "line 1"],
+    );
 
     let a = write(dir.path(), "a.txt", ROWS.as_bytes());
-    let b = write(dir.path(), "b.txt", ROWS.replace("09/18", "09/19").as_bytes());
+    let b = write(
+        dir.path(),
+        "b.txt",
+        ROWS.replace("09/18", "09/19").as_bytes(),
+    );
     let e = load::load(&[a, b]).unwrap_err();
     assert!(matches!(e, FieldError::MixedDates { .. }), "{e:?}");
     assert_names(&message(e), &["b.txt", "a.txt", "2014-09-19", "2014-09-18"]);
@@ -161,7 +215,11 @@ fn load_concatenates_and_rejects_an_interval_in_two_files() {
     assert_eq!(obs.len(), 4);
     assert_eq!(obs[3].start_s, 7 * 3600 + 600);
 
-    let again = write(dir.path(), "again.txt", &ROWS.as_bytes()[..ROWS.find('\n').unwrap() + 1]);
+    let again = write(
+        dir.path(),
+        "again.txt",
+        &ROWS.as_bytes()[..ROWS.find('\n').unwrap() + 1],
+    );
     let e = load::load(&[a, again]).unwrap_err();
     assert!(matches!(e, FieldError::Overlap { .. }), "{e:?}");
     assert_names(&message(e), &["again.txt", "a.txt", "400001", "07:00:00"]);
@@ -172,8 +230,20 @@ fn load_rejects_a_file_of_neither_layout() {
     let dir = tempfile::tempdir().unwrap();
     let meta = write(dir.path(), "meta.txt", b"ID\tFwy\tDir\n1\t99\tN\n");
     let e = load::load(&[meta]).unwrap_err();
-    assert!(matches!(e, FieldError::UnknownFormat { line: 1, .. }), "{e:?}");
-    assert_names(&message(e), &["meta.txt", "line 1", "ID\\tFwy", "PeMS station_5min", "tidy"]);
+    assert!(
+        matches!(e, FieldError::UnknownFormat { line: 1, .. }),
+        "{e:?}"
+    );
+    assert_names(
+        &message(e),
+        &[
+            "meta.txt",
+            "line 1",
+            "ID\\tFwy",
+            "PeMS station_5min",
+            "tidy",
+        ],
+    );
 }
 
 const META: &str = "Name\tID\tFwy\tDir\tDistrict\tCounty\tAbs_PM\tType\tLanes\tUser_ID_1\n\
@@ -198,17 +268,32 @@ fn meta_columns_are_found_by_name() {
 #[test]
 fn meta_errors_name_file_line_field_and_value() {
     let dir = tempfile::tempdir().unwrap();
-    let path = write(dir.path(), "m.txt", META.replace("\tLanes", "\tLn").as_bytes());
+    let path = write(
+        dir.path(),
+        "m.txt",
+        META.replace("\tLanes", "\tLn").as_bytes(),
+    );
     let e = pems::read_meta(&path).unwrap_err();
     assert!(matches!(e, FieldError::Header { line: 1, .. }), "{e:?}");
     assert_names(&message(e), &["m.txt", "line 1", "no column Lanes"]);
 
-    let path = write(dir.path(), "m.txt", META.replace("287.295", "287,3").as_bytes());
+    let path = write(
+        dir.path(),
+        "m.txt",
+        META.replace("287.295", "287,3").as_bytes(),
+    );
     let e = pems::read_meta(&path).unwrap_err();
     assert!(matches!(e, FieldError::Number { line: 2, .. }), "{e:?}");
-    assert_names(&message(e), &["m.txt", "line 2", "Abs_PM", "287,3", "postmile"]);
+    assert_names(
+        &message(e),
+        &["m.txt", "line 2", "Abs_PM", "287,3", "postmile"],
+    );
 
-    let path = write(dir.path(), "m.txt", META.replace("319092", "313190").as_bytes());
+    let path = write(
+        dir.path(),
+        "m.txt",
+        META.replace("319092", "313190").as_bytes(),
+    );
     let e = pems::read_meta(&path).unwrap_err();
     assert!(matches!(e, FieldError::Value { line: 3, .. }), "{e:?}");
     assert_names(&message(e), &["m.txt", "line 3", "ID", "313190", "once"]);

@@ -32,8 +32,14 @@ fn station_5min_reads_every_line_with_exact_values() {
     assert_eq!(o.speed_kmh, Some(64.1 * 1.609344));
     assert_eq!(o.occupancy, Some(0.0421));
     // Rows with `nan` occupancy and an empty speed read as None (1288 and 8048 of them).
-    assert_eq!(day.obs.iter().filter(|o| o.occupancy.is_none()).count(), 1288);
-    assert_eq!(day.obs.iter().filter(|o| o.speed_kmh.is_none()).count(), 8048);
+    assert_eq!(
+        day.obs.iter().filter(|o| o.occupancy.is_none()).count(),
+        1288
+    );
+    assert_eq!(
+        day.obs.iter().filter(|o| o.speed_kmh.is_none()).count(),
+        8048
+    );
     // load sniffs the gzip file as PeMS and gives the same rows.
     assert_eq!(load::load(&[station_5min()]).unwrap(), day.obs);
 }

@@ -65,19 +65,43 @@ fn interval_comes_from_each_stations_spacing() {
         .collect();
     assert_eq!(
         got,
-        [("a", 25_200, 300), ("b", 25_200, 900), ("a", 25_500, 300), ("a", 26_100, 300), ("b", 26_100, 900)]
+        [
+            ("a", 25_200, 300),
+            ("b", 25_200, 900),
+            ("a", 25_500, 300),
+            ("a", 26_100, 300),
+            ("b", 26_100, 900)
+        ]
     );
     assert_eq!(rows[1].speed_kmh, None);
     assert_eq!(rows[0].speed_kmh, Some(100.5));
 
     // A station with one row takes the interval the others share...
-    let shared = format!("{}07:30,c,10,90,0.01\n", text.replace(",b,", ",a2,").replace("07:15,a2", "07:05,a2"));
+    let shared = format!(
+        "{}07:30,c,10,90,0.01\n",
+        text.replace(",b,", ",a2,").replace("07:15,a2", "07:05,a2")
+    );
     let rows = tidy::read(&write(dir.path(), "s.csv", &shared)).unwrap();
     assert!(rows.iter().all(|o| o.interval_s == 300), "{rows:?}");
     // ... and is an error when they do not share one.
-    let e = tidy::read(&write(dir.path(), "s.csv", &format!("{text}07:30,c,10,90,0.01\n"))).unwrap_err();
+    let e = tidy::read(&write(
+        dir.path(),
+        "s.csv",
+        &format!("{text}07:30,c,10,90,0.01\n"),
+    ))
+    .unwrap_err();
     assert!(matches!(e, FieldError::Value { line: 7, .. }), "{e:?}");
-    assert_names(&e.to_string(), &["s.csv", "line 7", "time", "07:30:00", "station c", "interval_s"]);
+    assert_names(
+        &e.to_string(),
+        &[
+            "s.csv",
+            "line 7",
+            "time",
+            "07:30:00",
+            "station c",
+            "interval_s",
+        ],
+    );
 }
 
 #[test]
@@ -87,7 +111,10 @@ fn spacing_that_is_not_a_multiple_of_the_interval_is_an_error() {
                 a,07:00,1200,100,0.05\na,07:05,1200,100,0.05\na,07:12,1200,100,0.05\n";
     let e = tidy::read(&write(dir.path(), "m.csv", text)).unwrap_err();
     assert!(matches!(e, FieldError::Value { line: 4, .. }), "{e:?}");
-    assert_names(&e.to_string(), &["m.csv", "line 4", "07:12:00", "300 s", "07:05:00"]);
+    assert_names(
+        &e.to_string(),
+        &["m.csv", "line 4", "07:12:00", "300 s", "07:05:00"],
+    );
 }
 
 #[test]
@@ -95,13 +122,28 @@ fn rows_going_back_or_overlapping_are_non_monotonic() {
     let dir = tempfile::tempdir().unwrap();
     let head = "station,time,flow_vph,speed_kmh,occupancy,interval_s\n";
     for (rows, time) in [
-        ("a,07:05,1,,,300\nb,07:00,1,,,300\na,07:00,1,,,300\n", "07:00:00"),
-        ("a,07:05,1,,,300\nb,07:00,1,,,300\na,07:05:00,1,,,300\n", "07:05:00"),
-        ("a,07:05,1,,,300\nb,07:00,1,,,300\na,07:09,1,,,300\n", "07:09:00"),
+        (
+            "a,07:05,1,,,300\nb,07:00,1,,,300\na,07:00,1,,,300\n",
+            "07:00:00",
+        ),
+        (
+            "a,07:05,1,,,300\nb,07:00,1,,,300\na,07:05:00,1,,,300\n",
+            "07:05:00",
+        ),
+        (
+            "a,07:05,1,,,300\nb,07:00,1,,,300\na,07:09,1,,,300\n",
+            "07:09:00",
+        ),
     ] {
         let e = tidy::read(&write(dir.path(), "b.csv", &format!("{head}{rows}"))).unwrap_err();
-        assert!(matches!(e, FieldError::NonMonotonic { line: 4, .. }), "{e:?}");
-        assert_names(&e.to_string(), &["b.csv", "line 4", "station a", time, "07:05:00 (line 2)"]);
+        assert!(
+            matches!(e, FieldError::NonMonotonic { line: 4, .. }),
+            "{e:?}"
+        );
+        assert_names(
+            &e.to_string(),
+            &["b.csv", "line 4", "station a", time, "07:05:00 (line 2)"],
+        );
     }
 }
 
@@ -115,12 +157,26 @@ fn an_unknown_header_is_unknown_format() {
     ] {
         let path = write(dir.path(), "h.csv", &format!("{header}\na,07:00,1,2,0.1\n"));
         let e = tidy::read(&path).unwrap_err();
-        assert!(matches!(e, FieldError::UnknownFormat { line: 1, .. }), "{e:?}");
-        assert_names(&e.to_string(), &["h.csv", "line 1", header, "station,time,flow_vph,speed_kmh,occupancy"]);
+        assert!(
+            matches!(e, FieldError::UnknownFormat { line: 1, .. }),
+            "{e:?}"
+        );
+        assert_names(
+            &e.to_string(),
+            &[
+                "h.csv",
+                "line 1",
+                header,
+                "station,time,flow_vph,speed_kmh,occupancy",
+            ],
+        );
     }
     let path = write(dir.path(), "h.csv", "id,when,flow\na,07:00,1\n");
     let e = load::load(&[path]).unwrap_err();
-    assert!(matches!(e, FieldError::UnknownFormat { line: 1, .. }), "{e:?}");
+    assert!(
+        matches!(e, FieldError::UnknownFormat { line: 1, .. }),
+        "{e:?}"
+    );
 }
 
 #[test]
@@ -137,7 +193,11 @@ fn bad_values_name_line_field_and_value() {
         (",07:00,1,,,300", "Value", "station", "\"\""),
         ("a,07:00,1,,", "Columns", "", "a,07:00,1,,"),
     ] {
-        let path = write(dir.path(), "v.csv", &format!("{head}a,06:00,1,,,300\n{row}\n"));
+        let path = write(
+            dir.path(),
+            "v.csv",
+            &format!("{head}a,06:00,1,,,300\n{row}\n"),
+        );
         let e = tidy::read(&path).unwrap_err();
         assert!(format!("{e:?}").starts_with(variant), "{row}: {e:?}");
         assert_names(&e.to_string(), &["v.csv", "line 3", field, value]);

@@ -76,7 +76,10 @@ pub fn read_meta(path: &Path) -> Result<Vec<StationMeta>, FieldError> {
                 .map_err(|_| number("Lanes", "a whole number of lanes, or empty"))?,
         };
         if get(kind).is_empty() {
-            return Err(value("Type", "a station type code: ML, OR, FR, HV, FF, ..."));
+            return Err(value(
+                "Type",
+                "a station type code: ML, OR, FR, HV, FF, ...",
+            ));
         }
         out.push(StationMeta {
             id: get(id).to_string(),
