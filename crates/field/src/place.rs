@@ -201,3 +201,43 @@ pub fn require<S: AsRef<str>>(placed: &[Placed], ids: &[S]) -> Result<(), FieldE
         },
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn meta(id: &str, abs_pm: f64) -> StationMeta {
+        StationMeta {
+            id: id.into(),
+            freeway: "99".into(),
+            direction: "N".into(),
+            abs_pm,
+            kind: StationKind::Mainline,
+            lanes: 2,
+            name: String::new(),
+        }
+    }
+
+    #[test]
+    fn by_postmile_keeps_both_bounds_and_sorts_ties_by_id() {
+        // x = (pm - 100) × 1609.344: -1609.344, 0, 0, 1609.344, 3218.688.
+        let stations = [
+            meta("e", 102.0),
+            meta("b", 100.0),
+            meta("a", 100.0),
+            meta("lo", 99.0),
+            meta("hi", 101.0),
+        ];
+        let placed = by_postmile(&stations, 100.0, -METRES_PER_MILE, METRES_PER_MILE);
+        let got: Vec<(&str, f64)> = placed.iter().map(|p| (p.station.as_str(), p.x_m)).collect();
+        assert_eq!(
+            got,
+            [
+                ("lo", -METRES_PER_MILE),
+                ("a", 0.0),
+                ("b", 0.0),
+                ("hi", METRES_PER_MILE)
+            ]
+        );
+    }
+}

@@ -97,6 +97,13 @@ fn select_keeps_placed_rows_and_reports_the_rest() {
     let sel = place::select(&rows, &[placed("a"), placed("held-out")]);
     assert_eq!(sel.obs, [rows[1].clone(), rows[3].clone()]);
     assert_eq!(sel.ignored_stations, ["y", "z"]);
+    // Ignored stations are listed sorted, whatever the order of the rows.
+    let many: Vec<Obs> = ["q", "d", "x", "b", "m", "c", "w", "e"]
+        .iter()
+        .map(|s| obs(s, 0, 1.0, None, None))
+        .collect();
+    let sel = place::select(&many, &[placed("m")]);
+    assert_eq!(sel.ignored_stations, ["b", "c", "d", "e", "q", "w", "x"]);
     assert_eq!(sel.without_data, ["held-out"]);
 
     assert!(place::require(&[placed("a")], &["a"]).is_ok());

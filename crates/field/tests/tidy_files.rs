@@ -74,6 +74,11 @@ fn interval_comes_from_each_stations_spacing() {
         ]
     );
     assert_eq!(rows[1].speed_kmh, None);
+    // load tells a tidy file by its column names, in any order.
+    assert_eq!(
+        load::load(&[write(dir.path(), "s.csv", text)]).unwrap(),
+        rows
+    );
     assert_eq!(rows[0].speed_kmh, Some(100.5));
 
     // A station with one row takes the interval the others share...
