@@ -149,7 +149,9 @@ fn speed_falls_back_to_the_plain_mean_without_vehicles_and_needs_every_speed() {
         obs("a", 0, 600.0, Some(100.0), None),
         obs("a", 300, 60.0, None, None),
     ];
-    assert_eq!(aggregate::to_interval(&unknown, 600)[0].speed_kmh, None);
+    let q = aggregate::to_interval(&unknown, 600);
+    assert_eq!(q[0].speed_kmh, None);
+    assert_eq!(q[0].flow_vph, 330.0);
 }
 
 #[test]
@@ -186,10 +188,21 @@ fn a_missing_sub_interval_makes_no_aggregate_and_is_listed() {
             miss("b", 26_700),
         ]
     );
-    // Only intervals that end by the window's end are asked for (07:10-07:15 ends after 26 099).
+    // Only intervals that end by the window's end are asked for (07:15-07:20 ends after 26 399),
+    // from the first multiple of the interval at or after its start.
     assert_eq!(
-        aggregate::missing(&rows, 25_200, 26_099, 300),
+        aggregate::missing(&rows, 25_001, 26_399, 300),
         [miss("b", 25_500)]
+    );
+    // A missing last sub-interval (d has 07:00 and 07:05 only) makes no aggregate either.
+    let head = [
+        obs("d", 25_200, 1.0, None, None),
+        obs("d", 25_500, 1.0, None, None),
+    ];
+    assert!(aggregate::to_interval(&head, 900).is_empty());
+    assert_eq!(
+        aggregate::missing(&head, 25_200, 26_100, 900),
+        [miss("d", 25_200)]
     );
     // Misaligned rows (07:02) never tile an aligned interval.
     let off = [
