@@ -20,7 +20,7 @@
 //! interval is the smallest spacing of its rows, and every spacing must be a multiple of it (a
 //! gap is missing data); a station with one row takes the interval the other stations share.
 //! Each station's rows must go forward in time without repeating or overlapping.
-//! [`write`] always writes `interval_s` and `HH:MM:SS`, so what it writes reads back equal.
+//! [`write()`] always writes `interval_s` and `HH:MM:SS`, so what it writes reads back equal.
 
 use std::collections::HashMap;
 use std::io::Write;
