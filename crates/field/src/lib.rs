@@ -15,6 +15,11 @@
 //! [`tidy`] reads and writes the tidy CSV, [`load`] reads any mix of both; [`place`] puts
 //! stations on a corridor and selects their rows; [`aggregate`] makes longer intervals and
 //! lists the missing ones. Errors are [`FieldError`]s naming file, line, field and value.
+//!
+//! Goodness of fit (docs/compare.md): [`fit`] (GEH of hourly flows, speed RMSE, RMSNE and
+//! correlation), [`bottleneck`] (active bottlenecks after Chen, Skabardonis & Varaiya 2004,
+//! and their pairing), [`criteria`] (the FHWA Toolbox III criteria and the project's targets
+//! as data), [`report`] (the Markdown report).
 
 pub mod combine;
 
@@ -132,5 +137,4 @@ pub const METRES_PER_MILE: f64 = 1609.344;
 pub mod bottleneck;
 pub mod criteria;
 pub mod fit;
-mod interval;
 pub mod report;

@@ -1,6 +1,7 @@
 //! One module per command.
 
 pub mod bench;
+pub mod compare;
 pub mod experiment;
 pub mod reproduce;
 pub mod run;
@@ -27,6 +28,7 @@ pub fn dispatch(cli: Cli) -> Result<ExitCode> {
         Command::TimeSpace(args) => time_space::time_space(&args),
         Command::View(args) => view::view(&args),
         Command::Sweep(args) => return sweep::sweep(&args, cli.quiet),
+        Command::Compare(args) => compare::compare(&args),
     };
     done.map(|()| ExitCode::SUCCESS)
 }

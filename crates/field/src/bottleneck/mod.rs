@@ -98,7 +98,7 @@ pub fn rule_speed(o: &Obs) -> Option<f64> {
 /// The active bottlenecks in `obs` at the mainline stations of `stations` (others are
 /// ignored), ordered by position, then onset.
 pub fn identify(obs: &[Obs], stations: &[Placed], p: &Params) -> Vec<Bottleneck> {
-    let agg = crate::interval::to_interval(obs, p.interval_s);
+    let agg = crate::aggregate::to_interval(obs, p.interval_s);
     let mut speed: BTreeMap<&str, BTreeMap<u32, f64>> = BTreeMap::new();
     let mut seen: BTreeSet<&str> = BTreeSet::new();
     for o in &agg {

@@ -314,8 +314,8 @@ fn pair(
             .map(|o| ((o.station.clone(), o.start_s), o))
             .collect()
     };
-    let s = index(crate::interval::to_interval(sim, interval_s));
-    let f = index(crate::interval::to_interval(field, interval_s));
+    let s = index(crate::aggregate::to_interval(sim, interval_s));
+    let f = index(crate::aggregate::to_interval(field, interval_s));
     let mut pairs = Vec::new();
     let mut total = Coverage::default();
     let mut by_station: BTreeMap<String, Coverage> = BTreeMap::new();
