@@ -11,6 +11,8 @@
 //! * [`experiments`]: `capacity` (Fig. 4), `sensitivity` (Table 3), `flow-aware`,
 //!   `calibrate-flow-aware`, `sr99` (Table 4, Figs. 6-8) and `sr99-demand` (the demand-scale
 //!   search); [`corridor`] reads contours, lane series and bottlenecks from detector records.
+//! * [`compare`]: simulated detector data against field data (GEH, speeds, bottlenecks,
+//!   the FHWA Toolbox III criteria; `platoonsim compare`).
 //! * [`safety`]: runs with collisions (a failed run) and the safety measures per cell.
 //! * [`report`]: `REPORT.md` and a self-contained `report.html` over several experiments.
 //! * [`atomic`]: the one atomic file writer (also used by the CLI).
@@ -18,6 +20,7 @@
 pub mod atomic;
 pub mod calibrate;
 pub mod columnar;
+pub mod compare;
 pub mod corridor;
 pub mod design;
 pub mod detectors;

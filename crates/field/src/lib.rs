@@ -10,10 +10,33 @@
 //!   corridor (x in metres).
 //!
 //! Times are seconds since local midnight of the field day (`start_s`); one file holds one day.
+//!
+//! Input (docs/field-data.md): [`pems`] reads PeMS `station_5min` files and station metadata,
+//! [`tidy`] reads and writes the tidy CSV, [`load`] reads any mix of both; [`place`] puts
+//! stations on a corridor and selects their rows; [`aggregate`] makes longer intervals and
+//! lists the missing ones. Errors are [`FieldError`]s naming file, line, field and value.
+//!
+//! Goodness of fit (docs/compare.md): [`fit`] (GEH of hourly flows, speed RMSE, RMSNE and
+//! correlation), [`bottleneck`] (active bottlenecks after Chen, Skabardonis & Varaiya 2004,
+//! and their pairing), [`criteria`] (the FHWA Toolbox III criteria and the project's targets
+//! as data), [`report`] (the Markdown report).
+
+pub mod combine;
 
 pub mod demand;
 
 use serde::{Deserialize, Serialize};
+
+pub mod aggregate;
+pub mod clock;
+mod error;
+mod input;
+pub mod load;
+pub mod pems;
+pub mod place;
+pub mod tidy;
+
+pub use error::FieldError;
 
 /// What a PeMS station measures (the metadata's `Type`).
 #[derive(Clone, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -30,6 +53,33 @@ pub enum StationKind {
     FreewayConnector,
     /// Any other code, kept as written (`CD`, `CH`, `ML` variants of other districts).
     Other(String),
+}
+
+impl StationKind {
+    /// The kind of a PeMS `Type` code (`ML`, `OR`, `FR`, `HV`, `FF`; anything else is kept as
+    /// [`StationKind::Other`]).
+    pub fn from_code(code: &str) -> StationKind {
+        match code {
+            "ML" => StationKind::Mainline,
+            "OR" => StationKind::OnRamp,
+            "FR" => StationKind::OffRamp,
+            "HV" => StationKind::Hov,
+            "FF" => StationKind::FreewayConnector,
+            other => StationKind::Other(other.to_string()),
+        }
+    }
+
+    /// The PeMS `Type` code.
+    pub fn code(&self) -> &str {
+        match self {
+            StationKind::Mainline => "ML",
+            StationKind::OnRamp => "OR",
+            StationKind::OffRamp => "FR",
+            StationKind::Hov => "HV",
+            StationKind::FreewayConnector => "FF",
+            StationKind::Other(code) => code,
+        }
+    }
 }
 
 /// One station and interval: the tidy row (`station, time, flow_vph, speed_kmh, occupancy`).
@@ -85,3 +135,8 @@ pub struct Placed {
 
 /// Metres per mile (international mile), for postmiles.
 pub const METRES_PER_MILE: f64 = 1609.344;
+
+pub mod bottleneck;
+pub mod criteria;
+pub mod fit;
+pub mod report;

@@ -186,10 +186,14 @@ pub fn commanded_target(
 }
 
 /// An automated CAV whose driver waits for a gap toward its organized lane: with the lag gap
-/// open, no acceleration beyond what the target-lane leader allows (and never braking for it).
+/// open and the target-lane leader ahead of it (`leader_ahead`: its rear ahead of the CAV's
+/// front, or no leader), no acceleration beyond what that leader allows (and never braking
+/// for it). A leader alongside (overlapping) is not one to fall in behind by holding back:
+/// the hold would keep the CAV standing beside it for good, and with a neighbour waiting on
+/// the CAV's own lag gap that is a deadlock (docs/model-choices.md 6.20); the CAV drives on.
 #[inline]
-pub fn held_back(a_auto: f64, lag_ok: bool, a_ant: f64) -> f64 {
-    if lag_ok {
+pub fn held_back(a_auto: f64, lag_ok: bool, a_ant: f64, leader_ahead: bool) -> f64 {
+    if lag_ok && leader_ahead {
         a_auto.min(a_ant.max(0.0))
     } else {
         a_auto
@@ -256,6 +260,8 @@ pub struct Blc {
     pub lag_ok: bool,
     /// The anticipated acceleration behind the target-lane leader (m/s²).
     pub a_ant: f64,
+    /// The target-lane leader's rear is ahead of the own front (or there is none).
+    pub target_ahead: bool,
 }
 
 /// The before-lane-change step (spec 4.3), in order: the acceleration behind the current
@@ -313,6 +319,7 @@ pub fn before_lane_change(h: &HumanParams, lc: &LaneChangeParams, w: &BlcView) -
         lead_ok,
         lag_ok,
         a_ant,
+        target_ahead: w.target_leader.is_none_or(|l| l.gap_m > 0.0),
     }
 }
 
@@ -451,9 +458,11 @@ mod tests {
 
     #[test]
     fn automation_holds_back_for_the_target_lane_without_braking() {
-        assert_eq!(held_back(1.0, true, 0.5), 0.5);
-        assert_eq!(held_back(1.0, true, -2.0), 0.0);
-        assert_eq!(held_back(1.0, false, -2.0), 1.0);
+        assert_eq!(held_back(1.0, true, 0.5, true), 0.5);
+        assert_eq!(held_back(1.0, true, -2.0, true), 0.0);
+        assert_eq!(held_back(1.0, false, -2.0, true), 1.0);
+        // A target-lane leader alongside does not hold it (the 6.20 deadlock).
+        assert_eq!(held_back(1.0, true, -2.0, false), 1.0);
     }
 
     /// A driver at 20 m/s wanting to move right: its lane clear ahead, a target-lane leader

@@ -12,7 +12,7 @@ use crate::theme::{
 use crate::Heatmap;
 
 /// Width of the colour bar area at the right.
-const BAR_AREA: u32 = 170;
+pub(crate) const BAR_AREA: u32 = 170;
 /// Margin above the plots, shared by the cells and the colour bar so they line up.
 const TOP: u32 = 16;
 
@@ -52,6 +52,16 @@ impl<'a> Figure<'a> {
             y_edges: edges(&h.y),
             z_range,
         })
+    }
+
+    /// The map drawn.
+    pub fn map(&self) -> &Heatmap {
+        self.h
+    }
+
+    /// The colour scale's range.
+    pub fn z_range(&self) -> (f64, f64) {
+        self.z_range
     }
 
     /// Fill colour of a value.
@@ -122,7 +132,7 @@ impl output::Figure for Figure<'_> {
 impl Figure<'_> {
     /// The axes and the coloured cells in `area`; with `caption`, the heat map's title above
     /// them (panels of a grid).
-    fn cells<DB: DrawingBackend>(
+    pub(crate) fn cells<DB: DrawingBackend>(
         &self,
         area: &DrawingArea<DB, Shift>,
         sz: &theme::Sizes,
@@ -242,7 +252,7 @@ impl output::Figure for Grid<'_> {
 
 /// The colour scale for `(lo, hi)` in `area`, labelled with `label`; a "no data" key if
 /// `missing`.
-fn colour_bar<DB: DrawingBackend>(
+pub(crate) fn colour_bar<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     (lo, hi): (f64, f64),
     label: &str,

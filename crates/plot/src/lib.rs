@@ -42,6 +42,7 @@
 mod bars;
 mod geom;
 mod heat;
+mod heat_row;
 mod line;
 mod output;
 mod theme;
@@ -305,4 +306,17 @@ pub fn heatmap_panels(
         message,
     })?;
     output::write_figure(&grid, stem)
+}
+
+/// Writes several speed contours side by side in one row under a common `title`, each with
+/// its own colour bar: its own `z_range` (or, if that is not a finite increasing pair, the
+/// extent of its finite values) and `z_label`, so maps on different scales (speeds and a
+/// speed difference) share a figure. Each map's `title` is its panel's caption. Every map
+/// is checked as in [`heatmap`]; an error names the panel. Returns both paths.
+pub fn heatmap_row(maps: &[Heatmap], title: &str, stem: &Path) -> Result<Vec<PathBuf>, PlotError> {
+    let row = heat_row::Row::new(maps, title).map_err(|message| PlotError::Invalid {
+        path: output::file_path(stem, "png"),
+        message,
+    })?;
+    output::write_figure(&row, stem)
 }

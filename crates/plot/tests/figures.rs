@@ -7,8 +7,8 @@ use std::fs;
 use std::path::{Path, PathBuf};
 
 use platoonsim_plot::{
-    bar_chart, bar_panels, heatmap, heatmap_panels, line_chart, panels, Bars, Chart, Heatmap,
-    PlotError, Series, Style,
+    bar_chart, bar_panels, heatmap, heatmap_panels, heatmap_row, line_chart, panels, Bars, Chart,
+    Heatmap, PlotError, Series, Style,
 };
 
 /// A fresh, empty directory for one test.
@@ -376,6 +376,35 @@ fn heatmap_panels_share_one_colour_bar() {
     assert!(err.contains("panel 3"), "{err}");
     let stem = dir.stem("none");
     check_files_min(&heatmap_panels(&[], 2, "", &stem).unwrap(), &stem, 1_000);
+}
+
+#[test]
+fn heatmap_row_gives_each_panel_its_own_colour_bar() {
+    let dir = Dir::new("heat-row");
+    let stem = dir.stem("compare");
+    let mut diff = contour();
+    diff.title = "Difference".into();
+    diff.z_label = "Speed difference (km/h)".into();
+    diff.z_range = (-60.0, 60.0);
+    let mut sim = contour();
+    sim.title = "Simulated".into();
+    let svg = check_files(
+        &heatmap_row(&[sim, contour(), diff.clone()], "Speeds", &stem).unwrap(),
+        &stem,
+    );
+    assert_eq!(
+        svg.matches("Speed (km/h)").count(),
+        2,
+        "a bar per speed panel"
+    );
+    assert_eq!(svg.matches("Speed difference (km/h)").count(), 1);
+    // The difference bar is labelled on its own scale.
+    assert!(svg.contains("\n-60\n"), "no -60 tick");
+    diff.z.pop();
+    let err = heatmap_row(&[contour(), diff], "", &stem)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("panel 2"), "{err}");
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! The way back: a resolved [`Config`] as a complete scenario file (every key written out),
 //! which loads again to the same `Config`.
 
-use crate::network::{detectors, split_name, stretches, Spacing, END_DETECTOR};
+use crate::network::{detectors, split_name, stretches, RampStations, Spacing, END_DETECTOR};
 use crate::raw::{
     RawDemand, RawDetector, RawLaneStretch, RawMeasurement, RawNetwork, RawNetworkDetectors,
     RawOffRamp, RawOnRamp, RawRoad, RawRun, RawScenario, RawStrategy,
@@ -134,7 +134,25 @@ fn raw_network(n: &Network, config: &Config) -> (RawNetwork, Vec<String>) {
     }
     let on_ids: Vec<String> = on.iter().map(|(id, _)| id.clone()).collect();
     let off_ids: Vec<String> = off.iter().map(|(id, _)| id.clone()).collect();
-    let generated = detectors(n, length, &on_ids, &off_ids, &spacing)
+    // A ramp's station is the name of its counter (an off-ramp's, unless it is `{id}-off`).
+    let counter = |kind: DetectorKind| {
+        config
+            .detectors
+            .iter()
+            .find(|d| d.kind == kind)
+            .map(|d| d.name.clone())
+    };
+    let stations = RampStations {
+        on: (0..n.on_ramps.len())
+            .map(|i| counter(DetectorKind::OnRamp { ramp: i }))
+            .collect(),
+        off: (0..n.off_ramps.len())
+            .map(|i| counter(DetectorKind::OffRamp { ramp: i }))
+            .zip(&off_ids)
+            .map(|(name, id)| name.filter(|s| *s != format!("{id}-off")))
+            .collect(),
+    };
+    let generated = detectors(n, length, &on_ids, &off_ids, &stations, &spacing)
         .into_iter()
         .map(|d| d.name)
         .collect();
@@ -172,24 +190,28 @@ fn raw_network(n: &Network, config: &Config) -> (RawNetwork, Vec<String>) {
             .on_ramps
             .iter()
             .zip(&on)
-            .map(|(r, (id, name))| RawOnRamp {
+            .enumerate()
+            .map(|(i, (r, (id, name)))| RawOnRamp {
                 id: Some(id.clone()),
                 name: named(id, name),
                 x_m: Some(r.x_m + o),
                 accel_lane_m: Some(r.accel_lane_m),
                 ramp_length_m: Some(r.ramp_length_m),
                 demand_vph: Some(r.demand_vph.clone()),
+                station: stations.on[i].clone(),
             })
             .collect(),
         off_ramps: n
             .off_ramps
             .iter()
             .zip(&off)
-            .map(|(r, (id, name))| RawOffRamp {
+            .enumerate()
+            .map(|(i, (r, (id, name)))| RawOffRamp {
                 id: Some(id.clone()),
                 name: named(id, name),
                 x_m: Some(r.x_m + o),
                 exit_fraction: Some(r.exit_fraction.clone()),
+                station: stations.off[i].clone(),
             })
             .collect(),
     };

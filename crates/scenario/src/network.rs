@@ -141,6 +141,14 @@ impl Default for Spacing {
     }
 }
 
+/// The field stations at the ramps (`station` keys), by ramp index; they name the ramps'
+/// counters.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RampStations {
+    pub on: Vec<Option<String>>,
+    pub off: Vec<Option<String>>,
+}
+
 /// Name of the generated exit detector on the main lanes.
 pub const END_DETECTOR: &str = "end";
 
@@ -148,12 +156,15 @@ pub const END_DETECTOR: &str = "end";
 /// sorted by position — `{id}-up` 50 m upstream of every ramp, `{id}-down` 50 m downstream of
 /// every on-ramp, and `end` (an exit) before the road end — with exact duplicate positions
 /// dropped (`end` wins, then the upstream-most ramp) and positions outside (0, length)
-/// skipped; then one `{id}-off` exit detector per off-ramp, in ramp order.
+/// skipped; then one `{id}-off` exit detector per off-ramp, in ramp order (named by the ramp's
+/// field station instead, if it has one); then a counter per on-ramp with a station, named by
+/// it, in ramp order.
 pub fn detectors(
     net: &Network,
     length_m: f64,
     on_ids: &[String],
     off_ids: &[String],
+    stations: &RampStations,
     s: &Spacing,
 ) -> Vec<DetectorSpec> {
     let mut candidates = vec![DetectorSpec {
@@ -187,12 +198,23 @@ pub fn detectors(
     candidates.sort_by(|a, b| a.position_m.total_cmp(&b.position_m));
     candidates.dedup_by(|later, kept| later.position_m == kept.position_m);
     for (i, (r, id)) in net.off_ramps.iter().zip(off_ids).enumerate() {
+        let station = stations.off.get(i).cloned().flatten();
         candidates.push(DetectorSpec {
-            name: format!("{id}-off"),
+            name: station.unwrap_or_else(|| format!("{id}-off")),
             position_m: r.x_m,
             kind: DetectorKind::OffRamp { ramp: i },
             exit: true,
         });
+    }
+    for (i, r) in net.on_ramps.iter().enumerate() {
+        if let Some(Some(station)) = stations.on.get(i) {
+            candidates.push(DetectorSpec {
+                name: station.clone(),
+                position_m: r.x_m,
+                kind: DetectorKind::OnRamp { ramp: i },
+                exit: false,
+            });
+        }
     }
     candidates
 }
@@ -361,7 +383,14 @@ mod tests {
         };
         let on = ["OR1".to_string(), "OR2".to_string()];
         let off = ["FR1".to_string()];
-        let d = detectors(&net, 1200.0, &on, &off, &Spacing::default());
+        let d = detectors(
+            &net,
+            1200.0,
+            &on,
+            &off,
+            &RampStations::default(),
+            &Spacing::default(),
+        );
         let got: Vec<(&str, f64, bool)> = d
             .iter()
             .map(|d| (d.name.as_str(), d.position_m, d.exit))

@@ -149,6 +149,25 @@ pub struct RawLaneStretch {
     pub count: Option<u32>,
 }
 
+/// A station id as a string or a whole number (PeMS station IDs are numbers:
+/// `station = 314107` and `station = "314107"` are the same station).
+fn station_id<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<String>, D::Error> {
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum Id {
+        Text(String),
+        Number(u64),
+    }
+    Ok(Some(
+        match Id::deserialize(d).map_err(|_| {
+            serde::de::Error::custom("expected a station id: a string or a whole number")
+        })? {
+            Id::Text(s) => s,
+            Id::Number(n) => n.to_string(),
+        },
+    ))
+}
+
 /// One `[[network.on_ramps]]` entry.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -165,6 +184,13 @@ pub struct RawOnRamp {
     pub ramp_length_m: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub demand_vph: Option<Vec<f64>>,
+    /// A field station at this ramp (e.g. a PeMS station ID): the ramp gets a counter of
+    /// that name (docs/network-scenarios.md).
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "station_id"
+    )]
+    pub station: Option<String>,
 }
 
 /// One `[[network.off_ramps]]` entry.
@@ -179,6 +205,12 @@ pub struct RawOffRamp {
     pub x_m: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub exit_fraction: Option<Vec<f64>>,
+    /// A field station at this ramp: the off-ramp's counter takes its name.
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "station_id"
+    )]
+    pub station: Option<String>,
 }
 
 /// `[network.detectors]`: where the generated detectors go.

@@ -24,6 +24,9 @@ mod road;
 #[path = "validate_detectors.rs"]
 mod detectors;
 
+#[path = "validate_stations.rs"]
+mod stations;
+
 #[path = "validate_strategy.rs"]
 mod strategy;
 

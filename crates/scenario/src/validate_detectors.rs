@@ -25,6 +25,7 @@ pub(super) fn check_detectors(
             length.unwrap_or(f64::NAN),
             &v.on_ids,
             &v.off_ids,
+            &v.stations,
             &v.spacing,
         ),
         None => Vec::new(),

@@ -8,7 +8,7 @@ use crate::demand_scales;
 use crate::limits;
 use crate::network::{
     default_off_id, default_on_id, engine_name, offset_series, offset_step, through_lanes,
-    valid_id, Spacing, Stretch, MAX_LANE_COUNT,
+    valid_id, RampStations, Spacing, Stretch, MAX_LANE_COUNT,
 };
 use crate::raw::{num, RawNetwork};
 use platoonsim_sim::config::{Network, OffRamp, OnRamp};
@@ -37,6 +37,8 @@ pub(super) struct Checked {
     pub network: Network,
     pub on_ids: Vec<String>,
     pub off_ids: Vec<String>,
+    /// The field stations at the ramps (`station`), which name their counters.
+    pub stations: RampStations,
     pub spacing: Spacing,
 }
 
@@ -677,6 +679,7 @@ pub(super) fn check_network(
         },
         on_ids: ids[..n_on].iter().map(|(_, id, _)| id.clone()).collect(),
         off_ids: ids[n_on..].iter().map(|(_, id, _)| id.clone()).collect(),
+        stations: super::stations::check(c, n),
         spacing: Spacing {
             upstream_of_ramps_m: up.v,
             downstream_of_onramps_m: down.v,

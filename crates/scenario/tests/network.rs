@@ -7,6 +7,7 @@ use common::*;
 use platoonsim_scenario::{
     demand_scale_set, from_toml, load, load_with, to_toml, Overrides, ScenarioError,
 };
+use platoonsim_sim::config::DetectorKind;
 use platoonsim_sim::StrategyKind;
 
 const SMALL_CORRIDOR: &str = include_str!("fixtures/small_corridor.toml");
@@ -120,6 +121,47 @@ fn user_detectors_join_the_generated_ones() {
     let mid = &c.detectors[5];
     assert_eq!((mid.position_m, mid.exit), (2200.0, false));
     assert_eq!(c.measurement_detector, 5);
+}
+
+#[test]
+fn ramp_stations_name_the_ramp_counters() {
+    let c = with_set(
+        SMALL_CORRIDOR,
+        &[
+            "network.on_ramps[1].station=314107",
+            "network.off_ramps[0].station=312424",
+        ],
+    )
+    .unwrap();
+    assert_eq!(
+        names(&c),
+        vec!["OR1-up", "OR1-down", "FR1-up", "B-up", "B-down", "end", "312424", "314107"]
+    );
+    let on = &c.detectors[7];
+    assert_eq!(
+        (on.position_m, on.exit, on.kind),
+        (1700.0, false, DetectorKind::OnRamp { ramp: 1 })
+    );
+    assert_eq!(c.detectors[6].kind, DetectorKind::OffRamp { ramp: 0 });
+    // Written back and read again: the same configuration.
+    let resolved = to_toml(&c);
+    assert!(resolved.contains("station = \"314107\""), "{resolved}");
+    let back = from_toml(&resolved, "resolved", "other", &Overrides::default()).unwrap();
+    assert_eq!(back, c);
+
+    let p = corridor_problems(&[
+        "network.on_ramps[0].station=S1",
+        "network.off_ramps[0].station=S1",
+    ]);
+    assert_eq!(
+        p,
+        vec!["network.off_ramps[0].station = \"S1\": duplicates network.on_ramps[0].station; a station names one ramp counter"]
+    );
+    let p = corridor_problems(&["network.on_ramps[0].station='a b'"]);
+    assert_eq!(
+        p,
+        vec!["network.on_ramps[0].station = \"a b\": must be a non-empty id of letters, digits, '_', '-' and '.' (it names the ramp's counter)"]
+    );
 }
 
 // ---------------------------------------------------------------- round trips

@@ -87,7 +87,7 @@ fn sr99_is_the_corridor_of_the_data() {
         .iter()
         .filter_map(|d| match d.kind {
             DetectorKind::OffRamp { ramp } => Some(ramp),
-            DetectorKind::Mainline => None,
+            DetectorKind::Mainline | DetectorKind::OnRamp { .. } => None,
         })
         .collect();
     assert_eq!(off, (0..11).collect::<Vec<_>>());

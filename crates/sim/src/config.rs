@@ -249,6 +249,9 @@ pub enum DetectorKind {
     Mainline,
     /// The vehicles leaving by off-ramp `ramp` (index into `Network::off_ramps`).
     OffRamp { ramp: usize },
+    /// The vehicles entering from on-ramp `ramp` (index into `Network::on_ramps`), counted
+    /// where they are placed on the acceleration lane: a PeMS on-ramp station's count.
+    OnRamp { ramp: usize },
 }
 
 impl DetectorSpec {
@@ -562,13 +565,20 @@ impl Config {
             }
         }
         for (i, d) in self.detectors.iter().enumerate() {
-            if let DetectorKind::OffRamp { ramp } = d.kind {
-                let n = self.road.network.as_ref().map_or(0, |n| n.off_ramps.len());
-                if ramp >= n {
-                    return Err(SimError::Config(format!(
-                        "detectors[{i}] counts off-ramp {ramp}, but only {n} off-ramps exist"
-                    )));
+            let net = self.road.network.as_ref();
+            let (ramp, n, what) = match d.kind {
+                DetectorKind::Mainline => continue,
+                DetectorKind::OffRamp { ramp } => {
+                    (ramp, net.map_or(0, |n| n.off_ramps.len()), "off-ramp")
                 }
+                DetectorKind::OnRamp { ramp } => {
+                    (ramp, net.map_or(0, |n| n.on_ramps.len()), "on-ramp")
+                }
+            };
+            if ramp >= n {
+                return Err(SimError::Config(format!(
+                    "detectors[{i}] counts {what} {ramp}, but only {n} {what}s exist"
+                )));
             }
         }
         if self.measurement_detector >= self.detectors.len() {

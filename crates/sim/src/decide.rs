@@ -30,6 +30,8 @@ struct Gaps {
     lead_ok: bool,
     lag_ok: bool,
     a_ant: f64,
+    /// The target-lane leader's rear is ahead of the own front (or there is none).
+    target_ahead: bool,
 }
 
 /// A lane-change desire that passed the threshold.
@@ -297,7 +299,7 @@ impl View<'_> {
             if g.lead_ok && g.lag_ok {
                 return blc;
             }
-            let held = Some((g.lag_ok, g.a_ant));
+            let held = Some((g.lag_ok, g.a_ant, g.target_ahead));
             let mut a = self.automated_decision(s, v, nb, leader, wall, held);
             if a.mode == Mode::Cf {
                 a.mode = Mode::Blc {
@@ -315,7 +317,7 @@ impl View<'_> {
     /// An automated CAV's decision: ACC / CACC / speed regulation (spec 3). With the spec 6.5
     /// flag the automation also answers a mandatory yield request it agrees to: it follows the
     /// requester as a virtual leader as a yielding driver would (spec 4.5), without leaving
-    /// automation [D]. `held`: (lag gap acceptable, a_ant) of a CAV waiting for a PD-lane gap
+    /// automation [D]. `held`: (lag gap acceptable, a_ant, target-lane leader ahead) of a CAV waiting for a PD-lane gap
     /// (`driver::held_back`). Then the demand goes through the actuators (spec 9.3).
     fn automated_decision(
         &self,
@@ -324,7 +326,7 @@ impl View<'_> {
         nb: &Neighbours,
         leader: Option<Leader>,
         wall: bool,
-        held: Option<(bool, f64)>,
+        held: Option<(bool, f64, bool)>,
     ) -> Decision {
         let mut d = self.cav_control(s, v, leader, wall);
         if self.cfg.cav.yield_while_automated {
@@ -345,8 +347,8 @@ impl View<'_> {
                 };
             }
         }
-        if let Some((lag_ok, a_ant)) = held {
-            d.accel = driver::held_back(d.accel, lag_ok, a_ant);
+        if let Some((lag_ok, a_ant, ahead)) = held {
+            d.accel = driver::held_back(d.accel, lag_ok, a_ant, ahead);
         }
         self.actuate(v, &mut d);
         d
@@ -545,6 +547,7 @@ impl View<'_> {
                 lead_ok: blc.lead_ok,
                 lag_ok: blc.lag_ok,
                 a_ant: blc.a_ant,
+                target_ahead: blc.target_ahead,
             },
         )
     }

@@ -22,8 +22,8 @@ pub(crate) fn observe_detectors(
     detectors.hint.resize(detectors.list.len() * n_lanes, 0);
     for (i, det) in detectors.list.iter_mut().enumerate() {
         let p = det.position_m;
-        if det.kind == "off-ramp" {
-            continue;
+        if det.kind != "mainline" {
+            continue; // ramp counters count at exits and insertions
         }
         for (l, lane) in traffic.lanes.iter().enumerate() {
             if det.mask & (1 << l) == 0 {

@@ -36,7 +36,7 @@ pub struct Acc {
 pub struct Detector {
     pub name: String,
     pub position_m: f64,
-    /// "mainline" or "off-ramp" (detectors.csv).
+    /// "mainline", "off-ramp" or "on-ramp" (detectors.csv).
     pub kind: &'static str,
     /// Counts toward the network discharge.
     pub exit: bool,
@@ -124,7 +124,8 @@ impl Detector {
         }
     }
 
-    /// A vehicle leaves through this detector (an off-ramp counter) at speed `v` (m/s).
+    /// A vehicle passes this ramp counter (leaves by its off-ramp, or enters from its
+    /// on-ramp) at speed `v` (m/s).
     pub fn count_exit(&mut self, v: f64, cav: bool) {
         let acc = &mut self.current[self.first_lane];
         acc.count += 1;

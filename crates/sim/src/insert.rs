@@ -265,6 +265,8 @@ pub(crate) struct Inserting<'a> {
     /// The trip record (the arrival time at the entrance, for the queue delay).
     pub rec: &'a mut Recorder,
     pub watch: &'a mut Watch,
+    /// The loop detectors: an on-ramp counter counts each vehicle placed from its ramp.
+    pub detectors: &'a mut crate::state::Detectors,
 }
 
 impl Inserting<'_> {
@@ -407,6 +409,9 @@ impl Inserting<'_> {
             .queue
             .pop_front()
             .expect("queue has a head");
+        if let Some(d) = self.detectors.entry_of_ramp[r] {
+            self.detectors.list[d].count_exit(speed, veh.is_cav());
+        }
         self.place(veh, lane, x, speed, j);
     }
 

@@ -76,23 +76,28 @@ impl Simulation {
             .iter()
             .map(|d| {
                 let mask = match d.kind {
-                    DetectorKind::OffRamp { .. } => 1,
+                    DetectorKind::OffRamp { .. } | DetectorKind::OnRamp { .. } => 1,
                     DetectorKind::Mainline => (0..n_lanes as u32)
                         .filter(|&l| geom.through(l, d.position_m))
                         .fold(0u32, |m, l| m | (1 << l)),
                 };
                 let mut det = Detector::covering(&d.name, d.position_m, n_lanes, mask, origin);
                 det.exit = d.exit;
-                if let DetectorKind::OffRamp { .. } = d.kind {
-                    det.kind = "off-ramp";
-                }
+                det.kind = match d.kind {
+                    DetectorKind::Mainline => "mainline",
+                    DetectorKind::OffRamp { .. } => "off-ramp",
+                    DetectorKind::OnRamp { .. } => "on-ramp",
+                };
                 det
             })
             .collect::<Vec<_>>();
         let mut exit_detector = vec![None; geom.off_ramps.len()];
+        let mut entry_detector = vec![None; geom.on_ramps.len()];
         for (i, d) in cfg.detectors.iter().enumerate() {
-            if let DetectorKind::OffRamp { ramp } = d.kind {
-                exit_detector[ramp] = Some(i);
+            match d.kind {
+                DetectorKind::OffRamp { ramp } => exit_detector[ramp] = Some(i),
+                DetectorKind::OnRamp { ramp } => entry_detector[ramp] = Some(i),
+                DetectorKind::Mainline => {}
             }
         }
         let ramp_speed_mps = cfg
@@ -137,6 +142,7 @@ impl Simulation {
                 list: detectors,
                 hint: Vec::new(),
                 exit_of_ramp: exit_detector,
+                entry_of_ramp: entry_detector,
             },
             measures: Measures {
                 metrics: Metrics::default(),
@@ -365,6 +371,7 @@ impl Simulation {
             entered: &mut self.measures.metrics.entered,
             rec: &mut self.rec,
             watch: &mut self.watch,
+            detectors: &mut self.detectors,
         }
         .insert();
         crate::detect::observe_detectors(
@@ -612,6 +619,9 @@ impl Simulation {
             .detectors
             .list
             .iter()
+            // On-ramp counters say nothing of the mainline's condition (off-ramp counters
+            // have always been read, as in the paper's runs).
+            .filter(|d| d.kind != "on-ramp")
             .filter_map(|d| d.broadcast(interval).map(|b| (d.position_m, b)))
             .collect();
         self.control

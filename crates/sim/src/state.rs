@@ -135,6 +135,8 @@ pub(crate) struct Detectors {
     pub hint: Vec<u32>,
     /// Per off-ramp, the detector that counts it.
     pub exit_of_ramp: Vec<Option<usize>>,
+    /// Per on-ramp, the detector that counts it.
+    pub entry_of_ramp: Vec<Option<usize>>,
 }
 
 /// What the run measures as it goes: the paper's statistics, the safety measures, counters.

@@ -177,7 +177,7 @@ pub struct BrakingPeaks {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct DetectorRecord {
     pub detector: String,
-    /// "mainline" or "off-ramp".
+    /// "mainline", "off-ramp" or "on-ramp".
     pub kind: String,
     /// Output coordinate (engine x + the network origin).
     pub position_m: f64,

@@ -524,3 +524,46 @@ fn cross_lane_friction_slows_drivers_beside_a_slow_lane() {
         assert_eq!(off.summary.vehicle_updates, without.summary.vehicle_updates);
     }
 }
+
+#[test]
+fn on_ramp_counters_count_the_vehicles_each_ramp_lets_in_and_change_nothing_else() {
+    let plain = toy(0.5, vec![3000.0], 3);
+    let mut counted = plain.clone();
+    let counter = |name: &str, x: f64, ramp: usize| DetectorSpec {
+        name: name.into(),
+        position_m: x,
+        kind: DetectorKind::OnRamp { ramp },
+        exit: false,
+    };
+    counted.detectors.push(counter("A-on", 800.0, 0));
+    counted.detectors.push(counter("C-on", 3000.0, 2));
+    let rec = platoonsim_sim::Recording {
+        trips: true,
+        trajectories: None,
+    };
+    let out = platoonsim_sim::run_recording(&counted, &rec, None).unwrap();
+    let trips = out.trips.as_ref().unwrap();
+    // Entrance i + 1 is on-ramp i.
+    let from = |origin: usize| trips.iter().filter(|t| t.origin == origin).count() as u64;
+    assert!(from(1) > 200, "ramp A let in {}", from(1));
+    assert_eq!(count(&out, "A-on"), from(1));
+    assert_eq!(count(&out, "C-on"), from(3));
+    assert!(out
+        .detectors
+        .iter()
+        .filter(|r| r.detector == "A-on")
+        .all(|r| r.kind == "on-ramp"));
+    // The counters observe: the traffic, every other detector and the summary are unchanged
+    // (they are not read by the organizer either, which the PD strategy here does not test;
+    // the broadcast filter is tested in the scenario's Flow-Aware runs).
+    let base = run(&plain, None).unwrap();
+    let others: Vec<_> = out
+        .detectors
+        .iter()
+        .filter(|r| !r.detector.ends_with("-on"))
+        .cloned()
+        .collect();
+    assert_eq!(others, base.detectors);
+    assert_eq!(out.summary.vehicles_entered, base.summary.vehicles_entered);
+    assert_eq!(out.summary.vehicles_exited, base.summary.vehicles_exited);
+}

@@ -7,7 +7,9 @@ use platoonsim_sim::record::period_steps;
 use platoonsim_sim::{Config, Recording, TrajectorySpec};
 use std::path::PathBuf;
 
+mod compare;
 mod experiment;
+pub use compare::CompareArgs;
 pub use experiment::*;
 
 /// Microscopic freeway simulator for CACC platoons in mixed human/CAV traffic (Woo &
@@ -68,6 +70,13 @@ pub enum Command {
     /// scheduler's job array (--shard I/N, or SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX,
     /// HQ_TASK_ID); see docs/sweeps.md.
     Sweep(crate::commands::sweep::SweepArgs),
+    /// Compare runs with field detector data (PeMS station_5min or tidy CSV): GEH of hourly
+    /// flows, 15-min speed RMSE, RMSNE and correlation, active bottlenecks on both sides,
+    /// judged by the FHWA Traffic Analysis Toolbox Vol. III criteria and the project's
+    /// targets; writes compare.md, compare.html, fit.json and speed contours to OUT
+    /// (default RUN_DIR/compare). Detectors are matched to field stations by name; see
+    /// docs/compare.md.
+    Compare(CompareArgs),
     /// Fit chosen scenario keys to field data (tidy CSV of flows and speeds at stations named
     /// like the scenario's detectors) with CMA-ES: each candidate is the mean of R replications;
     /// write calibrated.toml, trace.csv, convergence.png, fit-before.md, fit-after.md and

@@ -2,6 +2,7 @@
 
 pub mod bench;
 pub mod calibrate;
+pub mod compare;
 pub mod experiment;
 mod field_input;
 pub mod reproduce;
@@ -29,6 +30,7 @@ pub fn dispatch(cli: Cli) -> Result<ExitCode> {
         Command::TimeSpace(args) => time_space::time_space(&args),
         Command::View(args) => view::view(&args),
         Command::Sweep(args) => return sweep::sweep(&args, cli.quiet),
+        Command::Compare(args) => compare::compare(&args),
         Command::Calibrate(args) => calibrate::calibrate(&args, cli.quiet),
     };
     done.map(|()| ExitCode::SUCCESS)
