@@ -225,6 +225,33 @@ fn demand_step_sets_the_estimated_series() {
     let q0 = common::num(&est[0], "mainline_vph");
     assert!((q0 - 1600.0).abs() < 0.06 * 1600.0, "{q0}");
     assert_eq!(net.demand_scale, 1.0);
+
+    // Placed by a station table at the detectors' positions: the same estimate; without the
+    // upstream station s1 the entrance is read from the next stations (a different estimate).
+    let table = |rows: &str| {
+        let t = d.join("stations.csv");
+        std::fs::write(&t, format!("station,x_m,kind\n{rows}")).unwrap();
+        let out = d.join("placed");
+        let o = platoonsim(&[
+            "-q",
+            "calibrate",
+            &scenario(),
+            "--field",
+            s(&field),
+            "--params",
+            s(&p),
+            "--out",
+            s(&out),
+            "--stations",
+            s(&t),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        std::fs::read(out.join("dem/demand.csv")).unwrap()
+    };
+    let all = "s1,500,ML\non-up,1450,ML\non-down,1550,ML\ns2,2000,ML\noff-up,2250,ML\n\
+               s3,2600,ML\ns4,2900,ML\nend,2990,ML\noff-off,2300,FR\n";
+    assert!(table(all) == std::fs::read(d.join("dem/demand.csv")).unwrap());
+    assert!(table(&all.replace("s1,500,ML\n", "")) != table(all));
 }
 
 #[test]
@@ -233,7 +260,7 @@ fn bad_parameters_files_name_the_key_and_value() {
     let field = d.join("field.csv");
     std::fs::write(
         &field,
-        "station,time,flow_vph,speed_kmh\ns1,07:00,1000,90\n",
+        "station,time,flow_vph,speed_kmh,occupancy\ns1,07:00,1000,90,0.1\ns1,07:10,1000,90,0.1\n",
     )
     .unwrap();
     let cases = [

@@ -2,7 +2,7 @@
 //!
 //! No platoonsim dependency: field files in, plain data out, like `plot`. The experiment crate
 //! turns a run's `detectors.csv` into the same [`Obs`] rows and compares them
-//! (`platoonsim compare`, `platoonsim calibrate`; docs/calibration-field.md).
+//! (`platoonsim compare`, docs/compare.md; `platoonsim calibrate`, docs/calibrate.md).
 //!
 //! * [`Obs`]: one station's flow, speed and occupancy over one interval, the tidy row every
 //!   reader produces and every measure reads;
@@ -20,9 +20,11 @@
 //! correlation), [`bottleneck`] (active bottlenecks after Chen, Skabardonis & Varaiya 2004,
 //! and their pairing), [`criteria`] (the FHWA Toolbox III criteria and the project's targets
 //! as data), [`report`] (the Markdown report).
+//!
+//! Calibration (docs/calibrate.md): [`demand`] estimates a corridor's entrance demands and
+//! exit fractions from counts (non-negative least squares under flow conservation).
 
 pub mod combine;
-
 pub mod demand;
 
 use serde::{Deserialize, Serialize};

@@ -77,8 +77,8 @@ pub enum Command {
     /// (default RUN_DIR/compare). Detectors are matched to field stations by name; see
     /// docs/compare.md.
     Compare(CompareArgs),
-    /// Fit chosen scenario keys to field data (tidy CSV of flows and speeds at stations named
-    /// like the scenario's detectors) with CMA-ES: each candidate is the mean of R replications;
+    /// Fit chosen scenario keys to field data (PeMS station_5min or tidy CSV of flows and
+    /// speeds at stations named like the scenario's detectors) with CMA-ES: each candidate is the mean of R replications;
     /// write calibrated.toml, trace.csv, convergence.png, fit-before.md, fit-after.md and
     /// run.json to OUT/NAME. Resumable, and shardable like a sweep (--shard I/N or a
     /// scheduler's array index); see docs/calibrate.md.

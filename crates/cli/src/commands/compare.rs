@@ -5,6 +5,7 @@ use crate::args::CompareArgs;
 use anyhow::{bail, Context, Result};
 use platoonsim_experiment::compare::{self, files, runs, Options};
 use platoonsim_field::{combine, load, pems, place, Obs, Placed};
+use std::path::PathBuf;
 
 /// Names shown in a message before "…".
 const SHOWN: usize = 8;
@@ -22,15 +23,24 @@ fn some_names(names: &[String]) -> String {
     s
 }
 
+/// Where the field data come from: `--field`, `--meta`, `--origin-pm`, `--stations` (of
+/// `compare` and `calibrate`).
+pub struct FieldArgs<'a> {
+    pub field: &'a [PathBuf],
+    pub meta: Option<&'a PathBuf>,
+    pub origin_pm: Option<f64>,
+    pub stations: Option<&'a PathBuf>,
+}
+
 /// The field rows (HOV stations added to their mainline station when there is metadata),
 /// the placement, and notes on what was combined or left out inside `window`.
-fn field_data(
-    args: &CompareArgs,
+pub fn field_data(
+    args: &FieldArgs,
     window: (u32, u32),
 ) -> Result<(Vec<Obs>, Vec<Placed>, Vec<String>)> {
-    let mut obs = load::load(&args.field)?;
+    let mut obs = load::load(args.field)?;
     let mut notes = Vec::new();
-    let meta = match &args.meta {
+    let meta = match args.meta {
         Some(path) => Some(pems::read_meta(path)?),
         None => None,
     };
@@ -72,7 +82,7 @@ fn field_data(
             ));
         }
     }
-    let places = match (&args.stations, args.origin_pm, &meta) {
+    let places = match (args.stations, args.origin_pm, &meta) {
         (Some(table), _, _) => place::from_table(table)?,
         (None, Some(pm), Some(meta)) => {
             place::by_postmile(meta, pm, f64::NEG_INFINITY, f64::INFINITY)
@@ -91,7 +101,13 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
         );
     };
     let window = args.window(span)?;
-    let (field, field_places, notes) = field_data(args, window)?;
+    let from = FieldArgs {
+        field: &args.field,
+        meta: args.meta.as_ref(),
+        origin_pm: args.origin_pm,
+        stations: args.stations.as_ref(),
+    };
+    let (field, field_places, notes) = field_data(&from, window)?;
     let opts = Options {
         window: Some(window),
         ..Options::default()

@@ -4,7 +4,6 @@ pub mod bench;
 pub mod calibrate;
 pub mod compare;
 pub mod experiment;
-mod field_input;
 pub mod reproduce;
 pub mod run;
 pub mod scenarios;

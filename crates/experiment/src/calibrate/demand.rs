@@ -4,8 +4,10 @@
 //! `calibrated.toml` carry them.
 //!
 //! * The corridor comes from the scenario's `[network]` (entrance, on- and off-ramps by id).
-//! * Mainline stations: the field stations named like a mainline detector of the scenario,
-//!   at that detector's position. Ramp stations: the `[demand]` table, ramp id = station.
+//! * Mainline stations: with a placement (`--origin-pm`, `--stations`), the field stations
+//!   placed as mainline (`ML`) inside the corridor; without one, the field stations named like
+//!   a mainline detector of the scenario, at that detector's position. Ramp stations: the
+//!   `[demand]` table, ramp id = station.
 //! * Intervals: the network's `interval_s`, from `run.clock_start`, as many as cover
 //!   `run.duration_s`. A station's count in an interval is the mean flow of its field
 //!   intervals inside it, used only if they cover it entirely (a gap is never filled).
@@ -15,7 +17,7 @@
 //!   flow itself, at clock time).
 
 use platoonsim_field::demand::{estimate, Corridor, Counts, Estimate};
-use platoonsim_field::Obs;
+use platoonsim_field::{Obs, StationKind};
 use platoonsim_scenario::network::split_name;
 use platoonsim_sim::{Config, DetectorKind};
 use std::collections::BTreeMap;
@@ -35,9 +37,10 @@ pub struct Demand {
 /// Estimate the demand of `config` (loaded with `network.demand_offset_s = 0`) from the field.
 pub fn demand(
     config: &Config,
-    field: &[Obs],
+    data: &super::Field,
     ramps: &[(String, String)],
 ) -> Result<Demand, String> {
+    let field = &data.obs[..];
     let net = config.road.network.as_ref().ok_or(
         "[demand] estimates a network's entrance demands, and the scenario has no [network]",
     )?;
@@ -74,12 +77,22 @@ pub fn demand(
             ));
         }
     }
-    let mainline: BTreeMap<&str, f64> = config
-        .detectors
-        .iter()
-        .filter(|d| d.kind == DetectorKind::Mainline)
-        .map(|d| (d.name.as_str(), d.position_m))
-        .collect();
+    // Engine coordinates (0 at the entrance); a placement is in the corridor's own.
+    let mainline: BTreeMap<&str, f64> = if data.places.is_empty() {
+        config
+            .detectors
+            .iter()
+            .filter(|d| d.kind == DetectorKind::Mainline)
+            .map(|d| (d.name.as_str(), d.position_m))
+            .collect()
+    } else {
+        data.places
+            .iter()
+            .filter(|p| p.kind == StationKind::Mainline)
+            .map(|p| (p.station.as_str(), p.x_m - net.origin_m))
+            .filter(|&(_, x)| x > 0.0 && x < config.road.length_m)
+            .collect()
+    };
     let interval = net.interval_s;
     let n = (config.duration_s / interval).ceil().max(1.0) as usize;
     let starts: Vec<u32> = (0..n)

@@ -34,18 +34,23 @@ use evaluate::{Batch, Target};
 use objective::Terms;
 use optimizer::{Ask, Setup};
 use params::Params;
-use platoonsim_field::Obs;
+use platoonsim_field::{Obs, Placed};
 use space::Space;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-/// The field data: the observations and the files they came from (for the provenance).
+/// The field data: the observations, the stations' placement and the files they came from.
 #[derive(Clone, Debug, Default)]
 pub struct Field {
     pub obs: Vec<Obs>,
+    /// The stations placed on the corridor (`--origin-pm` or `--stations`; may be empty:
+    /// stations are then placed at the scenario's detector of the same name).
+    pub places: Vec<Placed>,
     /// (path, FNV-1a 64 of the file's bytes, 16 hex digits).
     pub files: Vec<(String, String)>,
+    /// Notes on the data (stations combined, intervals left out), for the fit reports.
+    pub notes: Vec<String>,
 }
 
 /// How to run a calibration.
@@ -302,6 +307,6 @@ fn estimate_demand(p: &Params, field: &Field, scenario: &str) -> Result<demand::
     };
     let config = platoonsim_scenario::load_with(scenario, &overrides)
         .map_err(|e| Error::Other(format!("{}: [demand]: {e}", p.origin)))?;
-    demand::demand(&config, &field.obs, &p.demand)
+    demand::demand(&config, field, &p.demand)
         .map_err(|e| Error::Other(format!("{}: {e}", p.origin)))
 }

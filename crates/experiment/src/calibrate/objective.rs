@@ -1,42 +1,45 @@
 //! The calibration objective: a weighted sum of goodness-of-fit terms between the field
 //! observations and the mean of a candidate's replications, matched by station (the field
 //! station id equals the simulated detector's name) and interval start (clock time). Smaller
-//! is better; 0 is a perfect fit.
+//! is better; 0 is a perfect fit. The measures are those of `platoonsim compare`
+//! ([`platoonsim_field::fit`]).
 //!
 //! | term | definition | source |
 //! |---|---|---|
-//! | `speed_rmsne` | √(1/N Σ ((v_sim − v_obs)/v_obs)²) over the pairs with a field speed > 0 | RMSNE, FHWA Traffic Analysis Toolbox III (2019 update), section on calibration measures; Hollander & Liu (2008) |
-//! | `flow_rmsne` | √(1/N Σ ((q_sim − q_obs)/q_obs)²) over the pairs with a field flow > 0 | as above |
-//! | `flow_geh` | mean over the pairs of GEH = √(2 (q_sim − q_obs)² / (q_sim + q_obs)), flows in veh/h (0 where both are 0) | UK DMRB vol. 12; FHWA Toolbox III |
+//! | `speed_rmsne` | RMSNE √(1/N Σ ((v_sim − v_obs)/v_obs)²) of the speeds at the data's own interval, pairs with a field speed > 0 | RMSNE ([`fit::rmsne`]): Hollander & Liu (2008); FHWA Traffic Analysis Toolbox III |
+//! | `flow_rmsne` | the same for the flows, pairs with a field flow > 0 | as above |
+//! | `flow_geh` | mean GEH √(2 (q_sim − q_obs)² / (q_sim + q_obs)) of the flows in veh/h at the data's own interval ([`fit::geh`]) | UK DMRB vol. 12; FHWA Toolbox III |
+//! | `compare` | `platoonsim compare`'s scalar ([`fit::Fit::objective`]): mean GEH of hourly volumes / 5 + RMSNE of 15-min speeds; needs whole clock hours of data | docs/compare.md |
 //!
-//! A simulated interval in which no vehicle crossed has no speed; against a field speed it
-//! counts as 0 km/h (a standstill), so a candidate that jams a detector is penalized rather
-//! than excused. GEH is defined on hourly volumes; here it is applied to the interval's flow
-//! rate in veh/h, as the Toolbox does for sub-hourly flows.
+//! The first three work at any interval (a short run, 5- or 10-minute data); `compare` is the
+//! report's own measure and needs runs of at least one clock hour on a 15-minute grid. A
+//! simulated interval in which no vehicle crossed has no speed; against a field speed it counts
+//! as 0 km/h (a standstill) in `speed_rmsne`, so a candidate that jams a detector is penalized
+//! rather than excused. GEH is defined on hourly volumes; `flow_geh` applies it to the
+//! interval's flow rate in veh/h, as the Toolbox does for sub-hourly flows.
 //!
 //! | weight | default | why |
 //! |---|---|---|
 //! | `speed_rmsne` | 1.0 | speeds carry the congestion pattern the behaviour shapes |
 //! | `flow_rmsne` | 0.0 | off: the relative flow error is what GEH measures more robustly |
 //! | `flow_geh` | 0.1 | a mean GEH of 5 (the usual acceptance threshold) weighs like a speed RMSNE of 0.5 |
-//!
-//! This is the calibration's own small objective; it reads only [`Obs`] and can be replaced
-//! by the fit measures of `platoonsim_field::fit` without touching the optimizer.
+//! | `compare` | 0.0 | off: it needs hour-long runs |
 
+use platoonsim_field::fit;
 use platoonsim_field::Obs;
 use std::collections::BTreeMap;
 use toml::{Table, Value};
 
 /// The terms' names, in `trace.csv` order.
-pub const TERMS: [&str; 3] = ["speed_rmsne", "flow_rmsne", "flow_geh"];
+pub const TERMS: [&str; 4] = ["speed_rmsne", "flow_rmsne", "flow_geh", "compare"];
 
 /// Weights of the terms (see the module documentation for the defaults).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Weights(pub [f64; 3]);
+pub struct Weights(pub [f64; 4]);
 
 impl Default for Weights {
     fn default() -> Weights {
-        Weights([1.0, 0.0, 0.1])
+        Weights([1.0, 0.0, 0.1, 0.0])
     }
 }
 
@@ -80,7 +83,7 @@ impl Weights {
 /// The terms of one candidate, in [`TERMS`] order, and the number of matched pairs.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Terms {
-    pub values: [f64; 3],
+    pub values: [f64; 4],
     pub pairs: usize,
 }
 
@@ -96,25 +99,18 @@ impl Terms {
 /// term has no pair it can use.
 pub fn terms(field: &[Obs], sim: &[Obs], w: &Weights) -> Result<Terms, String> {
     let key = |o: &Obs| (o.station.clone(), o.start_s, o.interval_s);
-    let sim: BTreeMap<_, &Obs> = sim.iter().map(|o| (key(o), o)).collect();
-    let (mut speed, mut flow, mut geh) = (Vec::new(), Vec::new(), Vec::new());
+    let by_key: BTreeMap<_, &Obs> = sim.iter().map(|o| (key(o), o)).collect();
+    let (mut speed, mut flow) = (Vec::new(), Vec::new());
     for f in field {
-        let Some(s) = sim.get(&key(f)) else { continue };
-        if let Some(vf) = f.speed_kmh.filter(|&v| v > 0.0) {
-            let vs = s.speed_kmh.unwrap_or(0.0);
-            speed.push((vs - vf) / vf);
+        let Some(s) = by_key.get(&key(f)) else {
+            continue;
+        };
+        if let Some(vf) = f.speed_kmh {
+            speed.push((s.speed_kmh.unwrap_or(0.0), vf));
         }
-        if f.flow_vph > 0.0 {
-            flow.push((s.flow_vph - f.flow_vph) / f.flow_vph);
-        }
-        let sum = s.flow_vph + f.flow_vph;
-        geh.push(if sum > 0.0 {
-            (2.0 * (s.flow_vph - f.flow_vph).powi(2) / sum).sqrt()
-        } else {
-            0.0
-        });
+        flow.push((s.flow_vph, f.flow_vph));
     }
-    if geh.is_empty() {
+    if flow.is_empty() {
         let names = |v: Vec<&str>| {
             let mut v = v;
             v.dedup();
@@ -124,31 +120,40 @@ pub fn terms(field: &[Obs], sim: &[Obs], w: &Weights) -> Result<Terms, String> {
             "no field observation matches a simulated one (same station/detector name, interval \
              start and length); field stations: {}; simulated detectors: {}",
             names(field.iter().map(|o| o.station.as_str()).collect()),
-            names(sim.keys().map(|k| k.0.as_str()).collect())
+            names(by_key.keys().map(|k| k.0.as_str()).collect())
         ));
     }
-    let rms = |v: &[f64]| (v.iter().map(|e| e * e).sum::<f64>() / v.len() as f64).sqrt();
-    let parts: [&[f64]; 3] = [&speed, &flow, &geh];
-    let mut values = [0.0; 3];
-    for (i, p) in parts.iter().enumerate() {
-        if p.is_empty() {
-            if w.0[i] > 0.0 {
-                return Err(format!(
-                    "the term {} has no matched pair with a field value > 0",
-                    TERMS[i]
-                ));
-            }
-            continue;
+    let geh = flow.iter().map(|&(m, c)| fit::geh(m, c)).sum::<f64>() / flow.len() as f64;
+    let compare = match w.0[3] > 0.0 {
+        false => None,
+        true => {
+            let span = crate::compare::sim_span(sim).unwrap_or((0, 0));
+            fit::fit(sim, &fit::within(field, span.0, span.1)).objective()
         }
-        values[i] = if i == 2 {
-            p.iter().sum::<f64>() / p.len() as f64
-        } else {
-            rms(p)
-        };
+    };
+    let values = [fit::rmsne(&speed), fit::rmsne(&flow), Some(geh), compare];
+    let mut out = [0.0; 4];
+    for (i, v) in values.iter().enumerate() {
+        match v {
+            Some(v) => out[i] = *v,
+            None if w.0[i] > 0.0 => {
+                return Err(format!(
+                    "the term {} has no value: {}",
+                    TERMS[i],
+                    if i == 3 {
+                        "platoonsim compare's measure needs whole clock hours of flows and \
+                         15-minute speeds on both sides"
+                    } else {
+                        "no matched pair with a field value > 0"
+                    }
+                ))
+            }
+            None => {}
+        }
     }
     Ok(Terms {
-        values,
-        pairs: geh.len(),
+        values: out,
+        pairs: flow.len(),
     })
 }
 
@@ -185,13 +190,37 @@ mod tests {
         close(t.values[1], (0.04f64 / 2.0).sqrt());
         // GEH sqrt(2 * 200^2 / 2200) and 0, averaged
         close(t.values[2], (80_000.0f64 / 2200.0).sqrt() / 2.0);
-        let w = Weights([1.0, 2.0, 0.5]);
+        let w = Weights([1.0, 2.0, 0.5, 0.0]);
         assert_eq!(
             t.objective(&w),
             t.values[0] + 2.0 * t.values[1] + 0.5 * t.values[2]
         );
         // A perfect fit is 0.
         assert_eq!(terms(&field, &field, &w).unwrap().objective(&w), 0.0);
+    }
+
+    #[test]
+    fn the_compare_term_is_platoonsim_compares_measure() {
+        // One clock hour of 5-min data: the term is compare's scalar, on the simulated span.
+        let hour = |flow: f64, speed: f64| -> Vec<Obs> {
+            (0..12)
+                .map(|k| obs("a", 25_200 + 300 * k, flow, Some(speed)))
+                .collect()
+        };
+        let (field, sim) = (hour(1000.0, 100.0), hour(1100.0, 90.0));
+        // A field row outside the simulated hour is not compared.
+        let mut more = field.clone();
+        more.push(obs("a", 28_800, 5000.0, Some(10.0)));
+        let w = Weights([0.0, 0.0, 0.0, 1.0]);
+        let t = terms(&more, &sim, &w).unwrap();
+        let want = fit::fit(&sim, &field).objective().unwrap();
+        // GEH of 1100 vs 1000 / 5 + RMSNE 0.1
+        let geh = (2.0 * 100.0f64.powi(2) / 2100.0).sqrt();
+        assert!((want - (geh / 5.0 + 0.1)).abs() < 1e-12, "{want}");
+        assert_eq!(t.values[3], want);
+        // Twenty minutes are not a clock hour: no value, and an error when weighted.
+        let e = terms(&field[..4], &sim[..4], &w).unwrap_err();
+        assert!(e.contains("compare") && e.contains("clock hours"), "{e}");
     }
 
     #[test]

@@ -5,7 +5,7 @@
 //! | `trace.csv` | one row per evaluated candidate: `generation` (0 = the start point), `candidate`, each fitted key, `objective`, each term, `pairs` (matched station intervals) |
 //! | `calibrated.toml` | the scenario with the fixed keys and the best candidate's values, every key resolved (`platoonsim show` format); it loads and validates as it is |
 //! | `convergence.png` / `.svg` | the objective of every candidate and the best so far, by evaluation |
-//! | `fit-before.md` / `fit-after.md` | the fit of the start point and of the best candidate: the terms and, per station, field and simulated mean flow and speed and the share of intervals with GEH < 5 |
+//! | `fit-before.md` / `fit-after.md` | the fit of the start point and of the best candidate: the values and terms, then `platoonsim compare`'s report of the mean of its replications (criteria, measures, stations, bottlenecks) |
 //! | `demand.csv` | with `[demand]`: the estimated entrance flows and exit fractions per interval (set in `calibrated.toml`) |
 //! | `run.json` | provenance: version, engine, command line, scenario, the parameters file's text, the field files with their FNV-1a 64 hashes, seeds, runs, the start and the best point |
 
@@ -17,7 +17,7 @@ use super::{Done, Field, Options, Row};
 use crate::atomic::write_atomic;
 use crate::runner::Runner;
 use crate::{Error, VERSION};
-use platoonsim_field::Obs;
+use platoonsim_field::{Obs, Placed};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -72,7 +72,9 @@ pub fn write_all(
         let outcomes = reader.run(&specs(&[config], &p.seeds()))?;
         let runs: Vec<&crate::runner::Outcome> = outcomes.iter().collect();
         let sim = candidate_obs(reader, &runs, target)?;
-        let md = fit_md(p, space, row, title, target.field, &sim);
+        let places = crate::compare::runs::places(&reader.detectors(&outcomes[0].key)?);
+        let keys: Vec<String> = outcomes.iter().map(|o| o.key.clone()).collect();
+        let md = fit_md(p, space, row, title, field, &sim, &places, &keys);
         write(name, md.as_bytes())?;
     }
     write("run.json", &provenance(p, field, opts, space, done)?)
@@ -181,13 +183,8 @@ fn by_station(field: &[Obs], sim: &[Obs]) -> BTreeMap<String, [f64; 6]> {
             a[3] += s.speed_kmh.unwrap_or(0.0);
             *speeds += 1.0;
         }
-        let sum = f.flow_vph + s.flow_vph;
-        let geh = if sum > 0.0 {
-            (2.0 * (s.flow_vph - f.flow_vph).powi(2) / sum).sqrt()
-        } else {
-            0.0
-        };
-        a[4] += f64::from(u8::from(geh < 5.0));
+        let geh = platoonsim_field::fit::geh(s.flow_vph, f.flow_vph);
+        a[4] += f64::from(u8::from(geh < platoonsim_field::fit::GEH_LIMIT));
         a[5] += 1.0;
     }
     acc.into_iter()
@@ -199,14 +196,27 @@ fn by_station(field: &[Obs], sim: &[Obs]) -> BTreeMap<String, [f64; 6]> {
         .collect()
 }
 
-fn fit_md(p: &Params, space: &Space, row: &Row, title: &str, field: &[Obs], sim: &[Obs]) -> String {
+/// The fit report of one candidate: its values and terms, then `platoonsim compare`'s report
+/// of the mean of its replications against the field (criteria, measures, stations,
+/// bottlenecks).
+#[allow(clippy::too_many_arguments)]
+fn fit_md(
+    p: &Params,
+    space: &Space,
+    row: &Row,
+    title: &str,
+    field: &Field,
+    sim: &[Obs],
+    sim_places: &[Placed],
+    keys: &[String],
+) -> String {
     let mut md = format!(
-        "# Fit of {title}\n\n{} against the field data (mean of {} replications, seeds 1..={}; \
-         generation {}, candidate {}).\n\n| key | value |\n|---|---|\n",
+        "# Fit of {title}\n\n{} against the field data, mean of {} replications (seeds 1..={}); \
+         generation {}, candidate {}.\n\n| key | value |\n|---|---|\n",
         space.scenario, p.replications, p.replications, row.generation, row.candidate
     );
     for (q, v) in space.params.iter().zip(&row.values) {
-        let _ = writeln!(md, "| `{}` | {} |", q.key, short(*v));
+        let _ = writeln!(md, "| `{}` | {v} |", q.key);
     }
     md.push_str("\n| term | value | weight |\n|---|---|---|\n");
     for (i, t) in TERMS.iter().enumerate() {
@@ -224,13 +234,13 @@ fn fit_md(p: &Params, space: &Space, row: &Row, title: &str, field: &[Obs], sim:
         row.terms.pairs
     );
     md.push_str(
-        "| station | intervals | field flow (veh/h) | simulated flow (veh/h) | field speed (km/h) \
-         | simulated speed (km/h) | GEH < 5 |\n|---|---|---|---|---|---|---|\n",
+        "At the data's own interval:\n\n| station | intervals | field flow (veh/h) | simulated flow \
+         (veh/h) | field speed (km/h) | simulated speed (km/h) | GEH < 5 |\n|---|---|---|---|---|---|---|\n",
     );
-    for (s, a) in by_station(field, sim) {
+    for (st, a) in by_station(&field.obs, sim) {
         let _ = writeln!(
             md,
-            "| {s} | {} | {:.0} | {:.0} | {:.1} | {:.1} | {:.0} % |",
+            "| {st} | {} | {:.0} | {:.0} | {:.1} | {:.1} | {:.0} % |",
             a[5],
             a[0],
             a[1],
@@ -238,6 +248,33 @@ fn fit_md(p: &Params, space: &Space, row: &Row, title: &str, field: &[Obs], sim:
             a[3],
             100.0 * a[4]
         );
+    }
+    md.push('\n');
+    let opts = crate::compare::Options {
+        window: crate::compare::sim_span(sim),
+        ..crate::compare::Options::default()
+    };
+    let eval = crate::compare::evaluate(sim, &field.obs, sim_places, &field.places, &opts);
+    let runs: Vec<String> = keys.iter().map(|k| format!("runs/{k}")).collect();
+    let files: Vec<String> = field.files.iter().map(|(f, _)| f.clone()).collect();
+    let report = platoonsim_field::report::markdown(&platoonsim_field::report::Report {
+        runs: &runs,
+        field_files: &files,
+        window: eval.window,
+        fit: &eval.fit,
+        criteria: &eval.criteria,
+        bottlenecks: &eval.bottlenecks,
+        figure: None,
+        notes: &field.notes,
+    });
+    // The compare report's title becomes a section of this one.
+    md.push_str("## platoonsim compare\n\n");
+    for line in report.lines() {
+        if line.starts_with('#') {
+            md.push('#');
+        }
+        md.push_str(line);
+        md.push('\n');
     }
     md
 }
