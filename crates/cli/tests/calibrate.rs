@@ -166,6 +166,28 @@ fn trace_is_the_same_at_any_jobs_and_sharding() {
         "sharded differs from unsharded"
     );
 
+    // A shard alone, its peer never started: after the stale wait it computes the peer's runs
+    // too, and the result is the same.
+    let alone = d.join("alone");
+    let o = calibrate(
+        &field,
+        "small.toml",
+        &alone,
+        &["--shard", "2/2", "--stale-after", "0.5"],
+    );
+    assert!(
+        stdout(&o).contains("shard 2/2: 13 candidates, 26 runs (26 computed, 0 reused)"),
+        "{}",
+        stdout(&o)
+    );
+    let o = calibrate(&field, "small.toml", &alone, &[]);
+    assert!(
+        stdout(&o).contains("26 runs (0 computed, 26 reused)"),
+        "{}",
+        stdout(&o)
+    );
+    assert!(read(&alone) == read(&one), "a shard alone differs");
+
     // A rerun reuses every run file.
     let o = calibrate(&field, "small.toml", &one, &["--jobs", "2"]);
     assert!(

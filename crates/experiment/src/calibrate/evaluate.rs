@@ -37,6 +37,8 @@ pub struct Batch<'r, 'a> {
     pub stale: Duration,
     /// Between two looks at the awaited files.
     pub poll: Duration,
+    /// Runs of other shards this one computed after a stale wait.
+    pub taken_over: std::cell::Cell<usize>,
 }
 
 /// The runs of candidates `configs`, numbered from `first`.
@@ -93,6 +95,7 @@ pub fn run(b: &Batch, specs: &[RunSpec], first: usize) -> Result<Vec<Outcome>, E
         } else if last_seen.elapsed() >= b.stale {
             let missing: Vec<RunSpec> = awaited.iter().map(|s| (*s).clone()).collect();
             b.runner.run(&missing)?;
+            b.taken_over.set(b.taken_over.get() + missing.len());
             break;
         }
         std::thread::sleep(b.poll);

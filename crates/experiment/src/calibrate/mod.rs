@@ -95,7 +95,8 @@ pub struct Done {
     pub best: usize,
     /// Why CMA-ES stopped before the budget, if it did.
     pub stopped: Option<String>,
-    /// Runs this invocation handled (its shard's, or all), computed and reused.
+    /// Runs this invocation handled (its shard's and those it took over from a stale shard, or
+    /// all), computed and reused.
     pub handled: usize,
     pub computed: usize,
     pub reused: usize,
@@ -174,6 +175,7 @@ pub fn run_with(
         shard: opts.shard,
         stale: opts.stale,
         poll: Duration::from_millis(200),
+        taken_over: Default::default(),
     };
     let say = |line: String| {
         if opts.bar {
@@ -248,11 +250,12 @@ pub fn run_with(
     }
     bar.finish_and_clear();
     let best = best_index(&trace);
-    let handled = if stopped.is_some() {
-        evaluate::owned(opts.shard, 0, trace.len() * r)
-    } else {
-        mine
-    };
+    let handled = batch.taken_over.get()
+        + if stopped.is_some() {
+            evaluate::owned(opts.shard, 0, trace.len() * r)
+        } else {
+            mine
+        };
     let mut done = Done {
         dir: opts.out.clone(),
         best,
