@@ -80,17 +80,23 @@ impl Weights {
     }
 }
 
-/// The terms of one candidate, in [`TERMS`] order, and the number of matched pairs.
+/// The terms of one candidate, in [`TERMS`] order (`None`: no value, or not computed because
+/// its weight is 0), and the number of matched pairs.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Terms {
-    pub values: [f64; 4],
+    pub values: [Option<f64>; 4],
     pub pairs: usize,
 }
 
 impl Terms {
-    /// The weighted sum.
+    /// The weighted sum ([`terms`] has made sure every weighted term has a value).
     pub fn objective(&self, w: &Weights) -> f64 {
-        self.values.iter().zip(w.0).map(|(v, w)| v * w).sum()
+        self.values
+            .iter()
+            .zip(w.0)
+            .filter(|(_, w)| *w > 0.0)
+            .map(|(v, w)| v.unwrap_or(f64::NAN) * w)
+            .sum()
     }
 }
 
@@ -132,10 +138,9 @@ pub fn terms(field: &[Obs], sim: &[Obs], w: &Weights) -> Result<Terms, String> {
         }
     };
     let values = [fit::rmsne(&speed), fit::rmsne(&flow), Some(geh), compare];
-    let mut out = [0.0; 4];
     for (i, v) in values.iter().enumerate() {
         match v {
-            Some(v) => out[i] = *v,
+            Some(_) => {}
             None if w.0[i] > 0.0 => {
                 return Err(format!(
                     "the term {} has no value: {}",
@@ -152,7 +157,7 @@ pub fn terms(field: &[Obs], sim: &[Obs], w: &Weights) -> Result<Terms, String> {
         }
     }
     Ok(Terms {
-        values: out,
+        values,
         pairs: flow.len(),
     })
 }
@@ -185,15 +190,17 @@ mod tests {
         assert_eq!(t.pairs, 2);
         let close = |a: f64, b: f64| assert!((a - b).abs() < 1e-12 * b, "{a} vs {b}");
         // speed errors -0.1 and -1 (no vehicle: 0 km/h): sqrt((0.01 + 1) / 2)
-        close(t.values[0], (1.01f64 / 2.0).sqrt());
+        close(t.values[0].unwrap(), (1.01f64 / 2.0).sqrt());
         // flow errors 0.2 and 0: sqrt(0.04 / 2)
-        close(t.values[1], (0.04f64 / 2.0).sqrt());
+        close(t.values[1].unwrap(), (0.04f64 / 2.0).sqrt());
         // GEH sqrt(2 * 200^2 / 2200) and 0, averaged
-        close(t.values[2], (80_000.0f64 / 2200.0).sqrt() / 2.0);
+        close(t.values[2].unwrap(), (80_000.0f64 / 2200.0).sqrt() / 2.0);
+        // Unweighted, compare's term is not computed.
+        assert_eq!(t.values[3], None);
         let w = Weights([1.0, 2.0, 0.5, 0.0]);
         assert_eq!(
             t.objective(&w),
-            t.values[0] + 2.0 * t.values[1] + 0.5 * t.values[2]
+            t.values[0].unwrap() + 2.0 * t.values[1].unwrap() + 0.5 * t.values[2].unwrap()
         );
         // A perfect fit is 0.
         assert_eq!(terms(&field, &field, &w).unwrap().objective(&w), 0.0);
@@ -217,7 +224,7 @@ mod tests {
         // GEH of 1100 vs 1000 / 5 + RMSNE 0.1
         let geh = (2.0 * 100.0f64.powi(2) / 2100.0).sqrt();
         assert!((want - (geh / 5.0 + 0.1)).abs() < 1e-12, "{want}");
-        assert_eq!(t.values[3], want);
+        assert_eq!(t.values[3], Some(want));
         // Twenty minutes are not a clock hour: no value, and an error when weighted.
         let e = terms(&field[..4], &sim[..4], &w).unwrap_err();
         assert!(e.contains("compare") && e.contains("clock hours"), "{e}");

@@ -2,7 +2,7 @@
 //!
 //! | file | content |
 //! |---|---|
-//! | `trace.csv` | one row per evaluated candidate: `generation` (0 = the start point), `candidate`, each fitted key, `objective`, each term, `pairs` (matched station intervals) |
+//! | `trace.csv` | one row per evaluated candidate: `generation` (0 = the start point), `candidate`, each fitted key, `objective`, each term (empty where it has no value or is not computed: `compare` unweighted), `pairs` (matched station intervals) |
 //! | `calibrated.toml` | the scenario with the fixed keys and the best candidate's values, every key resolved (`platoonsim show` format); it loads and validates as it is |
 //! | `convergence.png` / `.svg` | the objective of every candidate and the best so far, by evaluation |
 //! | `fit-before.md` / `fit-after.md` | the fit of the start point and of the best candidate: the values and terms, then `platoonsim compare`'s report of the mean of its replications (criteria, measures, stations, bottlenecks) |
@@ -97,7 +97,12 @@ pub fn trace_csv(space: &Space, trace: &[Row]) -> Result<Vec<u8>, Error> {
         let mut row = vec![r.generation.to_string(), r.candidate.to_string()];
         row.extend(r.values.iter().map(|v| format!("{v}")));
         row.push(format!("{}", r.objective));
-        row.extend(r.terms.values.iter().map(|v| format!("{v}")));
+        row.extend(
+            r.terms
+                .values
+                .iter()
+                .map(|v| v.map_or(String::new(), |v| format!("{v}"))),
+        );
         row.push(r.terms.pairs.to_string());
         w.write_record(&row).map_err(csv_error)?;
     }
@@ -223,7 +228,7 @@ fn fit_md(
         let _ = writeln!(
             md,
             "| {t} | {} | {} |",
-            short(row.terms.values[i]),
+            row.terms.values[i].map_or("–".to_string(), short),
             p.weights.0[i]
         );
     }
@@ -299,7 +304,12 @@ fn point_json<'a>(space: &'a Space, r: &Row) -> Point<'a> {
             .zip(r.values.iter().copied())
             .collect(),
         objective: r.objective,
-        terms: TERMS.iter().copied().zip(r.terms.values).collect(),
+        terms: TERMS
+            .iter()
+            .copied()
+            .zip(r.terms.values)
+            .filter_map(|(t, v)| Some((t, v?)))
+            .collect(),
     }
 }
 
