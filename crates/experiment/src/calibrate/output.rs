@@ -216,9 +216,15 @@ fn fit_md(
     keys: &[String],
 ) -> String {
     let mut md = format!(
-        "# Fit of {title}\n\n{} against the field data, mean of {} replications (seeds 1..={}); \
-         generation {}, candidate {}.\n\n| key | value |\n|---|---|\n",
-        space.scenario, p.replications, p.replications, row.generation, row.candidate
+        "# Fit of {title}\n\n{} against the field data, {}; generation {}, candidate {}.\n\n\
+         | key | value |\n|---|---|\n",
+        space.scenario,
+        match p.replications {
+            1 => "one run (seed 1)".to_string(),
+            r => format!("mean of {r} replications (seeds 1..={r})"),
+        },
+        row.generation,
+        row.candidate
     );
     for (q, v) in space.params.iter().zip(&row.values) {
         let _ = writeln!(md, "| `{}` | {v} |", q.key);
