@@ -83,6 +83,13 @@ pub const BUILTINS: &[Builtin] = &[
                   off-ramps, 15-min demand 05:00-09:00, detectors around every ramp, 0 % CAV",
         toml: include_str!("../scenarios/sr99.toml"),
     },
+    Builtin {
+        name: "sr99-field",
+        description: "SR-99 northbound as sr99, calibrated to PeMS of 2014-09-18 05:00-10:00 \
+                  (demand from the counts, driver parameters from the speeds; no time shift): \
+                  a detector at every PeMS station, named by its ID, 0 % CAV",
+        toml: include_str!("../scenarios/sr99-field.toml"),
+    },
 ];
 
 /// The built-in scenario of that name.
