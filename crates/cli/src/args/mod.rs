@@ -9,8 +9,10 @@ use std::path::PathBuf;
 
 mod compare;
 mod experiment;
+mod field;
 pub use compare::CompareArgs;
 pub use experiment::*;
+pub use field::FieldFlags;
 
 /// Microscopic freeway simulator for CACC platoons in mixed human/CAV traffic (Woo &
 /// Skabardonis, "Flow-aware platoon formation of CAVs in mixed traffic").

@@ -1,7 +1,7 @@
 //! `platoonsim calibrate SCENARIO --field FILE... --params PARAMS.toml`: fit chosen scenario
 //! keys to field data (see `platoonsim_experiment::calibrate` and docs/calibrate.md).
 
-use super::compare::{field_data, FieldArgs};
+use super::compare::field_data;
 use crate::progress;
 use anyhow::{Context, Result};
 use clap::Args;
@@ -16,33 +16,8 @@ pub struct CalibrateArgs {
     #[arg(value_name = "SCENARIO-NAME-OR-FILE")]
     pub scenario: String,
 
-    /// Field data: PeMS station_5min files (plain or .gz) or tidy CSV files
-    /// (station,time,flow_vph,speed_kmh,occupancy), read together. A field station is compared
-    /// with the simulated detector of the same name. Takes every following value up to the
-    /// next flag.
-    #[arg(long, value_name = "FILE", num_args = 1.., required = true)]
-    pub field: Vec<PathBuf>,
-
-    /// PeMS station metadata: adds each HOV station to the mainline station at its postmile
-    /// and, with --origin-pm, places the stations by postmile (for the fit reports'
-    /// bottlenecks and the [demand] step's mainline stations).
-    #[arg(long, value_name = "META.txt")]
-    pub meta: Option<PathBuf>,
-
-    /// With --meta: the absolute postmile of the corridor's x = 0 (a station sits at
-    /// x = (Abs_PM - PM) x 1609.344 m; SR-99: 287.230).
-    #[arg(
-        long = "origin-pm",
-        value_name = "PM",
-        requires = "meta",
-        allow_negative_numbers = true
-    )]
-    pub origin_pm: Option<f64>,
-
-    /// Instead of --origin-pm: a CSV station,x_m,kind[,lanes,name] placing the field stations
-    /// (kind ML, OR, FR, HV or FF).
-    #[arg(long, value_name = "TABLE.csv", conflicts_with = "origin_pm")]
-    pub stations: Option<PathBuf>,
+    #[command(flatten)]
+    pub source: crate::args::FieldFlags,
 
     /// The parameters file: fitted keys and bounds, budget, replications, objective weights,
     /// fixed [set] keys (format in docs/calibrate.md).
@@ -94,20 +69,14 @@ pub fn calibrate(args: &CalibrateArgs, quiet: bool) -> Result<()> {
             args.stale_after
         );
     }
-    let from = FieldArgs {
-        field: &args.field,
-        meta: args.meta.as_ref(),
-        origin_pm: args.origin_pm,
-        stations: args.stations.as_ref(),
-    };
-    let (obs, places, notes) = field_data(&from, (0, 86_400))?;
+    let (obs, places, notes) = field_data(&args.source, (0, 86_400))?;
     let mut field = Field {
         obs,
         places,
         notes,
         files: Vec::new(),
     };
-    for f in &args.field {
+    for f in &args.source.field {
         let bytes =
             std::fs::read(f).with_context(|| format!("cannot read --field {}", f.display()))?;
         field.files.push((

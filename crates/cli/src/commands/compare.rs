@@ -1,11 +1,10 @@
 //! `platoonsim compare`: runs against field data (docs/compare.md). This module reads the
 //! field files and the placement; `platoonsim_experiment::compare` measures and writes.
 
-use crate::args::CompareArgs;
+use crate::args::{CompareArgs, FieldFlags};
 use anyhow::{bail, Context, Result};
 use platoonsim_experiment::compare::{self, files, runs, Options};
 use platoonsim_field::{combine, load, pems, place, Obs, Placed};
-use std::path::PathBuf;
 
 /// Names shown in a message before "…".
 const SHOWN: usize = 8;
@@ -25,22 +24,15 @@ fn some_names(names: &[String]) -> String {
 
 /// Where the field data come from: `--field`, `--meta`, `--origin-pm`, `--stations` (of
 /// `compare` and `calibrate`).
-pub struct FieldArgs<'a> {
-    pub field: &'a [PathBuf],
-    pub meta: Option<&'a PathBuf>,
-    pub origin_pm: Option<f64>,
-    pub stations: Option<&'a PathBuf>,
-}
-
 /// The field rows (HOV stations added to their mainline station when there is metadata),
 /// the placement, and notes on what was combined or left out inside `window`.
 pub fn field_data(
-    args: &FieldArgs,
+    args: &FieldFlags,
     window: (u32, u32),
 ) -> Result<(Vec<Obs>, Vec<Placed>, Vec<String>)> {
-    let mut obs = load::load(args.field)?;
+    let mut obs = load::load(&args.field)?;
     let mut notes = Vec::new();
-    let meta = match args.meta {
+    let meta = match &args.meta {
         Some(path) => Some(pems::read_meta(path)?),
         None => None,
     };
@@ -82,7 +74,7 @@ pub fn field_data(
             ));
         }
     }
-    let places = match (args.stations, args.origin_pm, &meta) {
+    let places = match (&args.stations, args.origin_pm, &meta) {
         (Some(table), _, _) => place::from_table(table)?,
         (None, Some(pm), Some(meta)) => {
             place::by_postmile(meta, pm, f64::NEG_INFINITY, f64::INFINITY)
@@ -101,13 +93,7 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
         );
     };
     let window = args.window(span)?;
-    let from = FieldArgs {
-        field: &args.field,
-        meta: args.meta.as_ref(),
-        origin_pm: args.origin_pm,
-        stations: args.stations.as_ref(),
-    };
-    let (field, field_places, notes) = field_data(&from, window)?;
+    let (field, field_places, notes) = field_data(&args.source, window)?;
     let opts = Options {
         window: Some(window),
         ..Options::default()
@@ -133,7 +119,12 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
     let out = args.out_dir();
     let inputs = files::Inputs {
         runs: args.runs.iter().map(|p| p.display().to_string()).collect(),
-        field_files: args.field.iter().map(|p| p.display().to_string()).collect(),
+        field_files: args
+            .source
+            .field
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect(),
         notes,
     };
     let written = files::write(

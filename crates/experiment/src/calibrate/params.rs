@@ -32,7 +32,7 @@
 //! | `sigma` | normalized | 0.3 | (0, 1] |
 
 use super::objective::Weights;
-use crate::sweep::spec::{check_key, SpecError};
+use crate::sweep::spec::{check_key, read_bounded, SpecError};
 use std::path::Path;
 use toml::{Table, Value};
 
@@ -76,25 +76,8 @@ pub const MAX_BUDGET: usize = 100_000;
 impl Params {
     /// Read and validate a parameters file.
     pub fn from_file(path: &Path) -> Result<Params, SpecError> {
-        let origin = path.display().to_string();
-        let err = |message: String| SpecError {
-            origin: origin.clone(),
-            key: "(file)".into(),
-            message,
-        };
-        let meta = std::fs::metadata(path).map_err(|e| err(format!("cannot read it: {e}")))?;
-        if meta.len() > MAX_FILE_BYTES {
-            return Err(err(format!(
-                "{} bytes: a parameters file must be at most {MAX_FILE_BYTES} bytes",
-                meta.len()
-            )));
-        }
-        let text =
-            std::fs::read_to_string(path).map_err(|e| err(format!("cannot read it: {e}")))?;
-        let stem = path.file_stem().map_or_else(
-            || "calibrate".to_string(),
-            |s| s.to_string_lossy().into_owned(),
-        );
+        let (text, origin, stem) =
+            read_bounded(path, "a parameters file", MAX_FILE_BYTES, "calibrate")?;
         Params::from_toml(&text, &origin, &stem)
     }
 

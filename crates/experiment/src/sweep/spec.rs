@@ -69,27 +69,39 @@ pub struct Spec {
     pub text: String,
 }
 
+/// The text of a spec file of at most `max` bytes (`what` names it in the error), with its
+/// origin for messages and its stem (`default_stem` if it has none).
+pub(crate) fn read_bounded(
+    path: &Path,
+    what: &str,
+    max: u64,
+    default_stem: &str,
+) -> Result<(String, String, String), SpecError> {
+    let origin = path.display().to_string();
+    let err = |message: String| SpecError {
+        origin: origin.clone(),
+        key: "(file)".into(),
+        message,
+    };
+    let meta = std::fs::metadata(path).map_err(|e| err(format!("cannot read it: {e}")))?;
+    if meta.len() > max {
+        return Err(err(format!(
+            "{} bytes: {what} must be at most {max} bytes",
+            meta.len()
+        )));
+    }
+    let text = std::fs::read_to_string(path).map_err(|e| err(format!("cannot read it: {e}")))?;
+    let stem = path.file_stem().map_or_else(
+        || default_stem.to_string(),
+        |s| s.to_string_lossy().into_owned(),
+    );
+    Ok((text, origin, stem))
+}
+
 impl Spec {
     /// Read and validate a sweep file.
     pub fn from_file(path: &Path) -> Result<Spec, SpecError> {
-        let origin = path.display().to_string();
-        let err = |message: String| SpecError {
-            origin: origin.clone(),
-            key: "(file)".into(),
-            message,
-        };
-        let meta = std::fs::metadata(path).map_err(|e| err(format!("cannot read it: {e}")))?;
-        if meta.len() > MAX_FILE_BYTES {
-            return Err(err(format!(
-                "{} bytes: a sweep file must be at most {MAX_FILE_BYTES} bytes",
-                meta.len()
-            )));
-        }
-        let text =
-            std::fs::read_to_string(path).map_err(|e| err(format!("cannot read it: {e}")))?;
-        let stem = path
-            .file_stem()
-            .map_or_else(|| "sweep".to_string(), |s| s.to_string_lossy().into_owned());
+        let (text, origin, stem) = read_bounded(path, "a sweep file", MAX_FILE_BYTES, "sweep")?;
         let mut spec = Spec::from_toml(&text, &origin, &stem)?;
         // A scenario path is relative to the sweep file, so a spec and its corridor travel
         // together.
