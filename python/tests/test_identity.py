@@ -38,9 +38,11 @@ def test_python_pd_organizer_equals_the_builtin_pd(tmp_path):
     py = sim.run()
     assert py["strategy"] == "pd"
     assert py["collisions"] == 0
-    # Organizing raises the platoon length (here 4.42 against 3.75 without).
+    # Organizing raises the platoon length: here 4.26 against 3.75 without (x1.13; x1.18
+    # before session 18, when organizing CAVs could also stand beside a PD-lane vehicle,
+    # docs/model-choices.md 6.20). Without an organizer the ratio is 1.
     base = platoonsim.Simulation("homogeneous", seed=1, overrides=short).run()
-    assert py["avg_platoon_length"] > 1.15 * base["avg_platoon_length"]
+    assert py["avg_platoon_length"] > 1.10 * base["avg_platoon_length"]
     assert without_wall(py) == without_wall(cli)
 
 
