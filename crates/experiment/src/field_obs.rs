@@ -51,18 +51,7 @@ pub fn mean_over_runs(runs: &[Vec<Obs>]) -> Vec<Obs> {
 fn mean(v: &[&Obs]) -> Obs {
     let n = v.len() as f64;
     let flow: f64 = v.iter().map(|o| o.flow_vph).sum();
-    let speeds: Vec<(f64, f64)> = v
-        .iter()
-        .filter_map(|o| o.speed_kmh.map(|s| (s, o.flow_vph)))
-        .collect();
-    let weight: f64 = speeds.iter().map(|&(_, w)| w).sum();
-    let speed_kmh = if speeds.is_empty() {
-        None
-    } else if weight > 0.0 {
-        Some(speeds.iter().map(|&(s, w)| s * w).sum::<f64>() / weight)
-    } else {
-        Some(speeds.iter().map(|&(s, _)| s).sum::<f64>() / speeds.len() as f64)
-    };
+    let speed_kmh = platoonsim_field::flow_weighted_speed(v.iter().copied());
     let occ: Vec<f64> = v.iter().filter_map(|o| o.occupancy).collect();
     Obs {
         station: v[0].station.clone(),

@@ -132,16 +132,7 @@ pub fn combine(obs: &[Obs], groups: &[Group]) -> (Vec<Obs>, Vec<Incomplete>) {
 /// One interval of a group (see the module doc for the rules).
 fn merge(station: &str, rows: &[(&Obs, u32)]) -> Obs {
     let flow: f64 = rows.iter().map(|(o, _)| o.flow_vph).sum();
-    let speeds: Vec<(f64, f64)> = rows
-        .iter()
-        .filter_map(|(o, _)| o.speed_kmh.map(|s| (s, o.flow_vph)))
-        .collect();
-    let weight: f64 = speeds.iter().map(|&(_, w)| w).sum();
-    let speed_kmh = match speeds.len() {
-        0 => None,
-        n if weight <= 0.0 => Some(speeds.iter().map(|&(s, _)| s).sum::<f64>() / n as f64),
-        _ => Some(speeds.iter().map(|&(s, w)| s * w).sum::<f64>() / weight),
-    };
+    let speed_kmh = crate::flow_weighted_speed(rows.iter().map(|(o, _)| *o));
     let occupancy = rows
         .iter()
         .map(|(o, l)| o.occupancy.map(|c| (c, f64::from((*l).max(1)))))

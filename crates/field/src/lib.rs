@@ -135,6 +135,22 @@ pub struct Placed {
     pub name: String,
 }
 
+/// The speed of several observations taken together (replications of one interval, or the
+/// stations of one cross-section): the flow-weighted mean of the speeds they have, their plain
+/// mean if all those flows are 0, none if none has a speed.
+pub fn flow_weighted_speed<'a>(obs: impl IntoIterator<Item = &'a Obs>) -> Option<f64> {
+    let speeds: Vec<(f64, f64)> = obs
+        .into_iter()
+        .filter_map(|o| o.speed_kmh.map(|s| (s, o.flow_vph)))
+        .collect();
+    let weight: f64 = speeds.iter().map(|&(_, w)| w).sum();
+    match speeds.len() {
+        0 => None,
+        n if weight <= 0.0 => Some(speeds.iter().map(|&(s, _)| s).sum::<f64>() / n as f64),
+        _ => Some(speeds.iter().map(|&(s, w)| s * w).sum::<f64>() / weight),
+    }
+}
+
 /// Metres per mile (international mile), for postmiles.
 pub const METRES_PER_MILE: f64 = 1609.344;
 
