@@ -14,14 +14,16 @@ in parallel (``crates/py/src/control.rs``); this module is its Gymnasium face.
   follower / ``gap_ref`` and (speed - follower speed) / ``v_ref`` (no leader or follower: gap
   1, difference 0); gaps bumper to bumper, clipped to [0, 1], speeds to [-2, 2]; 0 for empty
   slots. ``info["mask"]`` says which slots hold a vehicle.
-* **Action**: float32 ``(max_controlled,)`` accelerations (m/s²) within the CAVs' limits
-  ``[cav.max_decel, cav.max_accel]`` (values outside are clipped; a wrong shape or a non-finite
+* **Action**: float32 ``(max_controlled,)`` accelerations (m/s²) within the CAVs' limits (the
+  widest of their automation's and their drivers', ``cav.max_decel/max_accel`` and
+  ``human.max_decel/max_accel``; values outside are clipped; a wrong shape or a non-finite
   value raises ValueError), held for ``action_s``. The engine applies at most the vehicle's own
   ACC/CACC acceleration (``AccelerateCapped``), so its collision avoidance and braking limit
   stay in force: the policy can hold back and brake, not drive into the vehicle ahead.
   Empty slots' actions are ignored.
 * **Reward**: mean speed of every vehicle on the road / ``v_ref`` minus ``accel_penalty`` x the
-  mean of (a / max_accel)^2 over the controlled vehicles. ``info["outflow_vph"]``: the vehicles
+  mean of (a / max_accel)^2 over the controlled vehicles, a the acceleration each applied in
+  the step's last engine step (after the cap). ``info["outflow_vph"]``: the vehicles
   that left the road in the step, as a rate.
 * **Episode**: ``warmup_s`` of model driving, then ``horizon_s``; truncated at the end,
   terminated if vehicles collided (which the capped action should make impossible).
@@ -113,8 +115,11 @@ class _Task:
         probe = platoonsim.BatchSimulation(self.scenario, seeds=[0], overrides=self.overrides, threads=1)
         cfg = probe.config(0)
         self.steps = max(1, round(self.action_s / probe.dt_s))
-        self.a_low = float(cfg["cav"]["max_decel"])
-        self.a_high = float(cfg["cav"]["max_accel"])
+        # The CAVs' limits: their automation's, and their drivers' while they drive manually
+        # (a lane change): the widest of the two.
+        human = cfg["human"]
+        self.a_low = min(float(cfg["cav"]["max_decel"]), float(human["max_decel"]["min"]))
+        self.a_high = max(float(cfg["cav"]["max_accel"]), float(human["max_accel"]["max"]))
         low = np.tile(np.array([0, -2, 0, -2, 0, -2], dtype=np.float32), self.k)
         high = np.tile(np.array([1, 2, 1, 2, 1, 2], dtype=np.float32), self.k)
         self.observation_space = spaces.Box(low=low, high=high, dtype=np.float32)

@@ -79,3 +79,23 @@ def test_bad_actions_are_rejected():
         vec.step(np.zeros(6))
     with pytest.raises(ValueError, match="max_controlled"):
         CavControlEnv(max_controlled=0)
+
+
+def test_full_throttle_leaves_the_models_in_charge():
+    # The capped command at the top of the range is the CAV's own acceleration: the run is the
+    # uncontrolled run, bit for bit (lane changes and automation untouched).
+    import platoonsim
+    from platoonsim.control import merge_scenario
+
+    env = CavControlEnv(**KW)
+    env.reset(seed=4)
+    while True:
+        _, _, term, trunc, _ = env.step(env.action_space.high)
+        if term or trunc:
+            break
+    controlled = env.batch.finish(0)
+    plain = platoonsim.Simulation(merge_scenario(duration_s=70.0), seed=4, events=False).run()
+    skip = {"wall_seconds", "updates_per_second"}
+    assert {k: v for k, v in controlled.items() if k not in skip} == {
+        k: v for k, v in plain.items() if k not in skip
+    }

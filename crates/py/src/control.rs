@@ -14,7 +14,8 @@
 //!   ACC/CACC acceleration, which keeps its collision avoidance; the braking limit applies in
 //!   the engine as for every vehicle. Empty slots' actions are ignored.
 //! * **Reward** of a step: mean speed of every vehicle on the road / v_ref, minus
-//!   `accel_penalty` × the mean of (a / a_high)² over the occupied slots.
+//!   `accel_penalty` × the mean of (a / a_high)² over the commanded vehicles still on the
+//!   road, a the acceleration each applied in the step's last engine step (after the cap).
 
 use crate::core::{step_world, Inner};
 use platoonsim_sim::snapshot::VehicleColumns;
@@ -161,8 +162,7 @@ pub fn step(inner: &mut Inner, spec: &Spec, actions: &[f64]) -> Result<Out, Stri
         return Err("control was not started (reset first)".into());
     }
     let collisions_before = inner.sim_ref().map_or(0, |s| s.collisions());
-    let mut penalty = 0.0;
-    let mut occupied = 0usize;
+    let commanded: Vec<u64> = st.slots.iter().copied().filter(|&id| id != EMPTY).collect();
     {
         let sim = inner.sim_mut().ok_or("the simulation is finished")?;
         for (j, &id) in st.slots.iter().enumerate() {
@@ -170,8 +170,6 @@ pub fn step(inner: &mut Inner, spec: &Spec, actions: &[f64]) -> Result<Out, Stri
                 continue;
             }
             let a = actions[j].clamp(spec.a_low, spec.a_high);
-            penalty += (a / spec.a_high).powi(2);
-            occupied += 1;
             sim.command(
                 id,
                 Command::AccelerateCapped {
@@ -199,11 +197,16 @@ pub fn step(inner: &mut Inner, spec: &Spec, actions: &[f64]) -> Result<Out, Stri
     } else {
         cols.v_mps.iter().sum::<f64>() / cols.len() as f64
     };
-    let pen = if occupied > 0 {
-        penalty / occupied as f64
-    } else {
-        0.0
-    };
+    // The penalty on the accelerations the commanded vehicles applied in the last engine
+    // step (after the cap), those still on the road.
+    let (mut penalty, mut n) = (0.0, 0usize);
+    for (i, id) in cols.id.iter().enumerate() {
+        if commanded.contains(id) {
+            penalty += (cols.a_mps2[i] / spec.a_high).powi(2);
+            n += 1;
+        }
+    }
+    let pen = if n > 0 { penalty / n as f64 } else { 0.0 };
     out.reward = mean_v / spec.v_ref - spec.accel_penalty * pen;
     out.collisions = sim.collisions() - collisions_before;
     out.done = sim.finished();

@@ -10,7 +10,7 @@
 //! | command | effect | ends |
 //! |---|---|---|
 //! | `Accelerate { accel_mps2, steps }` | this acceleration (m/s²) instead of the model's, and no lane change | after `steps` steps |
-//! | `AccelerateCapped { accel_mps2, steps }` | as `Accelerate`, but never above the model's own acceleration of the step: the driver model's car following (for a CAV its ACC/CACC law with collision avoidance) is a ceiling, so a controller can brake and hold back but not drive into the vehicle ahead | after `steps` steps |
+//! | `AccelerateCapped { accel_mps2, steps }` | this acceleration, but never above the model's own of the step: the driver model's car following (for a CAV its ACC/CACC law with collision avoidance) is a ceiling, so a controller can brake and hold back but not drive into the vehicle ahead; the model's lane changes and automation state stand | after `steps` steps |
 //! | `DesiredSpeed { speed_mps }` | the model drives with this desired speed (CAV: set speed) | on `Release` |
 //! | `ChangeLane { side }` | a mandatory lane-change desire toward `side` (gap acceptance of spec 4.3 and 9.1, before-lane-change behaviour of spec 4.3 without braking for the change: `driver::commanded_target`) | once in the target lane |
 //! | `Release` | every command of the vehicle ends; the model drives | at once |
@@ -171,18 +171,21 @@ pub(crate) fn apply_commands(
         };
         let v = &view.traffic.vehicles[s as usize];
         let done = match a.command {
-            Command::Accelerate { accel_mps2, .. }
-            | Command::AccelerateCapped { accel_mps2, .. } => {
-                // Under external control: the commanded acceleration (capped: at most the
-                // model's), and no lane change.
-                let model = decisions[s as usize].accel;
-                decisions[s as usize].accel = match a.command {
-                    Command::AccelerateCapped { .. } => accel_mps2.min(model),
-                    _ => accel_mps2,
-                };
+            Command::Accelerate { accel_mps2, .. } => {
+                // Under external control: the commanded acceleration, and no lane change.
+                decisions[s as usize].accel = accel_mps2;
                 let d = &mut decisions[s as usize];
                 d.auto = crate::vehicle::AutoFlags::new(false, d.auto.degraded());
                 decisions[s as usize].change = None;
+                commands[k].left -= 1;
+                commands[k].left == 0
+            }
+            Command::AccelerateCapped { accel_mps2, .. } => {
+                // A controller on top of the model: at most the model's acceleration; the
+                // model's lane change and automation state stand (a ramp vehicle still
+                // merges, a CAV's automation stays engaged).
+                let d = &mut decisions[s as usize];
+                d.accel = accel_mps2.min(d.accel);
                 commands[k].left -= 1;
                 commands[k].left == 0
             }
