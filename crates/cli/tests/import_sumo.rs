@@ -279,7 +279,9 @@ const HIGHWAY: Shipped = Shipped {
     name: "highway",
     net: "tools/game/highway/highway.net.xml",
     routes: "tools/game/highway/highway.rou.xml",
-    mainline_flag: false,
+    // Its edge E0 (the on-ramp's merge, added by hand) has no road type, so the longest chain
+    // of motorway edges stops there: the mainline is given.
+    mainline_flag: true,
     expect: sumo::Expect {
         mainline: &[
             "145354574",
@@ -289,7 +291,7 @@ const HIGHWAY: Shipped = Shipped {
             "153177809",
             "153177820",
         ],
-        on_ramps: &[("201283198.145.16", 826.0)],
+        on_ramps: &[("201283198.145.16", 827.1)],
         off_ramps: &[],
         lanes_at: &[(300.0, 3), (900.0, 3), (2000.0, 3)],
     },
@@ -316,9 +318,10 @@ const RAMP: Shipped = Shipped {
     mainline_flag: true,
     expect: sumo::Expect {
         mainline: &["gneE2", "offramp", "gneE3", "gneE7", "gneE8", "gneE11"],
-        on_ramps: &[("gneE14", 667.0)],
-        off_ramps: &[("gneE4", 434.0)],
-        lanes_at: &[(1000.0, 2), (1500.0, 2)],
+        on_ramps: &[("gneE14", 656.6)],
+        off_ramps: &[("gneE4", 434.5)],
+        // The third lane runs from the start into the off-ramp: a lane drop there.
+        lanes_at: &[(200.0, 3), (500.0, 2), (1000.0, 2), (1500.0, 2)],
     },
     demand: &[
         (
@@ -337,11 +340,18 @@ const CORRIDOR: Shipped = Shipped {
     mainline_flag: true,
     expect: sumo::Expect {
         mainline: &["gneE28", "gneE10", "gneE11", "gneE26"],
-        on_ramps: &[],
-        off_ramps: &[],
-        lanes_at: &[(100.0, 1), (400.0, 1), (700.0, 1)],
+        // An urban street with three signalized crossings: at each, the two cross streets'
+        // turns onto it are one on-ramp and the turns off it one off-ramp (named by the
+        // first edge of each pair); the signals and the crossing traffic are left out.
+        on_ramps: &[("gneE12", 207.2), ("gneE14", 407.2), ("gneE23", 607.2)],
+        off_ramps: &[("gneE13", 192.8), ("gneE15", 392.8), ("gneE16", 592.8)],
+        lanes_at: &[(100.0, 1), (300.0, 1), (500.0, 1), (700.0, 1)],
     },
-    demand: &[(&["gneE28", "gneE10", "gneE11", "gneE26"], 500.0)],
+    demand: &[
+        (&["gneE28", "gneE10", "gneE11", "gneE26"], 500.0),
+        (&["gneE20", "gneE10", "gneE11", "gneE26"], 100.0),
+        (&["gneE28", "gneE13"], 100.0),
+    ],
 };
 
 fn shipped_network_imports(shipped: &Shipped) {
