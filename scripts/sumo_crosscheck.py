@@ -7,7 +7,8 @@ package, or $SUMO_HOME/bin, or the PATH) and, imported with `platoonsim import s
 
 * hourly flow and time-mean speed at the downstream end of every mainline edge, in both, with
   the GEH of the two flows (SUMO: E1 loops on every lane 1 m before the edge's end, written as
-  an additional file; platoonsim: the edge detectors, at the same place);
+  an additional file, 40 m before it on the last edge, where SUMO removes arriving vehicles;
+  platoonsim: the edge detectors, 1 m before the end);
 * mean travel time per origin-destination pair, over the corridor in both (from the mainline
   entrance or the on-ramp's merge to the off-ramp's diverge or the mainline end: SUMO's route
   exit times, platoonsim's trips.csv);
@@ -123,13 +124,26 @@ def origin_destination(edges, mainline):
     return origin, dest, first, last
 
 
+# SUMO removes a vehicle in the step it reaches the end of its route, before a loop 1 m from
+# the end counts it; on the last mainline edge, where most routes end, the loops sit this far
+# upstream instead (more than a 1-s step at 120 km/h; the edge has no exit in between).
+LAST_EDGE_LOOP_BEFORE_END_M = 40.0
+
+
+def loop_offset(e, mainline):
+    """How far before the edge's end SUMO's loops sit (m)."""
+    return LAST_EDGE_LOOP_BEFORE_END_M if e == mainline[-1] else 1.0
+
+
 def write_loops(path, edges, mainline, period, output):
-    """E1 loops on every lane of every mainline edge, 1 m before its downstream end."""
+    """E1 loops on every lane of every mainline edge, 1 m before its downstream end (the
+    place of platoonsim's edge detectors), on the last edge see LAST_EDGE_LOOP_BEFORE_END_M."""
     lines = ["<additional>"]
     for e in mainline:
         for lane, length in edges[e]:
+            pos = max(length - loop_offset(e, mainline), 0.0)
             lines.append(
-                f'  <inductionLoop id="{lane}" lane="{lane}" pos="{max(length - 1.0, 0.0):.2f}" '
+                f'  <inductionLoop id="{lane}" lane="{lane}" pos="{pos:.2f}" '
                 f'period="{period}" file="{output}" friendlyPos="true"/>'
             )
     lines.append("</additional>")
