@@ -158,7 +158,17 @@ impl View<'_> {
         if self.road.geom.plain {
             return best;
         }
-        if let Some(w) = self.sensed[s as usize].here.wall {
+        // A lane that ends beyond the driver's exit, where it is already in the exit lane,
+        // is no reason to leave it: it leaves by the off-ramp first (an exit lane followed by
+        // a lane drop, as SUMO networks have them; without this the exiting driver stopped
+        // at the exit, waiting to move away from it) [D] (docs/model-choices.md 6.23).
+        let wall = self.sensed[s as usize].here.wall.filter(|&w| {
+            v.route.exit == NO_EXIT || {
+                let r = &self.road.geom.off_ramps[v.route.exit as usize];
+                !(v.lane == r.lane && v.x < r.x && r.x <= w)
+            }
+        });
+        if let Some(w) = wall {
             let probe = (w - 1.0).max(v.x);
             let side = if self.road.geom.through(v.lane + 1, probe) || v.lane == 0 {
                 Side::Left

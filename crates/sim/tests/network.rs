@@ -567,3 +567,70 @@ fn on_ramp_counters_count_the_vehicles_each_ramp_lets_in_and_change_nothing_else
     assert_eq!(out.summary.vehicles_entered, base.summary.vehicles_entered);
     assert_eq!(out.summary.vehicles_exited, base.summary.vehicles_exited);
 }
+
+/// Three lanes, the rightmost (index 1) dropped at 1,000 m, an off-ramp at 800 m that every
+/// vehicle takes: the dropped lane is the exit lane.
+fn exit_lane_then_drop(mainline_vph: f64) -> Config {
+    let mut cfg = toy(0.0, vec![mainline_vph], 1);
+    cfg.name = "exit-lane-then-drop".into();
+    cfg.road.lanes = 4;
+    cfg.road.length_m = 3000.0;
+    cfg.road.control_end_m = 3000.0;
+    cfg.duration_s = 900.0;
+    let net = cfg.road.network.as_mut().unwrap();
+    net.through_lanes = vec![
+        LaneExtent {
+            lane: 1,
+            from_m: 0.0,
+            to_m: 1000.0,
+        },
+        LaneExtent {
+            lane: 2,
+            from_m: 0.0,
+            to_m: 3000.0,
+        },
+        LaneExtent {
+            lane: 3,
+            from_m: 0.0,
+            to_m: 3000.0,
+        },
+    ];
+    net.on_ramps.clear();
+    net.off_ramps = vec![OffRamp {
+        name: "F".into(),
+        x_m: 800.0,
+        exit_fraction: vec![1.0],
+    }];
+    cfg.detectors = vec![
+        DetectorSpec {
+            name: "end".into(),
+            position_m: 2990.0,
+            kind: DetectorKind::Mainline,
+            exit: true,
+        },
+        DetectorSpec {
+            name: "F-off".into(),
+            position_m: 800.0,
+            kind: DetectorKind::OffRamp { ramp: 0 },
+            exit: true,
+        },
+    ];
+    cfg.measurement_detector = 0;
+    cfg
+}
+
+#[test]
+fn a_driver_in_its_exit_lane_does_not_leave_it_for_a_lane_drop_beyond_the_exit() {
+    // Before the rule (model choice 6.23), drivers in the exit lane
+    // wanted to leave it for the drop 200 m further on, stopped short of the exit waiting for a
+    // gap, and the road locked up: 77 of 447 vehicles took the exit in 15 min.
+    let out = run(&exit_lane_then_drop(2000.0), None).unwrap();
+    assert_eq!(out.summary.collisions, 0);
+    let exited = count(&out, "F-off");
+    assert!(
+        exited as f64 > 0.9 * out.summary.vehicles_entered as f64,
+        "{exited} of {} vehicles took the exit",
+        out.summary.vehicles_entered
+    );
+    assert_eq!(out.summary.vehicles_waiting, 0);
+}

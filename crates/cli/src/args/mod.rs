@@ -85,6 +85,10 @@ pub enum Command {
     /// run.json to OUT/NAME. Resumable, and shardable like a sweep (--shard I/N or a
     /// scheduler's array index); see docs/calibrate.md.
     Calibrate(crate::commands::calibrate::CalibrateArgs),
+    /// Import a network of another tool as a scenario file: `import sumo NET.net.xml
+    /// [--routes F] [--additional F] --out SCENARIO.toml` (SUMO networks, also built from
+    /// OpenStreetMap by netconvert); see docs/import.md.
+    Import(crate::commands::import::ImportArgs),
 }
 
 /// Which scenario, and what to change in it. Overrides act on the scenario file before it

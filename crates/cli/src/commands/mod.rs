@@ -4,6 +4,7 @@ pub mod bench;
 pub mod calibrate;
 pub mod compare;
 pub mod experiment;
+pub mod import;
 pub mod reproduce;
 pub mod run;
 pub mod scenarios;
@@ -31,6 +32,7 @@ pub fn dispatch(cli: Cli) -> Result<ExitCode> {
         Command::Sweep(args) => return sweep::sweep(&args, cli.quiet),
         Command::Compare(args) => compare::compare(&args),
         Command::Calibrate(args) => calibrate::calibrate(&args, cli.quiet),
+        Command::Import(args) => import::import(&args),
     };
     done.map(|()| ExitCode::SUCCESS)
 }
