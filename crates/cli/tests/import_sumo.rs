@@ -226,7 +226,7 @@ fn test_networks_import_with_their_length_ramps_lanes_and_demand() {
         let net_xml = std::fs::read_to_string(&b.net).unwrap();
         check_geometry(freeway.name, &json, &net_xml, &freeway.expect);
         assert_eq!(
-            json["run"]["duration_s"],
+            json["duration_s"],
             f64::from(sumo::DEMAND_END_S),
             "{}",
             freeway.name
@@ -296,7 +296,8 @@ const HIGHWAY: Shipped = Shipped {
         lanes_at: &[(300.0, 3), (900.0, 3), (2000.0, 3)],
     },
     demand: &[
-        (&["145354574", "189597495", "E0", "191842213"], 4000.0),
+        // To the mainline's end (the shipped routes end on 191842213).
+        (&["145354574", "189597495", "E0", "191842213", "153177809", "153177820"], 4000.0),
         (
             &[
                 "153180751",
@@ -305,6 +306,8 @@ const HIGHWAY: Shipped = Shipped {
                 "201283198.145.16",
                 "E0",
                 "191842213",
+                "153177809",
+                "153177820",
             ],
             500.0,
         ),
