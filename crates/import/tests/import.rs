@@ -144,7 +144,8 @@ fn a_corridor_with_its_demand_and_loops() {
             ("m1".into(), 999.0),
             ("m2".into(), 1253.0),
             ("m3".into(), 2257.0),
-            ("m4".into(), 2761.0)
+            // The last edge's: 10 m before the road end (2762 m).
+            ("m4".into(), 2752.0)
         ]
     );
     let human = d["human"].as_table().unwrap();
