@@ -333,8 +333,10 @@ const RAMP: Shipped = Shipped {
         mainline: &["gneE2", "offramp", "gneE3", "gneE7", "gneE8", "gneE11"],
         on_ramps: &[("gneE14", 656.6)],
         off_ramps: &[("gneE4", 434.5)],
-        // The third lane runs from the start into the off-ramp: a lane drop there.
-        lanes_at: &[(200.0, 3), (500.0, 2), (1000.0, 2), (1500.0, 2)],
+        // The third lane runs from the start into the off-ramp (an exit-only lane): a lane drop
+        // where it ends, at the end of edge "offramp", which is the diverge (434.49 m), not at
+        // the next edge's start after the junction (438.32 m).
+        lanes_at: &[(200.0, 3), (434.0, 3), (435.0, 2), (1000.0, 2), (1500.0, 2)],
     },
     demand: &[
         (
