@@ -178,9 +178,17 @@ def sumo_seed(args, edges, mainline, work, seed, tally):
         ],
         "sumo",
     )
+    # SUMO's end-of-run statistics: vehicles still waiting to be inserted, teleports (a
+    # vehicle stuck for 300 s is moved on), collisions; the last two only when there are any.
+    stats = {}
     for line in proc.stdout.splitlines():
-        if "Teleports" in line or "Collisions" in line:
-            tally.notes.append(f"SUMO seed {seed}: {line.strip()}")
+        key, _, value = line.strip().partition(":")
+        if key in ("Waiting", "Teleports", "Collisions") and value.strip():
+            stats[key] = value.strip().split()[0]
+    tally.notes.append(
+        f"SUMO seed {seed}: teleports {stats.get('Teleports', '0')}, collisions "
+        f"{stats.get('Collisions', '0')}, still waiting to be inserted {stats.get('Waiting', '?')}"
+    )
     lane_edge = {lane: e for e in mainline for lane, _ in edges[e]}
     for iv in ET.parse(e1).getroot().iter("interval"):
         if float(iv.get("begin")) < args.warmup_s:

@@ -146,8 +146,8 @@ fn hourly_counts(detectors_csv: &Path) -> BTreeMap<String, (f64, Vec<f64>)> {
 }
 
 /// Free-flow speed for the demand's travel lag to a detector (m/s): about the mean desired
-/// speed of the default drivers (100 km/h).
-const LAG_SPEED_MPS: f64 = 27.8;
+/// speed of the default drivers (110 km/h).
+const LAG_SPEED_MPS: f64 = 30.0;
 
 /// Every mainline edge's detector (`--edge-detectors`) counts, per hour, the demand of the
 /// flows that pass the edge (delayed by the free-flow travel time to it) within GEH 5.
