@@ -106,10 +106,16 @@ fn check_geometry(name: &str, json: &Value, net_xml: &str, expect: &sumo::Expect
             want.iter().map(|w| w.0).collect::<Vec<_>>(),
             "{name}: {kind} {got:?}"
         );
-        for ((id, x), (_, x_want)) in got.iter().zip(want) {
+        for ((id, x), (_, x_near)) in got.iter().zip(want) {
+            // Near the node (the drawing), and exactly where the network's lanes put it.
             assert!(
-                (x - x_want).abs() <= POSITION_TOLERANCE_M,
-                "{name}: {kind} {id} at {x} m, the network has it at {x_want} m"
+                (x - x_near).abs() <= POSITION_TOLERANCE_M,
+                "{name}: {kind} {id} at {x} m, its node at {x_near} m"
+            );
+            let exact = sumo::ramp_position(net_xml, expect.mainline, id, kind == "on_ramps");
+            assert!(
+                (x - exact).abs() < 0.01,
+                "{name}: {kind} {id} at {x} m, the network has it at {exact} m"
             );
         }
     }

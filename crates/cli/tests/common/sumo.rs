@@ -170,8 +170,8 @@ pub struct Expect {
     pub lanes_at: &'static [(f64, usize)],
 }
 
-/// How far a ramp may be from where the network puts it: the junction's size (a few metres of
-/// internal lane) and the edge's end (SUMO shortens edges at junctions).
+/// How far a ramp may be from its node in the drawing: SUMO shortens edges at junctions (a few
+/// metres) and an edge ends where its junction begins.
 pub const POSITION_TOLERANCE_M: f64 = 15.0;
 
 /// A small freeway: nodes, roads, optional lane connections, built with or without
@@ -338,6 +338,61 @@ pub fn lane_count(net_xml: &str, edge: &str) -> usize {
                 .is_some_and(|i| i.chars().all(|c| c.is_ascii_digit()))
         })
         .count()
+}
+
+/// Where each mainline edge starts along the mainline (m): the lane lengths of the edges before
+/// it and the internal lanes of the connections between them (as [`mainline_length`]).
+pub fn mainline_starts(net_xml: &str, edges: &[&str]) -> Vec<f64> {
+    (0..edges.len())
+        .map(|k| {
+            if k == 0 {
+                0.0
+            } else {
+                let before = mainline_length(net_xml, &edges[..k]);
+                let via = tags(net_xml, "connection")
+                    .find(|t| {
+                        attr(t, "from") == Some(edges[k - 1]) && attr(t, "to") == Some(edges[k])
+                    })
+                    .and_then(|t| attr(t, "via"))
+                    .map_or(0.0, |v| lane_length(net_xml, v));
+                before + via
+            }
+        })
+        .collect()
+}
+
+/// Where the network has a ramp edge meet the mainline: an on-ramp at the start of the mainline
+/// edge it connects to, an off-ramp at the end of the mainline edge that connects to it.
+pub fn ramp_position(net_xml: &str, edges: &[&str], ramp: &str, on: bool) -> f64 {
+    let starts = mainline_starts(net_xml, edges);
+    let (from, to) = if on {
+        (Some(ramp), None)
+    } else {
+        (None, Some(ramp))
+    };
+    let conn = tags(net_xml, "connection")
+        .find(|t| {
+            let (f, g) = (attr(t, "from").unwrap_or(""), attr(t, "to").unwrap_or(""));
+            match (from, to) {
+                (Some(r), _) => f == r && edges.contains(&g),
+                (_, Some(r)) => g == r && edges.contains(&f),
+                _ => false,
+            }
+        })
+        .unwrap_or_else(|| panic!("no connection between ramp {ramp} and the mainline"));
+    if on {
+        let b = edges
+            .iter()
+            .position(|e| Some(*e) == attr(conn, "to"))
+            .unwrap();
+        starts[b]
+    } else {
+        let a = edges
+            .iter()
+            .position(|e| Some(*e) == attr(conn, "from"))
+            .unwrap();
+        starts[a] + lane_length(net_xml, &format!("{}_0", edges[a]))
+    }
 }
 
 /// The mainline's length as the network has it: the lane lengths of `edges` plus, between two
