@@ -324,8 +324,8 @@ pub fn build(net: &Net, chain: Vec<usize>, notes: &mut Notes) -> Result<Corridor
 
     // Through lanes per edge, then stretches of equal count.
     let mut through_k: Vec<u32> = Vec::with_capacity(n);
-    for k in 0..n {
-        let through = lanes(k) as i64 - aux[k];
+    for (k, &aux_k) in aux.iter().enumerate() {
+        let through = lanes(k) as i64 - aux_k;
         if through < 1 {
             return Err(ImportError::NotCorridor(format!(
                 "mainline edge \"{}\" has no through lane (its {} lanes are all ramp lanes)",
