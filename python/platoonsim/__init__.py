@@ -26,6 +26,7 @@ from ._platoonsim import (
     MODE_LABELS,
     REGIME_LABELS,
     STRATEGIES,
+    BatchCore as _BatchCore,
     CommandError,
     Core as _Core,
     ScenarioError,
@@ -35,6 +36,7 @@ from ._platoonsim import (
 
 __all__ = [
     "Simulation",
+    "BatchSimulation",
     "Organizer",
     "ScenarioError",
     "CommandError",
@@ -340,6 +342,18 @@ class Simulation:
         """Ids of the vehicles under command, in the order the commands were given."""
         return self._core.commanded()
 
+    def use_gate(self) -> None:
+        """Organize with the scenario's PD rule (its zone and window) behind a switch that
+        ``set_gate`` turns on and off, off at first: the engine's own organizer, so stepping
+        stays in Rust. Before the first step; not with a Python organizer."""
+        if self._organizer is not None:
+            raise SimulationError("use_gate: this Simulation has a Python organizer")
+        self._core.use_gate()
+
+    def set_gate(self, on: bool) -> None:
+        """Turn the gated PD organizer (``use_gate``) on or off for the next steps."""
+        self._core.set_gate(bool(on))
+
     # -- results ------------------------------------------------------------------------
 
     def finish(self, out_dir: str | os.PathLike[str] | None = None) -> dict[str, Any]:
@@ -363,3 +377,166 @@ class Simulation:
             f"<platoonsim.Simulation {self.config.get('name')!r} t={self.time_s:g} s"
             f"{' done' if self.done else ''}>"
         )
+
+
+def _seed_list(seeds: Any) -> list[int]:
+    if isinstance(seeds, (str, bytes)) or not isinstance(seeds, (Sequence, np.ndarray)):
+        raise TypeError(f"seeds must be a sequence of ints (one per world), got {type(seeds).__name__}")
+    out = []
+    for i, s in enumerate(seeds):
+        if isinstance(s, bool) or not isinstance(s, (int, np.integer)) or not 0 <= int(s) < 2**63:
+            raise ScenarioError(f"seeds[{i}] = {s!r}: must be an int in [0, 2^63)")
+        out.append(int(s))
+    return out
+
+
+class BatchSimulation:
+    """N independent runs of one scenario stepped together in Rust across a thread pool, the
+    GIL released (docs/python.md, "Batched worlds").
+
+    World ``i`` is exactly ``Simulation(scenario, seed=seeds[i], overrides=...)``: same
+    vehicles, same summary, bit for bit, whatever ``threads`` is. ``overrides`` is one dict
+    for every world or a sequence of one dict per world; ``organizer`` a built-in strategy
+    name. Python organizers are not offered (they would run under the GIL inside the parallel
+    step): use the scenario's strategy, or ``use_gate`` for a PD rule switched per world.
+    ``threads``: the pool's size (default: every core).
+    """
+
+    def __init__(
+        self,
+        scenario: str | os.PathLike[str],
+        seeds: Sequence[int],
+        overrides: Mapping[str, Any] | Sequence[Mapping[str, Any]] | None = None,
+        organizer: str | None = None,
+        threads: int | None = None,
+    ) -> None:
+        if not isinstance(scenario, (str, os.PathLike)):
+            raise TypeError(
+                f"scenario must be a built-in name, a path or TOML text, got {type(scenario).__name__}"
+            )
+        seed_list = _seed_list(seeds)
+        if overrides is None:
+            ov = None
+        elif isinstance(overrides, Mapping):
+            ov = [dict(overrides)]
+        elif isinstance(overrides, Sequence) and all(isinstance(o, Mapping) for o in overrides):
+            ov = [dict(o) for o in overrides]
+        else:
+            raise TypeError("overrides must be a dict of scenario keys, or a sequence of one dict per world")
+        if organizer is not None and not isinstance(organizer, str):
+            raise TypeError(
+                "organizer must be a built-in strategy name (STRATEGIES); Python organizers "
+                "need a Simulation each"
+            )
+        if threads is not None and (isinstance(threads, bool) or not isinstance(threads, (int, np.integer))):
+            raise TypeError(f"threads must be an int, got {type(threads).__name__}")
+        self._core = _BatchCore(os.fspath(scenario), seed_list, ov, organizer, None if threads is None else int(threads))
+        self.seeds = seed_list
+        self._summaries: dict[int, dict[str, Any]] = {}
+
+    @property
+    def num_worlds(self) -> int:
+        return self._core.num_worlds
+
+    @property
+    def threads(self) -> int:
+        return self._core.threads
+
+    @property
+    def dt_s(self) -> float:
+        return self._core.dt_s
+
+    def time_s(self) -> np.ndarray:
+        """Simulated time of each world (s)."""
+        return np.asarray(self._core.time_s())
+
+    def done(self) -> np.ndarray:
+        """Whether each world has simulated its whole duration."""
+        return np.asarray(self._core.done(), dtype=bool)
+
+    def step(self, n: int = 1) -> np.ndarray:
+        """Advance every world ``n`` steps (fewer where a run ends); the steps each did."""
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
+            raise ValueError(f"step: n = {n!r} must be a non-negative int")
+        return np.asarray(self._core.step(int(n)), dtype=np.int64)
+
+    def run_until(self, t_s: float) -> np.ndarray:
+        """Step every world to simulated time ``t_s``; the steps each did."""
+        return np.asarray(self._core.run_until(float(t_s)), dtype=np.int64)
+
+    def _check(self, i: Any) -> int:
+        if isinstance(i, bool) or not isinstance(i, (int, np.integer)) or not 0 <= int(i) < self.num_worlds:
+            raise IndexError(f"world {i!r}: the batch has worlds 0 to {self.num_worlds - 1}")
+        return int(i)
+
+    def vehicles(self, world: int | None = None) -> dict[str, np.ndarray]:
+        """The vehicles of one world (as ``Simulation.vehicles()``), or of every world
+        concatenated in world order with a ``world`` column."""
+        if world is not None:
+            return self._core.vehicles(self._check(world))
+        parts = [self._core.vehicles(i) for i in range(self.num_worlds)]
+        out = {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
+        out["world"] = np.concatenate(
+            [np.full(len(p["id"]), i, dtype=np.int64) for i, p in enumerate(parts)]
+        )
+        return out
+
+    def detectors(self, world: int) -> dict[str, np.ndarray]:
+        """World ``world``'s latest closed detector interval (as ``Simulation.detectors()``)."""
+        d = self._core.detectors(self._check(world))
+        for k in ("detector", "kind", "lane"):
+            d[k] = np.asarray(d[k], dtype=str)
+        return d
+
+    def config(self, world: int = 0) -> dict[str, Any]:
+        """World ``world``'s validated scenario, as in scenario.json."""
+        return json.loads(self._core.config_json(self._check(world)))
+
+    def command(
+        self, world: int, ids: Any, kind: str, value: Any = None, steps: int = 1, side: str | None = None
+    ) -> None:
+        """``Simulation.command`` for the vehicles ``ids`` of world ``world``."""
+        w = self._check(world)
+        arr = _int_ids(ids, kind if isinstance(kind, str) else "command")
+        if not isinstance(kind, str):
+            raise CommandError(f"command: kind must be a string, got {type(kind).__name__}")
+        values = None
+        if value is not None:
+            try:
+                v = np.asarray(value, dtype=np.float64)
+                values = np.ascontiguousarray(np.broadcast_to(v, arr.shape))
+            except (TypeError, ValueError) as e:
+                raise CommandError(
+                    f"{kind}: value {value!r} is not one number or one per vehicle id"
+                ) from e
+        if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 1:
+            raise CommandError(f"{kind}: steps = {steps!r} must be an int of at least 1")
+        self._core.command(w, kind, arr, values, int(steps), side)
+
+    def use_gate(self) -> None:
+        """Every world organizes with the scenario's PD rule behind its own switch, off at
+        first (``Simulation.use_gate``). Before the first step."""
+        self._core.use_gate()
+
+    def set_gates(self, on: Any) -> None:
+        """Switch each world's gate: ``on[i]`` for world i (booleans, one per world)."""
+        arr = np.asarray(on)
+        if arr.shape != (self.num_worlds,) or arr.dtype.kind not in "biu":
+            raise ValueError(
+                f"set_gates: one boolean per world ({self.num_worlds}), got shape {arr.shape} of {arr.dtype}"
+            )
+        self._core.set_gates([bool(x) for x in arr])
+
+    def finish(self, world: int, out_dir: str | os.PathLike[str] | None = None) -> dict[str, Any]:
+        """End world ``world``'s run and return its summary (as ``Simulation.finish``)."""
+        w = self._check(world)
+        text = self._core.finish(w, None if out_dir is None else os.fspath(out_dir))
+        self._summaries[w] = json.loads(text)
+        return dict(self._summaries[w])
+
+    def summaries(self) -> list[dict[str, Any]]:
+        """Every world's summary (finishing the worlds still open)."""
+        return [self.finish(i) for i in range(self.num_worlds)]
+
+    def __repr__(self) -> str:
+        return f"<platoonsim.BatchSimulation {self.num_worlds} worlds on {self.threads} threads>"

@@ -21,6 +21,11 @@ or held (no advice).
 
 Seeding: ``reset(seed=s)`` runs the engine with seed ``s``; without one, the seed comes from
 the environment's generator (itself seeded by the first ``reset(seed=...)``).
+
+The gate is the engine's own PD organizer behind a switch (``Simulation.use_gate``; advice at
+every step, stepping stays in Rust). ``gate="python"`` keeps the earlier Python organizer that
+refreshes its advice every ``advice_every_s``. ``gymnasium.make_vec("platoonsim/Platoon-v0",
+num_envs=N)`` gives N of these environments stepped together (``platoonsim.vector``).
 """
 
 from __future__ import annotations
@@ -67,15 +72,68 @@ class _Gate:
         return lanes
 
 
+def zone_platoons(
+    v: dict[str, np.ndarray], zone: tuple[float, float], leftmost_lane: int
+) -> tuple[float, float]:
+    """(share of the section's CAVs in the leftmost lane, mean string size of its CAVs)."""
+    inside = (v["x_m"] >= zone[0]) & (v["x_m"] < zone[1]) & (v["kind"] == 1)
+    if not inside.any():
+        return 0.0, 1.0
+    share = float(np.mean(v["lane"][inside] == leftmost_lane))
+    # A CAV's string size: the number of vehicles on the road that share its platoon_id.
+    ids, counts = np.unique(v["platoon_id"], return_counts=True)
+    sizes = counts[np.searchsorted(ids, v["platoon_id"][inside])]
+    return share, float(np.mean(sizes))
+
+
+def flows(d: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """Flow (veh/h/lane) and speed (km/h, 0 if none) of the first detectors' last interval."""
+    flow = np.zeros(_N_DETECTORS)
+    speed = np.zeros(_N_DETECTORS)
+    rows = np.flatnonzero(d["lane"] == "all")[:_N_DETECTORS]
+    lanes_per: dict[str, int] = {}
+    for name, lane in zip(d["detector"], d["lane"]):
+        if lane != "all":
+            lanes_per[name] = lanes_per.get(name, 0) + 1
+    for k, r in enumerate(rows):
+        flow[k] = d["flow_vph"][r] / max(1, lanes_per.get(d["detector"][r], 1))
+        s = d["speed_kmh"][r]
+        speed[k] = 0.0 if np.isnan(s) else s
+    return flow, speed
+
+
+def observation(
+    v: dict[str, np.ndarray],
+    d: dict[str, np.ndarray],
+    zone: tuple[float, float],
+    leftmost_lane: int,
+    space: spaces.Box,
+) -> tuple[np.ndarray, dict[str, Any]]:
+    """The observation and the info of one world from its vehicles and detectors."""
+    flow, speed = flows(d)
+    share, size = zone_platoons(v, zone, leftmost_lane)
+    obs = np.concatenate([flow / 1000.0, speed / 100.0, [share, size / 10.0]]).astype(np.float32)
+    obs = np.clip(obs, space.low, space.high)
+    info = {"flow_vphpl": flow, "speed_kmh": speed, "leftmost_share": share, "mean_string_size": size}
+    return obs, info
+
+
+def reward(flow: np.ndarray, size: float, discharge_penalty: float) -> tuple[float, float]:
+    """(reward, discharge loss) of an interval."""
+    loss = max(0.0, 1.0 - flow[2] / flow[0]) if flow[0] > 0 else 0.0
+    return float((size - 1.0) - discharge_penalty * loss), loss
+
+
 class PlatoonEnv(gym.Env):
     """Organize or hold the control section, one decision per detector interval.
 
     Parameters: ``scenario`` (a plain road with a control section and at least three
     detectors, default the homogeneous road), ``penetration``, ``demand_vphpl``,
     ``warmup_s`` (no decisions; long enough for traffic to reach the control section),
-    ``decisions`` per episode, ``decision_s`` (the detector interval), ``advice_every_s``
-    (how often the organizer refreshes its advice while organizing), ``discharge_penalty``,
-    and ``overrides`` for any other scenario key.
+    ``decisions`` per episode, ``decision_s`` (the detector interval), ``discharge_penalty``,
+    ``overrides`` for any other scenario key, and ``gate``: ``"native"`` (the engine's PD
+    organizer switched on and off) or ``"python"`` (a Python organizer refreshing its advice
+    every ``advice_every_s``).
     """
 
     metadata = {"render_modes": []}
@@ -91,8 +149,12 @@ class PlatoonEnv(gym.Env):
         advice_every_s: float = 1.0,
         discharge_penalty: float = 5.0,
         overrides: dict[str, Any] | None = None,
+        gate: str = "native",
     ) -> None:
         super().__init__()
+        if gate not in ("native", "python"):
+            raise ValueError(f"gate = {gate!r}: must be \"native\" or \"python\"")
+        self.gate = gate
         if decisions < 1 or decision_s <= 0 or warmup_s < 0:
             raise ValueError(
                 f"decisions = {decisions} (>= 1), decision_s = {decision_s} (> 0) and "
@@ -123,55 +185,20 @@ class PlatoonEnv(gym.Env):
         if len(probe.config["detectors"]) < _N_DETECTORS:
             raise ValueError(f"PlatoonEnv needs at least {_N_DETECTORS} detectors")
         self.zone = (float(road["control_start_m"]), float(road["control_end_m"]))
+        # On a plain road the leftmost through lane is the last one everywhere.
+        self.leftmost_lane = int(road["lanes"]) - 1
         self._every = max(1, round(self.advice_every_s / probe.dt_s))
         self.sim: platoonsim.Simulation | None = None
         self._gate: _Gate | None = None
 
     # -- observation and reward ----------------------------------------------------------
 
-    def _zone_platoons(self) -> tuple[float, float]:
-        """(share of the section's CAVs in the leftmost lane, mean string size of its CAVs)."""
-        assert self.sim is not None
-        v = self.sim.vehicles()
-        inside = (v["x_m"] >= self.zone[0]) & (v["x_m"] < self.zone[1]) & (v["kind"] == 1)
-        if not inside.any():
-            return 0.0, 1.0
-        left = self.sim.leftmost_through(v["x_m"][inside])
-        share = float(np.mean(v["lane"][inside] == left))
-        # A CAV's string size: the number of vehicles on the road that share its platoon_id.
-        ids, counts = np.unique(v["platoon_id"], return_counts=True)
-        sizes = counts[np.searchsorted(ids, v["platoon_id"][inside])]
-        return share, float(np.mean(sizes))
-
-    def _flows(self) -> tuple[np.ndarray, np.ndarray]:
-        """Flow (veh/h/lane) and speed (km/h, 0 if none) of the first detectors' last interval."""
-        assert self.sim is not None
-        d = self.sim.detectors()
-        flow = np.zeros(_N_DETECTORS)
-        speed = np.zeros(_N_DETECTORS)
-        rows = np.flatnonzero(d["lane"] == "all")[:_N_DETECTORS]
-        lanes_per = {}
-        for name, lane in zip(d["detector"], d["lane"]):
-            if lane != "all":
-                lanes_per[name] = lanes_per.get(name, 0) + 1
-        for k, r in enumerate(rows):
-            flow[k] = d["flow_vph"][r] / max(1, lanes_per.get(d["detector"][r], 1))
-            s = d["speed_kmh"][r]
-            speed[k] = 0.0 if np.isnan(s) else s
-        return flow, speed
-
     def _observe(self) -> tuple[np.ndarray, dict[str, Any]]:
-        flow, speed = self._flows()
-        share, size = self._zone_platoons()
-        obs = np.concatenate([flow / 1000.0, speed / 100.0, [share, size / 10.0]]).astype(np.float32)
-        obs = np.clip(obs, self.observation_space.low, self.observation_space.high)
-        info = {
-            "t_s": self.sim.time_s if self.sim else 0.0,
-            "flow_vphpl": flow,
-            "speed_kmh": speed,
-            "leftmost_share": share,
-            "mean_string_size": size,
-        }
+        assert self.sim is not None
+        obs, info = observation(
+            self.sim.vehicles(), self.sim.detectors(), self.zone, self.leftmost_lane, self.observation_space
+        )
+        info["t_s"] = self.sim.time_s
         return obs, info
 
     # -- the Gymnasium API ---------------------------------------------------------------
@@ -179,31 +206,42 @@ class PlatoonEnv(gym.Env):
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
         super().reset(seed=seed)
         engine_seed = int(seed) if seed is not None else int(self.np_random.integers(0, 2**31 - 1))
-        self._gate = _Gate(self.zone, self._every)
-        self.sim = platoonsim.Simulation(
-            self.scenario, seed=engine_seed, overrides=self.overrides, organizer=self._gate, events=False
-        )
+        if self.gate == "native":
+            self._gate = None
+            self.sim = platoonsim.Simulation(self.scenario, seed=engine_seed, overrides=self.overrides, events=False)
+            self.sim.use_gate()
+        else:
+            self._gate = _Gate(self.zone, self._every)
+            self.sim = platoonsim.Simulation(
+                self.scenario, seed=engine_seed, overrides=self.overrides, organizer=self._gate, events=False
+            )
         self.sim.run_until(self.warmup_s)
         obs, info = self._observe()
         info["seed"] = engine_seed
         return obs, info
 
     def step(self, action):
-        if self.sim is None or self._gate is None:
+        if self.sim is None:
             raise RuntimeError("call reset() before step()")
         if not self.action_space.contains(action):
             raise ValueError(f"action {action!r} is not in {self.action_space} (0 hold, 1 organize)")
-        self._gate.on = int(action) == ORGANIZE
+        on = int(action) == ORGANIZE
+        if self._gate is not None:
+            self._gate.on = on
+        else:
+            self.sim.set_gate(on)
         self.sim.run_until(self.sim.time_s + self.decision_s)
         obs, info = self._observe()
-        flow = info["flow_vphpl"]
-        loss = max(0.0, 1.0 - flow[2] / flow[0]) if flow[0] > 0 else 0.0
-        reward = (info["mean_string_size"] - 1.0) - self.discharge_penalty * loss
+        r, loss = reward(info["flow_vphpl"], info["mean_string_size"], self.discharge_penalty)
         info["discharge_loss"] = loss
         truncated = self.sim.done
-        return obs, float(reward), False, truncated, info
+        return obs, r, False, truncated, info
 
 
 # `gymnasium.make("platoonsim/Platoon-v0")`.
 if "platoonsim/Platoon-v0" not in gym.registry:
-    gym.register(id="platoonsim/Platoon-v0", entry_point="platoonsim.gym:PlatoonEnv")
+    gym.register(
+        id="platoonsim/Platoon-v0",
+        entry_point="platoonsim.gym:PlatoonEnv",
+        vector_entry_point="platoonsim.vector:PlatoonVecEnv",
+    )

@@ -1,9 +1,12 @@
-//! The two engine seams the binding plugs into: an organizer whose advice is a table set
-//! from Python between steps, and an observer that buffers events until Python asks.
+//! The engine seams the binding plugs into: an organizer whose advice is a table set from
+//! Python between steps, a gated PD organizer switched from Python, and an observer that
+//! buffers events until Python asks.
 
+use platoonsim_sim::detector::Broadcast;
 use platoonsim_sim::network::Geometry;
 use platoonsim_sim::vehicle::Vehicle;
 use platoonsim_sim::{Advice, Event, Observer, Organizer, Simulation};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 
 /// Lock without caring about poisoning: the data is plain and every writer leaves it whole.
@@ -71,6 +74,37 @@ impl Organizer for TableOrganizer {
     }
     fn advise(&self, v: &Vehicle, _t_s: f64, _road: &Geometry) -> Advice {
         lock(&self.table).get(v.id)
+    }
+}
+
+/// An organizer of the engine's own (the scenario's PD rule) that gives its advice only while
+/// switched on (`set_gate`): the gate of `PlatoonEnv`, native so that batched worlds step
+/// without Python in the loop.
+#[derive(Debug)]
+pub struct GatedOrganizer {
+    pub inner: Box<dyn Organizer>,
+    pub on: Arc<AtomicBool>,
+}
+
+impl Organizer for GatedOrganizer {
+    fn name(&self) -> &str {
+        "gated-pd"
+    }
+    fn advises_cavs(&self) -> bool {
+        self.inner.advises_cavs()
+    }
+    fn advises_humans(&self) -> bool {
+        self.inner.advises_humans()
+    }
+    fn on_broadcasts(&mut self, road: &Geometry, broadcasts: &[(f64, Broadcast)]) {
+        self.inner.on_broadcasts(road, broadcasts)
+    }
+    fn advise(&self, v: &Vehicle, t_s: f64, road: &Geometry) -> Advice {
+        if self.on.load(Ordering::Relaxed) {
+            self.inner.advise(v, t_s, road)
+        } else {
+            Advice::Free
+        }
     }
 }
 

@@ -5,6 +5,7 @@
 //! per call, commands vectorized over vehicle ids. The pure-Python package (`python/platoonsim`)
 //! wraps it in the documented API (docs/python.md). Stepping releases the GIL.
 
+mod batch;
 mod convert;
 mod core;
 mod hooks;
@@ -37,6 +38,7 @@ pyo3::create_exception!(
 #[pymodule]
 fn _platoonsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<core::Core>()?;
+    m.add_class::<batch::BatchCore>()?;
     m.add("ScenarioError", m.py().get_type::<ScenarioError>())?;
     m.add("CommandError", m.py().get_type::<CommandError>())?;
     m.add("SimulationError", m.py().get_type::<SimulationError>())?;

@@ -1,0 +1,17 @@
+from typing import Any, Sequence
+
+import numpy as np
+from gymnasium.vector import VectorEnv
+
+from . import BatchSimulation
+from .gym import PlatoonEnv
+
+class PlatoonVecEnv(VectorEnv):
+    single: PlatoonEnv
+    batch: BatchSimulation | None
+    num_envs: int
+    def __init__(self, num_envs: int = 1, threads: int | None = None, **kwargs: Any) -> None: ...
+    def reset(
+        self, *, seed: int | Sequence[int] | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[np.ndarray, dict[str, Any]]: ...
+    def step(self, actions: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]: ...

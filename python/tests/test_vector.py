@@ -1,0 +1,77 @@
+"""The native vector environment of Platoon-v0: shapes, seeding, autoreset, bad actions, and
+each world equal to a single PlatoonEnv."""
+
+from __future__ import annotations
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import platoonsim.gym  # noqa: F401  (registers the environment)
+from platoonsim.gym import PlatoonEnv
+from platoonsim.vector import PlatoonVecEnv
+
+KW = {"decision_s": 10.0, "decisions": 4}
+ACTIONS = [np.array([1, 0, 1]), np.array([0, 0, 1]), np.array([1, 1, 1]), np.array([0, 1, 0])]
+
+
+def _episode(env, seed):
+    obs, info = env.reset(seed=seed)
+    trace, rewards = [obs], []
+    for a in ACTIONS:
+        obs, r, term, trunc, info = env.step(a)
+        trace.append(obs)
+        rewards.append(r)
+    return np.stack(trace), np.stack(rewards), term, trunc, info
+
+
+def test_make_vec_gives_the_native_vector_env():
+    env = gym.make_vec("platoonsim/Platoon-v0", num_envs=3, **KW)
+    assert isinstance(env, PlatoonVecEnv)
+    assert env.observation_space.shape == (3, 8)
+    assert env.single_observation_space.shape == (8,)
+    obs, info = env.reset(seed=5)
+    assert obs.shape == (3, 8) and obs.dtype == np.float32
+    assert list(info["seed"]) == [5, 6, 7]
+
+
+def test_each_world_equals_a_single_env_and_episodes_repeat():
+    env = PlatoonVecEnv(num_envs=3, **KW)
+    trace, rewards, term, trunc, _ = _episode(env, 11)
+    assert trunc.all() and not term.any()
+    again = _episode(env, 11)
+    assert np.array_equal(trace, again[0]) and np.array_equal(rewards, again[1])
+    for i in range(3):
+        single = PlatoonEnv(**KW)
+        obs, _ = single.reset(seed=11 + i)
+        assert np.array_equal(obs, trace[0, i])
+        for k, a in enumerate(ACTIONS):
+            obs, r, _, _, _ = single.step(int(a[i]))
+            assert np.array_equal(obs, trace[k + 1, i])
+            assert r == rewards[k, i]
+
+
+def test_autoreset_starts_new_episodes_on_the_next_step():
+    env = PlatoonVecEnv(num_envs=2, **KW)
+    env.reset(seed=1)
+    for a in ACTIONS:
+        _, _, _, trunc, _ = env.step(a[:2])
+    assert trunc.all()
+    obs, r, term, trunc, info = env.step(np.zeros(2, dtype=int))
+    assert not term.any() and not trunc.any() and (r == 0).all()
+    assert np.allclose(info["t_s"], PlatoonEnv(**KW).warmup_s)
+    assert env.observation_space.contains(obs)
+
+
+def test_bad_actions_and_seeds_are_rejected():
+    env = PlatoonVecEnv(num_envs=2, **KW)
+    with pytest.raises(RuntimeError, match="reset"):
+        env.step(np.zeros(2, dtype=int))
+    env.reset(seed=[4, 9])
+    for bad in ([1, 0, 1], [2, 0], [0.5, 1.0], "organize"):
+        with pytest.raises(ValueError, match="0 \\(hold\\) or 1 \\(organize\\)"):
+            env.step(np.asarray(bad))
+    with pytest.raises(ValueError, match="one per world"):
+        env.reset(seed=[1, 2, 3])
+    with pytest.raises(ValueError, match="num_envs"):
+        PlatoonVecEnv(num_envs=0)
