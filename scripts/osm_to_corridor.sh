@@ -78,15 +78,12 @@ mkdir -p "$(dirname "$scenario")"
 #   --junctions.join            joins the cluster of nodes where ramps meet into one junction
 #   --no-turnarounds            no U-turns onto the other carriageway at the ends
 #   --output.street-names       keeps the ways' names: they become the ramps' names
-#   --osm.layer-elevation 4     over- and underpasses (OSM `layer`) at different heights, so
-#                               that crossing roads do not become one junction
 # shellcheck disable=SC2086
 "$netconvert" --osm-files "$osm" \
     --keep-edges.by-type highway.motorway,highway.motorway_link,highway.trunk,highway.trunk_link \
     --remove-edges.isolated \
     --ramps.guess --geometry.remove --junctions.join \
     --no-turnarounds --output.street-names \
-    --osm.layer-elevation 4 \
     ${NETCONVERT_OPTIONS:-} \
     --output-file "$net"
 "$platoonsim" import sumo "$net" "$@" --out "$scenario"
