@@ -258,7 +258,7 @@ class Simulation:
         (0 = rightmost) and front first: ``id``, ``kind`` (0 human, 1 CAV), ``lane``,
         ``x_m``, ``v_mps``, ``a_mps2``, ``mode`` (index into MODE_LABELS), ``regime`` (index
         into REGIME_LABELS, -1 while not automated), ``platoon_id``, ``platoon_pos`` (1 =
-        leads its string), ``leader_id`` (-1: first in its lane)."""
+        leads its string), ``leader_id`` (-1: first in its lane), ``length_m``."""
         return self._core.vehicles()
 
     def detectors(self) -> dict[str, np.ndarray]:
@@ -298,7 +298,8 @@ class Simulation:
     ) -> None:
         """Command the vehicles ``ids`` (one id or an array) from the next step on.
 
-        ``kind``: ``"accelerate"`` (``value`` m/s² for ``steps`` steps, no lane change),
+        ``kind``: ``"accelerate"`` (``value`` m/s² for ``steps`` steps, no lane change;
+        ``"accelerate_capped"``: at most the model's own acceleration),
         ``"desired_speed"`` (``value`` m/s until released), ``"change_lane"`` (``side``
         ``"left"`` or ``"right"``, as soon as the gaps allow) or ``"release"``. ``value`` is
         one number or one per id. An unknown id or a value out of range raises CommandError

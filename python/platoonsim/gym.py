@@ -245,3 +245,9 @@ if "platoonsim/Platoon-v0" not in gym.registry:
         entry_point="platoonsim.gym:PlatoonEnv",
         vector_entry_point="platoonsim.vector:PlatoonVecEnv",
     )
+if "platoonsim/CavControl-v0" not in gym.registry:
+    gym.register(
+        id="platoonsim/CavControl-v0",
+        entry_point="platoonsim.control:CavControlEnv",
+        vector_entry_point="platoonsim.control:CavControlVecEnv",
+    )

@@ -9,7 +9,7 @@ import numpy as np
 
 import platoonsim
 
-COLUMNS = ["id", "kind", "lane", "x_m", "v_mps", "a_mps2", "mode", "regime", "platoon_id", "platoon_pos", "leader_id"]
+COLUMNS = ["id", "kind", "lane", "x_m", "v_mps", "a_mps2", "mode", "regime", "platoon_id", "platoon_pos", "leader_id", "length_m"]
 RUN = {"run.duration_s": 300, "run.warmup_s": 0}
 
 

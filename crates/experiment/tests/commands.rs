@@ -207,3 +207,36 @@ fn a_commanded_stop_sends_the_expected_shock_wave_upstream() {
         "wave {w} m/s against LWR {w_lwr} m/s"
     );
 }
+
+#[test]
+fn a_capped_acceleration_never_exceeds_the_models_and_never_collides() {
+    // Every vehicle on a busy one-lane road is told to accelerate at 3 m/s² for 60 s, capped:
+    // the model's car following stays the ceiling, so nobody runs into the vehicle ahead. The
+    // same command uncapped is a pile-up.
+    let run = |capped: bool| {
+        let c = homogeneous(0.5, 1800.0, 400.0, 3, &["road.lanes=1"]);
+        let mut sim = Simulation::new(c).unwrap();
+        run_until(&mut sim, 300.0);
+        let ids: Vec<u64> = sim.lane_vehicles(0).map(|v| v.id).collect();
+        for id in ids {
+            let (accel_mps2, steps) = (3.0, 600);
+            let cmd = if capped {
+                Command::AccelerateCapped { accel_mps2, steps }
+            } else {
+                Command::Accelerate { accel_mps2, steps }
+            };
+            sim.command(id, cmd).unwrap();
+        }
+        let mut max_a: f64 = f64::NEG_INFINITY;
+        while !sim.finished() {
+            sim.step().unwrap();
+            max_a = sim.lane_vehicles(0).map(|v| v.a).fold(max_a, f64::max);
+        }
+        (sim.finish(0.0).summary.collisions, max_a)
+    };
+    let (collisions, max_a) = run(true);
+    assert_eq!(collisions, 0);
+    assert!(max_a <= 3.0, "largest acceleration {max_a}");
+    let (collisions, _) = run(false);
+    assert!(collisions > 0, "the uncapped command should collide");
+}

@@ -6,13 +6,14 @@
 //! Python organizers are not offered here (they would run under the GIL inside the parallel
 //! step); the scenario's own strategy and the gated PD organizer (`use_gate`) are.
 
+use crate::control::{self, Spec, FEATURES};
 use crate::convert::set_args;
 use crate::core::{
     command_world, detectors_dict, finish_world, new_inner, set_gate, step_world, use_gate,
     vehicles_dict, Inner,
 };
 use crate::{CommandError, SimulationError};
-use numpy::PyReadonlyArray1;
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
@@ -29,6 +30,43 @@ pub struct BatchCore {
     worlds: Vec<Mutex<Inner>>,
     pool: rayon::ThreadPool,
     busy: Mutex<()>,
+    /// The per-vehicle control task (`control_setup`).
+    spec: Mutex<Option<Spec>>,
+}
+
+/// What `control_reset` and `control_step` return: observations (N, k, 6) float32, the
+/// occupied slots (N, k), rewards (N), outflow (N), new collisions (N), done (N).
+type ControlTuple<'py> = (
+    Bound<'py, PyAny>,
+    Bound<'py, PyAny>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<u64>>,
+    Bound<'py, PyArray1<u64>>,
+    Bound<'py, PyArray1<bool>>,
+);
+
+fn control_tuple<'py>(
+    py: Python<'py>,
+    outs: Vec<control::Out>,
+    k: usize,
+) -> PyResult<ControlTuple<'py>> {
+    let n = outs.len();
+    let mut obs = Vec::with_capacity(n * k * FEATURES);
+    let mut mask = Vec::with_capacity(n * k);
+    for o in &outs {
+        obs.extend_from_slice(&o.obs);
+        mask.extend_from_slice(&o.mask);
+    }
+    Ok((
+        PyArray1::from_vec(py, obs)
+            .reshape([n, k, FEATURES])?
+            .into_any(),
+        PyArray1::from_vec(py, mask).reshape([n, k])?.into_any(),
+        PyArray1::from_vec(py, outs.iter().map(|o| o.reward).collect()),
+        PyArray1::from_vec(py, outs.iter().map(|o| o.outflow).collect()),
+        PyArray1::from_vec(py, outs.iter().map(|o| o.collisions).collect()),
+        PyArray1::from_vec(py, outs.iter().map(|o| o.done).collect()),
+    ))
 }
 
 impl BatchCore {
@@ -70,6 +108,15 @@ impl BatchCore {
             .enumerate()
             .map(|(i, r)| r.map_err(|e| SimulationError::new_err(format!("world {i}: {e}"))))
             .collect()
+    }
+}
+
+impl BatchCore {
+    fn control_spec(&self) -> PyResult<Spec> {
+        self.spec
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .ok_or_else(|| SimulationError::new_err("control_setup() first"))
     }
 }
 
@@ -143,6 +190,7 @@ impl BatchCore {
             worlds,
             pool,
             busy: Mutex::new(()),
+            spec: Mutex::new(None),
         })
     }
 
@@ -256,6 +304,102 @@ impl BatchCore {
         on.iter()
             .enumerate()
             .try_for_each(|(i, &g)| self.world(i, |w| set_gate(w, g)))
+    }
+
+    /// Set up the per-vehicle control task (control.rs): `k` slots, `steps` engine steps per
+    /// action, the scales, the penalty and the action bounds.
+    #[allow(clippy::too_many_arguments)]
+    fn control_setup(
+        &self,
+        k: usize,
+        steps: u64,
+        v_ref: f64,
+        gap_ref: f64,
+        accel_penalty: f64,
+        a_low: f64,
+        a_high: f64,
+    ) -> PyResult<()> {
+        let ok = (1..=1024).contains(&k)
+            && steps >= 1
+            && [v_ref, gap_ref, a_high]
+                .iter()
+                .all(|v| v.is_finite() && *v > 0.0)
+            && accel_penalty.is_finite()
+            && accel_penalty >= 0.0
+            && a_low.is_finite()
+            && a_low < 0.0;
+        if !ok {
+            return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "control_setup: k = {k} (1-1024), steps = {steps} (>= 1), v_ref = {v_ref}, \
+                 gap_ref = {gap_ref}, a_high = {a_high} (> 0), accel_penalty = {accel_penalty} \
+                 (>= 0), a_low = {a_low} (< 0)"
+            )));
+        }
+        *self.spec.lock().unwrap_or_else(|e| e.into_inner()) = Some(Spec {
+            k,
+            steps,
+            v_ref,
+            gap_ref,
+            accel_penalty,
+            a_low,
+            a_high,
+        });
+        Ok(())
+    }
+
+    fn control_reset<'py>(&self, py: Python<'py>) -> PyResult<ControlTuple<'py>> {
+        let spec = self.control_spec()?;
+        let outs = self.par(py, |w| control::start(w, &spec))?;
+        control_tuple(py, outs, spec.k)
+    }
+
+    /// One step of the control task in every world: `actions` (N, k) accelerations (m/s²).
+    fn control_step<'py>(
+        &self,
+        py: Python<'py>,
+        actions: PyReadonlyArray2<'_, f64>,
+    ) -> PyResult<ControlTuple<'py>> {
+        let spec = self.control_spec()?;
+        let a = actions.as_array();
+        let shape = a.shape();
+        if shape != [self.worlds.len(), spec.k] {
+            return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "actions: shape {shape:?}, expected ({}, {}) (worlds, slots)",
+                self.worlds.len(),
+                spec.k
+            )));
+        }
+        if let Some(bad) = a.iter().find(|v| !v.is_finite()) {
+            return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "actions: {bad} is not a finite acceleration"
+            )));
+        }
+        let rows: Vec<Vec<f64>> = a.outer_iter().map(|r| r.to_vec()).collect();
+        // Each world takes its own row; par_iter keeps world order.
+        let idx: Vec<usize> = (0..self.worlds.len()).collect();
+        let outs = {
+            let _busy = self.busy.try_lock().map_err(|_| {
+                SimulationError::new_err(
+                    "the batch is busy in another thread (one thread per batch)",
+                )
+            })?;
+            let results: Vec<Result<control::Out, String>> = py.detach(|| {
+                self.pool.install(|| {
+                    idx.par_iter()
+                        .map(|&i| {
+                            let mut g = self.worlds[i].lock().unwrap_or_else(|e| e.into_inner());
+                            control::step(&mut g, &spec, &rows[i])
+                        })
+                        .collect()
+                })
+            });
+            results
+                .into_iter()
+                .enumerate()
+                .map(|(i, r)| r.map_err(|e| SimulationError::new_err(format!("world {i}: {e}"))))
+                .collect::<PyResult<Vec<_>>>()?
+        };
+        control_tuple(py, outs, spec.k)
     }
 
     /// End world `i`'s run (writing its files into `out_dir` if given); its summary as JSON.

@@ -115,6 +115,7 @@ pub fn columns_dict<'py>(py: Python<'py>, c: &VehicleColumns) -> PyResult<Bound<
                 .collect(),
         ),
     )?;
+    d.set_item("length_m", PyArray1::from_slice(py, &c.length_m))?;
     Ok(d)
 }
 

@@ -30,6 +30,8 @@ pub(crate) struct Inner {
     wall_s: f64,
     /// The switch of a gated PD organizer (`use_gate`).
     gate: Option<Arc<AtomicBool>>,
+    /// The per-vehicle control task's state (control.rs).
+    pub(crate) control: crate::control::State,
     /// The scenario and overrides the config came from (to validate its PD rule for
     /// `use_gate` when the scenario's own strategy is another).
     source: (String, Overrides),
@@ -43,6 +45,14 @@ impl Inner {
                  available",
             )
         })
+    }
+
+    pub(crate) fn sim_ref(&self) -> Option<&Simulation> {
+        self.sim.as_ref()
+    }
+
+    pub(crate) fn sim_mut(&mut self) -> Option<&mut Simulation> {
+        self.sim.as_mut()
     }
 
     pub(crate) fn steps_to(&self, t_s: f64) -> u64 {
@@ -144,6 +154,7 @@ pub(crate) fn new_inner(
         columns: VehicleColumns::default(),
         wall_s: 0.0,
         gate: None,
+        control: Default::default(),
         source: (scenario.to_string(), ov),
     })
 }
@@ -218,6 +229,10 @@ pub(crate) fn command_world(
                 accel_mps2: value(i, "an acceleration in m/s²")?,
                 steps,
             },
+            "accelerate_capped" => Command::AccelerateCapped {
+                accel_mps2: value(i, "an acceleration in m/s²")?,
+                steps,
+            },
             "desired_speed" => Command::DesiredSpeed {
                 speed_mps: value(i, "a desired speed in m/s")?,
             },
@@ -237,7 +252,7 @@ pub(crate) fn command_world(
             other => {
                 return Err(CommandError::new_err(format!(
                     "command kind {other:?}: must be one of \"accelerate\", \
-                     \"desired_speed\", \"change_lane\", \"release\""
+                     \"accelerate_capped\", \"desired_speed\", \"change_lane\", \"release\""
                 )))
             }
         };
@@ -259,7 +274,8 @@ pub(crate) fn command_world(
                 )));
             }
             let bad = match c {
-                Command::Accelerate { accel_mps2, steps } => {
+                Command::Accelerate { accel_mps2, steps }
+                | Command::AccelerateCapped { accel_mps2, steps } => {
                     !(accel_mps2.is_finite() && accel_mps2.abs() <= MAX_COMMAND_ACCEL_MPS2)
                         || steps == 0
                 }

@@ -6,6 +6,7 @@
 //! wraps it in the documented API (docs/python.md). Stepping releases the GIL.
 
 mod batch;
+mod control;
 mod convert;
 mod core;
 mod hooks;

@@ -10,6 +10,7 @@
 //! | command | effect | ends |
 //! |---|---|---|
 //! | `Accelerate { accel_mps2, steps }` | this acceleration (m/s²) instead of the model's, and no lane change | after `steps` steps |
+//! | `AccelerateCapped { accel_mps2, steps }` | this acceleration, but never above the model's own of the step: the driver model's car following (for a CAV its ACC/CACC law with collision avoidance) is a ceiling, so a controller can brake and hold back but not drive into the vehicle ahead; the model's lane changes and automation state stand | after `steps` steps |
 //! | `DesiredSpeed { speed_mps }` | the model drives with this desired speed (CAV: set speed) | on `Release` |
 //! | `ChangeLane { side }` | a mandatory lane-change desire toward `side` (gap acceptance of spec 4.3 and 9.1, before-lane-change behaviour of spec 4.3 without braking for the change: `driver::commanded_target`) | once in the target lane |
 //! | `Release` | every command of the vehicle ends; the model drives | at once |
@@ -27,6 +28,8 @@ use platoonsim_model::lanechange::Side;
 pub enum Command {
     /// Apply `accel_mps2` for the next `steps` steps.
     Accelerate { accel_mps2: f64, steps: u64 },
+    /// Apply `accel_mps2`, or the model's acceleration if lower, for the next `steps` steps.
+    AccelerateCapped { accel_mps2: f64, steps: u64 },
     /// Drive with this desired speed (m/s) until released.
     DesiredSpeed { speed_mps: f64 },
     /// Change one lane toward `side` as soon as the gaps allow.
@@ -66,7 +69,8 @@ impl Simulation {
             own_speed: v.driver.human.desired_speed,
         };
         match command {
-            Command::Accelerate { accel_mps2, steps } => {
+            Command::Accelerate { accel_mps2, steps }
+            | Command::AccelerateCapped { accel_mps2, steps } => {
                 if !(accel_mps2.is_finite() && accel_mps2.abs() <= MAX_COMMAND_ACCEL_MPS2) {
                     return Err(SimError::Command(format!(
                         "Accelerate.accel_mps2 = {accel_mps2}: must be finite, within \
@@ -173,6 +177,15 @@ pub(crate) fn apply_commands(
                 let d = &mut decisions[s as usize];
                 d.auto = crate::vehicle::AutoFlags::new(false, d.auto.degraded());
                 decisions[s as usize].change = None;
+                commands[k].left -= 1;
+                commands[k].left == 0
+            }
+            Command::AccelerateCapped { accel_mps2, .. } => {
+                // A controller on top of the model: at most the model's acceleration; the
+                // model's lane change and automation state stand (a ramp vehicle still
+                // merges, a CAV's automation stays engaged).
+                let d = &mut decisions[s as usize];
+                d.accel = accel_mps2.min(d.accel);
                 commands[k].left -= 1;
                 commands[k].left == 0
             }

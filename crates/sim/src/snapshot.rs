@@ -34,6 +34,8 @@ pub struct VehicleColumns {
     pub platoon_id: Vec<u64>,
     /// Id of the vehicle directly ahead in the same lane, `None` for the first of a lane.
     pub leader_id: Vec<Option<u64>>,
+    /// Body length (m): the gap to the vehicle behind is `x_m − length_m − x_m(behind)`.
+    pub length_m: Vec<f64>,
 }
 
 /// The driving modes of [`VehicleColumns::mode`], by index ([`ModeLabel::as_str`]).
@@ -85,6 +87,7 @@ impl VehicleColumns {
         self.platoon_pos.clear();
         self.platoon_id.clear();
         self.leader_id.clear();
+        self.length_m.clear();
     }
 }
 
@@ -114,6 +117,7 @@ impl Simulation {
                 out.platoon_pos.push(pos);
                 out.platoon_id.push(head);
                 out.leader_id.push((ahead != NEVER).then_some(ahead));
+                out.length_m.push(v.driver.human.length_m);
                 (ahead, ahead_pos) = (v.id, pos);
             }
         }
@@ -177,7 +181,7 @@ mod tests {
                 Some(l) => {
                     assert_eq!(c.id[i - 1], l);
                     assert_eq!(c.lane[i - 1], c.lane[i]);
-                    assert!(c.x_m[i - 1] > c.x_m[i]);
+                    assert!(c.x_m[i - 1] - c.length_m[i - 1] > c.x_m[i], "overlap");
                 }
                 None => assert!(i == 0 || c.lane[i - 1] != c.lane[i]),
             }

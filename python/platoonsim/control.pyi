@@ -1,0 +1,34 @@
+from typing import Any, Sequence
+
+import gymnasium as gym
+import numpy as np
+from gymnasium.vector import VectorEnv
+
+from . import BatchSimulation
+
+FEATURES: int
+
+def merge_scenario(
+    lanes: int = 1,
+    mainline_vph: float = 2000.0,
+    ramp_vph: float = 200.0,
+    penetration: float = 0.25,
+    duration_s: float = 360.0,
+) -> str: ...
+
+class CavControlEnv(gym.Env[np.ndarray, np.ndarray]):
+    batch: BatchSimulation | None
+    def __init__(self, **kwargs: Any) -> None: ...
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[np.ndarray, dict[str, Any]]: ...
+    def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]: ...
+
+class CavControlVecEnv(VectorEnv):
+    batch: BatchSimulation | None
+    num_envs: int
+    def __init__(self, num_envs: int = 1, threads: int | None = None, **kwargs: Any) -> None: ...
+    def reset(
+        self, *, seed: int | Sequence[int] | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[np.ndarray, dict[str, Any]]: ...
+    def step(self, actions: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]: ...
