@@ -143,8 +143,10 @@ fn a_corridor_with_its_demand_and_loops() {
             ("L_0".into(), 2158.0),
             ("m1".into(), 999.0),
             ("m2".into(), 1253.0),
-            ("m3".into(), 2257.0),
-            ("m4".into(), 2761.0)
+            // Where vehicles leave at the edge's end, 10 m before it: the off-ramp's diverge
+            // (2258 m), the road end (2762 m).
+            ("m3".into(), 2248.0),
+            ("m4".into(), 2752.0)
         ]
     );
     let human = d["human"].as_table().unwrap();

@@ -40,7 +40,8 @@ pub struct SumoArgs {
     /// motorway/trunk edges, or of non-link edges on an untyped network).
     #[arg(long, value_name = "EDGE,EDGE,...", value_delimiter = ',')]
     pub mainline: Option<Vec<String>>,
-    /// Add a detector 1 m before the downstream end of every mainline edge, named by the edge.
+    /// Add a detector 1 m before the downstream end of every mainline edge (10 m where the
+    /// road or an off-ramp leaves at that end), named by the edge.
     #[arg(long)]
     pub edge_detectors: bool,
     /// Demand interval (s); default: the common divisor of the flows' begin and end times.

@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod calibrate;
+pub mod sumo;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -323,9 +323,9 @@ pub fn build(net: &Net, chain: Vec<usize>, notes: &mut Notes) -> Result<Corridor
     }
 
     // Through lanes per edge, then stretches of equal count.
-    let mut stretches: Vec<(f64, f64, u32)> = Vec::new();
-    for k in 0..n {
-        let through = lanes(k) as i64 - aux[k];
+    let mut through_k: Vec<u32> = Vec::with_capacity(n);
+    for (k, &aux_k) in aux.iter().enumerate() {
+        let through = lanes(k) as i64 - aux_k;
         if through < 1 {
             return Err(ImportError::NotCorridor(format!(
                 "mainline edge \"{}\" has no through lane (its {} lanes are all ramp lanes)",
@@ -342,10 +342,22 @@ pub fn build(net: &Net, chain: Vec<usize>, notes: &mut Notes) -> Result<Corridor
             ));
             through = MAX_LANES;
         }
-        let to = if k + 1 < n { start[k + 1] } else { length };
+        through_k.push(through as u32);
+    }
+    // A lane that ends at a junction ends with its edge: the junction's internal lanes carry
+    // only the lanes that go on. So a drop is at the edge's end (where an off-ramp there
+    // diverges, for an exit-only lane), an add at the next edge's start.
+    let mut stretches: Vec<(f64, f64, u32)> = Vec::new();
+    for (k, &through) in through_k.iter().enumerate() {
+        let to = match through_k.get(k + 1) {
+            Some(&next) if next < through => end_of(k),
+            Some(_) => start[k + 1],
+            None => length,
+        };
+        let from = stretches.last().map_or(0.0, |s| s.1);
         match stretches.last_mut() {
-            Some(s) if s.2 == through as u32 => s.1 = to,
-            _ => stretches.push((start[k], to, through as u32)),
+            Some(s) if s.2 == through => s.1 = to,
+            _ => stretches.push((from, to, through)),
         }
     }
     let feeders: Vec<usize> = net
