@@ -21,11 +21,11 @@ from pathlib import Path
 import numpy as np
 
 from stable_baselines3 import PPO
-from stable_baselines3.common.callbacks import BaseCallback
 from stable_baselines3.common.vec_env import VecMonitor
 
 from platoonsim.gym import PlatoonEnv
 from platoonsim.vector import PlatoonVecEnv
+from curve import Curve
 from sb3_vec import Sb3Vec
 
 TRAIN = {"decision_s": 30.0, "decisions": 10, "warmup_s": 240.0}
@@ -89,40 +89,11 @@ def main() -> None:
     venv = VecMonitor(Sb3Vec(PlatoonVecEnv(num_envs=args.worlds, **TRAIN)))
     venv.seed(0)
     model = PPO("MlpPolicy", venv, n_steps=64, batch_size=128, learning_rate=3e-4, gamma=0.9, seed=0, verbose=0)
-    curve: list[tuple[int, float, float]] = []
+    curve = Curve()
     t0 = time.perf_counter()
-
-    class Curve(BaseCallback):
-        def _on_rollout_end(self) -> None:
-            eps = [e["r"] for e in self.model.ep_info_buffer]
-            if eps:
-                curve.append((self.num_timesteps, float(np.mean(eps)), time.perf_counter() - t0))
-
-        def _on_step(self) -> bool:
-            return True
-
-    model.learn(total_timesteps=args.steps, callback=Curve())
+    model.learn(total_timesteps=args.steps, callback=curve)
     wall = time.perf_counter() - t0
-    with open(args.out / "gate_curve.csv", "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["decisions", "mean_return", "wall_s"])
-        w.writerows(curve)
-    try:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
-        fig, ax = plt.subplots(figsize=(6, 3.5))
-        ax.plot([c[0] for c in curve], [c[1] for c in curve])
-        ax.set_xlabel("decisions (environment steps)")
-        ax.set_ylabel("mean episode return (last 100)")
-        ax.set_title("PPO on Platoon-v0")
-        fig.tight_layout()
-        for ext in ("png", "svg"):
-            fig.savefig(args.out / f"gate_curve.{ext}")
-    except ImportError:
-        pass
+    curve.write(args.out / "gate_curve", "decisions (environment steps)", "PPO on Platoon-v0")
     print(f"trained {args.steps} decisions on {args.worlds} worlds in {wall:.0f} s")
     rows = evaluate(model, args.out)
     print("| policy | demand veh/h/lane | return | mean string size | discharge loss | organized | discharge veh/h/lane |")

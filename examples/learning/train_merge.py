@@ -22,6 +22,7 @@ from stable_baselines3 import PPO
 from stable_baselines3.common.vec_env import VecMonitor
 
 from platoonsim.control import CavControlEnv, CavControlVecEnv
+from curve import Curve
 from sb3_vec import Sb3Vec
 
 TRAIN = {"warmup_s": 60.0, "horizon_s": 180.0, "mainline_vph": 2000.0, "ramp_vph": 200.0}
@@ -79,42 +80,11 @@ def main() -> None:
     venv = VecMonitor(Sb3Vec(CavControlVecEnv(num_envs=args.worlds, **TRAIN)))
     venv.seed(0)
     model = PPO("MlpPolicy", venv, n_steps=256, batch_size=512, learning_rate=3e-4, gamma=0.99, seed=0, verbose=0)
-    curve = []
+    curve = Curve()
     t0 = time.perf_counter()
-
-    from stable_baselines3.common.callbacks import BaseCallback
-
-    class Curve(BaseCallback):
-        def _on_rollout_end(self) -> None:
-            eps = [e["r"] for e in self.model.ep_info_buffer]
-            if eps:
-                curve.append((self.num_timesteps, float(np.mean(eps)), time.perf_counter() - t0))
-
-        def _on_step(self) -> bool:
-            return True
-
-    model.learn(total_timesteps=args.steps, callback=Curve())
+    model.learn(total_timesteps=args.steps, callback=curve)
     wall = time.perf_counter() - t0
-    with open(args.out / "merge_curve.csv", "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["env_steps", "mean_return", "wall_s"])
-        w.writerows(curve)
-    try:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
-        fig, ax = plt.subplots(figsize=(6, 3.5))
-        ax.plot([c[0] for c in curve], [c[1] for c in curve])
-        ax.set_xlabel("environment steps")
-        ax.set_ylabel("mean episode return (last 100)")
-        ax.set_title("PPO on CavControl-v0")
-        fig.tight_layout()
-        for ext in ("png", "svg"):
-            fig.savefig(args.out / f"merge_curve.{ext}")
-    except ImportError:
-        pass
+    curve.write(args.out / "merge_curve", "environment steps", "PPO on CavControl-v0")
     print(f"trained {args.steps} environment steps on {args.worlds} worlds in {wall:.0f} s")
     rows = evaluate(model, args.out)
     print("| policy | mainline veh/h | return | outflow veh/h | mean speed km/h |")

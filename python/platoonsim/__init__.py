@@ -94,6 +94,28 @@ def _int_ids(ids: Any, what: str) -> np.ndarray:
     return np.ascontiguousarray(arr, dtype=np.int64)
 
 
+def _command_args(ids: Any, kind: Any, value: Any, steps: Any) -> tuple[np.ndarray, np.ndarray | None, int]:
+    """A command's ids, values (one per id) and steps, checked, or a CommandError."""
+    arr = _int_ids(ids, kind if isinstance(kind, str) else "command")
+    if not isinstance(kind, str):
+        raise CommandError(f"command: kind must be a string, got {type(kind).__name__}")
+    values = None
+    if value is not None:
+        try:
+            v = np.asarray(value, dtype=np.float64)
+        except (TypeError, ValueError) as e:
+            raise CommandError(f"{kind}: value {value!r} is not a number") from e
+        try:
+            values = np.ascontiguousarray(np.broadcast_to(v, arr.shape))
+        except ValueError as e:
+            raise CommandError(
+                f"{kind}: {v.size} values for {arr.size} vehicle ids (one per id, or one for all)"
+            ) from e
+    if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 1:
+        raise CommandError(f"{kind}: steps = {steps!r} must be an int of at least 1")
+    return arr, values, int(steps)
+
+
 class Simulation:
     """One run of a scenario, stepped from Python.
 
@@ -304,24 +326,8 @@ class Simulation:
         ``"left"`` or ``"right"``, as soon as the gaps allow) or ``"release"``. ``value`` is
         one number or one per id. An unknown id or a value out of range raises CommandError
         and applies none of the batch."""
-        arr = _int_ids(ids, kind if isinstance(kind, str) else "command")
-        if not isinstance(kind, str):
-            raise CommandError(f"command: kind must be a string, got {type(kind).__name__}")
-        values = None
-        if value is not None:
-            try:
-                v = np.asarray(value, dtype=np.float64)
-            except (TypeError, ValueError) as e:
-                raise CommandError(f"{kind}: value {value!r} is not a number") from e
-            try:
-                values = np.ascontiguousarray(np.broadcast_to(v, arr.shape))
-            except ValueError as e:
-                raise CommandError(
-                    f"{kind}: {v.size} values for {arr.size} vehicle ids (one per id, or one for all)"
-                ) from e
-        if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 1:
-            raise CommandError(f"{kind}: steps = {steps!r} must be an int of at least 1")
-        self._core.command(kind, arr, values, int(steps), side)
+        arr, values, n = _command_args(ids, kind, value, steps)
+        self._core.command(kind, arr, values, n, side)
 
     def accelerate(self, ids: Any, accel_mps2: Any, steps: int = 1) -> None:
         """``command(ids, "accelerate", accel_mps2, steps)``."""
@@ -498,21 +504,8 @@ class BatchSimulation:
     ) -> None:
         """``Simulation.command`` for the vehicles ``ids`` of world ``world``."""
         w = self._check(world)
-        arr = _int_ids(ids, kind if isinstance(kind, str) else "command")
-        if not isinstance(kind, str):
-            raise CommandError(f"command: kind must be a string, got {type(kind).__name__}")
-        values = None
-        if value is not None:
-            try:
-                v = np.asarray(value, dtype=np.float64)
-                values = np.ascontiguousarray(np.broadcast_to(v, arr.shape))
-            except (TypeError, ValueError) as e:
-                raise CommandError(
-                    f"{kind}: value {value!r} is not one number or one per vehicle id"
-                ) from e
-        if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 1:
-            raise CommandError(f"{kind}: steps = {steps!r} must be an int of at least 1")
-        self._core.command(w, kind, arr, values, int(steps), side)
+        arr, values, n = _command_args(ids, kind, value, steps)
+        self._core.command(w, kind, arr, values, n, side)
 
     def use_gate(self) -> None:
         """Every world organizes with the scenario's PD rule behind its own switch, off at
