@@ -26,11 +26,23 @@ pub fn read(
     paths: &[PathBuf],
     net: &Net,
 ) -> Result<(Vec<Loop>, BTreeMap<String, usize>), ImportError> {
+    let texts = paths
+        .iter()
+        .map(|p| Ok((p.clone(), crate::read::text(p)?)))
+        .collect::<Result<Vec<_>, ImportError>>()?;
+    parse(&texts, net)
+}
+
+/// [`read`] for texts already read: (the path for messages, the text), in order.
+pub fn parse(
+    texts: &[(PathBuf, String)],
+    net: &Net,
+) -> Result<(Vec<Loop>, BTreeMap<String, usize>), ImportError> {
     let mut loops = Vec::new();
     let mut other: BTreeMap<String, usize> = BTreeMap::new();
-    for path in paths {
-        let text = crate::read::text(path)?;
-        let doc = xml::parse(path, &text)?;
+    for (path, text) in texts {
+        let path = path.as_path();
+        let doc = xml::parse(path, text)?;
         let root = xml::root(path, &doc, &["additional", "add"], "SUMO additional file")?;
         for node in root.children().filter(|n| n.is_element()) {
             let at = At::new(path, node);

@@ -61,6 +61,9 @@ pub const MIN_INTERVAL_S: f64 = 60.0;
 pub const DEFAULT_DURATION_S: f64 = 3600.0;
 /// The most intervals a series may have.
 pub const MAX_INTERVALS: usize = 10_000;
+/// The most (demand route, interval) pairs an import spreads: a routes file of a million
+/// single vehicles over 100 intervals.
+pub const MAX_DEMAND_WORK: u64 = 100_000_000;
 /// The longest run an import writes (s): 7 days.
 pub const MAX_DURATION_S: f64 = 7.0 * 86_400.0;
 
@@ -178,8 +181,31 @@ fn gcd(a: u64, b: u64) -> u64 {
 
 /// Imports a SUMO network with its routes and loops.
 pub fn import(opts: &Options) -> Result<Imported, ImportError> {
+    let read_all = |paths: &[PathBuf]| {
+        paths
+            .iter()
+            .map(|p| Ok((p.clone(), crate::read::text(p)?)))
+            .collect::<Result<Vec<_>, ImportError>>()
+    };
+    let net_text = crate::read::text(&opts.net)?;
+    from_texts(
+        opts,
+        &net_text,
+        &read_all(&opts.routes)?,
+        &read_all(&opts.additional)?,
+    )
+}
+
+/// [`import`] for texts already read (`opts`' paths then only name the files in messages):
+/// the network's, and the routes and additional files' with their paths, in order.
+pub fn from_texts(
+    opts: &Options,
+    net_text: &str,
+    routes_texts: &[(PathBuf, String)],
+    additional_texts: &[(PathBuf, String)],
+) -> Result<Imported, ImportError> {
     let mut notes = Notes::default();
-    let net = net::read(&opts.net)?;
+    let net = net::parse(&opts.net, net_text)?;
     let chain = match &opts.mainline {
         Some(ids) => mainline::given(&net, ids)?,
         None => mainline::find(&net)?,
@@ -209,18 +235,31 @@ pub fn import(opts: &Options) -> Result<Imported, ImportError> {
         c.off_ramps.len()
     ));
 
-    let routes = routes::read(&opts.routes, &net, &mut notes)?;
+    let routes = routes::parse(routes_texts, &net, &mut notes)?;
     let duration = duration(opts, &routes.demands, &mut notes)?;
     let interval = interval(opts, &routes.demands, duration, &mut notes)?;
-    if opts.routes.is_empty() {
+    if routes_texts.is_empty() {
         notes.reduce(
             "no routes file: every demand is 0 (edit mainline_vph and the ramps' demand_vph)",
         );
     }
+    // Each demand is spread over every interval: bound the work before doing it.
+    let count = (duration / interval).ceil() as u64;
+    let paths: u64 = routes.demands.iter().map(|d| d.paths.len() as u64).sum();
+    if paths.saturating_mul(count) > MAX_DEMAND_WORK {
+        return Err(ImportError::Flag {
+            flag: "--routes",
+            value: format!("({paths} routes of flows and vehicles)"),
+            problem: format!(
+                "{paths} routes over {count} intervals is more than this import spreads \
+                 ({MAX_DEMAND_WORK}); give a longer --interval-s or fewer vehicles (flows)"
+            ),
+        });
+    }
     let names = |i: usize| net.edges[i].id.clone();
     let series = demand::series(&c, &routes.demands, interval, duration, &names, &mut notes);
 
-    let (loops, other_add) = additional::read(&opts.additional, &net)?;
+    let (loops, other_add) = additional::parse(additional_texts, &net)?;
     let placed = additional::place(&loops, &net, &c, &mut notes);
     for (tag, n) in other_add {
         notes.drop(format!("{n} {tag} elements of the additional files"));

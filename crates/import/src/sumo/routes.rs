@@ -82,14 +82,27 @@ pub fn read(
     net: &Net,
     notes: &mut Notes,
 ) -> Result<Routes, ImportError> {
+    let texts = paths
+        .iter()
+        .map(|p| Ok((p.clone(), crate::read::text(p)?)))
+        .collect::<Result<Vec<_>, ImportError>>()?;
+    parse(&texts, net, notes)
+}
+
+/// [`read`] for texts already read: (the path for messages, the text), in order.
+pub fn parse(
+    texts: &[(std::path::PathBuf, String)],
+    net: &Net,
+    notes: &mut Notes,
+) -> Result<Routes, ImportError> {
     let mut routes = Routes::default();
     // Named routes and route distributions of every file, so that a vehicle may use one
     // defined in an earlier file.
     let mut named: HashMap<String, Vec<(Vec<usize>, f64)>> = HashMap::new();
     let mut dropped: BTreeMap<&'static str, usize> = BTreeMap::new();
-    for path in paths {
-        let text = crate::read::text(path)?;
-        let doc = xml::parse(path, &text)?;
+    for (path, text) in texts {
+        let path = path.as_path();
+        let doc = xml::parse(path, text)?;
         let root = xml::root(path, &doc, &["routes", "additional"], "SUMO routes file")?;
         for node in root.children().filter(|n| n.is_element()) {
             let at = At::new(path, node);
