@@ -16,6 +16,7 @@ mod args;
 mod atomic;
 mod commands;
 mod messages;
+mod out_lock;
 mod output;
 mod progress;
 mod tables;

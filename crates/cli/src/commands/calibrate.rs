@@ -84,9 +84,11 @@ pub fn calibrate(args: &CalibrateArgs, quiet: bool) -> Result<()> {
             format!("{:016x}", platoonsim_experiment::hash::fnv1a64(&bytes)),
         ));
     }
+    let out = args.out.join(&params.name);
+    let _lock = crate::out_lock::lock(&out, super::sweep::share(shard.is_some()))?;
     let opts = calibrate::Options {
         scenario: args.scenario.clone(),
-        out: args.out.join(&params.name),
+        out,
         jobs: args.jobs.map(|n| n as usize),
         shard,
         fresh: args.fresh,

@@ -37,6 +37,7 @@ pub fn experiment(args: &ExperimentArgs, quiet: bool) -> Result<()> {
     s.tolerance_pct = args.tolerance;
     s.format = args.format.table();
     network(&mut s, &args.network, name)?;
+    let _lock = crate::out_lock::lock(&s.out.join(name.as_str()), crate::out_lock::Share::Alone)?;
     let out = run_experiment(name, &s).with_context(|| format!("experiment {name} failed"))?;
     crate::stdout::print(&describe(&out))?;
     if let Some(p) = &s.write_table {

@@ -1,7 +1,7 @@
 //! `platoonsim run`: one scenario, one seed, files in the output directory.
 
 use crate::args::RunArgs;
-use crate::{output, progress, EXIT_COLLISIONS};
+use crate::{out_lock, output, progress, EXIT_COLLISIONS};
 use anyhow::{Context, Result};
 use std::process::ExitCode;
 
@@ -10,9 +10,9 @@ use std::process::ExitCode;
 pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
     let config = args.scenario.load()?;
     let recording = args.recording(&config)?;
-    // Create the directory before simulating, so that an unwritable one fails at once.
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("cannot create the output directory {}", args.out.display()))?;
+    // Create and lock the directory before simulating, so that an unwritable one, or one
+    // another process is writing, fails at once.
+    let _lock = out_lock::lock(&args.out, out_lock::Share::Alone)?;
     output::remove_stale_tmp(&args.out)?;
 
     let bar = progress::sim_bar(config.duration_s, progress::wanted(quiet), &config.name);
