@@ -174,3 +174,26 @@ fn a_run_cleans_stale_tmp_files_and_writes_the_summary_last() {
         );
     }
 }
+
+/// Geometry that is legal but known to collide (issue 35 item 4) gets a warning naming the
+/// elements, on stderr, before anything runs; the command goes on.
+#[test]
+fn a_lane_drop_just_after_an_on_ramp_is_warned_about() {
+    let dir = scratch("lane-drop-warning");
+    let file = dir.join("drop.toml");
+    let text = include_str!("../../scenario/tests/fixtures/small_corridor.toml").replacen(
+        "from_m = -200.0\nto_m = 1500.0\ncount = 2\n",
+        "from_m = -200.0\nto_m = 100.0\ncount = 3\n\n[[network.lanes]]\nfrom_m = 100.0\n\
+         to_m = 1500.0\ncount = 2\n",
+        1,
+    );
+    std::fs::write(&file, text).unwrap();
+    let o = platoonsim(&["show", s(&file)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        stderr(&o),
+        "warning: network.on_ramps[0] (OR1: First St) merges at 0 m, 100 m upstream of a lane \
+         drop (lateral lane 1 ends at 100 m): a lane drop within 300 m downstream of an on-ramp \
+         is known to collide; move one of them\n"
+    );
+}

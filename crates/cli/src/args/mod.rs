@@ -156,7 +156,13 @@ impl ScenarioArgs {
     /// Load and validate the scenario with the overrides.
     pub fn load(&self) -> Result<Config> {
         match platoonsim_scenario::load_with(&self.scenario, &self.overrides()) {
-            Ok(config) => Ok(config),
+            Ok(config) => {
+                // Legal geometry known to collide: said once, before anything runs.
+                for w in platoonsim_scenario::validate::warnings(&config) {
+                    errln!("warning: {w}");
+                }
+                Ok(config)
+            }
             // Name the flag rather than the key it sets.
             Err(ScenarioError::Override { arg, reason })
                 if self.demand_scale.map(demand_scale_set).as_ref() == Some(&arg) =>
