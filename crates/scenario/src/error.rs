@@ -42,12 +42,12 @@ pub enum ScenarioError {
     )]
     NotToml { origin: String },
 
-    /// The file exists but cannot be read.
-    #[error("cannot read scenario file {}: {source}", path.display())]
+    /// The file exists but cannot be read. The I/O error is part of the message and not a
+    /// separate cause, so that a chain printed with its causes says it once.
+    #[error("cannot read scenario file {}: {cause}", path.display())]
     Io {
         path: PathBuf,
-        #[source]
-        source: std::io::Error,
+        cause: std::io::Error,
     },
 
     /// Larger than [`crate::limits::MAX_FILE_BYTES`]; refused before parsing, so that a huge

@@ -49,9 +49,13 @@ fn open(path: &Path) -> Result<Option<(csv::StringRecord, Vec<csv::StringRecord>
     if !path.exists() {
         return Ok(None);
     }
-    let mut r = csv::ReaderBuilder::new()
-        .from_path(path)
-        .with_context(|| format!("cannot read {}", path.display()))?;
+    let file = crate::bounded::open_records(
+        path,
+        crate::bounded::MAX_TABLE_BYTES,
+        crate::bounded::MAX_RECORD_LINE_BYTES,
+    )
+    .with_context(|| format!("cannot read {}", path.display()))?;
+    let mut r = csv::ReaderBuilder::new().from_reader(file);
     let header = r
         .headers()
         .with_context(|| format!("cannot read {}", path.display()))?

@@ -78,7 +78,9 @@ pub fn calibrate(args: &CalibrateArgs, quiet: bool) -> Result<()> {
     };
     for f in &args.source.field {
         let bytes =
-            std::fs::read(f).with_context(|| format!("cannot read --field {}", f.display()))?;
+            // A regular file, bounded like the field readers (16 GiB).
+            platoonsim_scenario::bounded::read(f, 16 << 30)
+                .with_context(|| format!("cannot read --field {}", f.display()))?;
         field.files.push((
             f.display().to_string(),
             format!("{:016x}", platoonsim_experiment::hash::fnv1a64(&bytes)),
