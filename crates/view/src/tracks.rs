@@ -157,6 +157,16 @@ pub fn read_and_pack<R: Read>(input: R, path: &Path, road: &Road) -> Result<Pack
             .ok()
             .filter(|l| *l >= 1 && *l < NONE)
             .ok_or_else(|| bad(c_lane, "a lane number from 1 to 254"))?;
+        if u32::from(lane) > road.lanes {
+            return Err(bad(
+                c_lane,
+                &format!(
+                    "a lane of the road in scenario.json (1 to {}): trajectories.csv and \
+                     scenario.json are not from the same run",
+                    road.lanes
+                ),
+            ));
+        }
         let x = float(c_x)?;
         let v = float(c_v)?;
         let a = match c_a {
@@ -172,6 +182,10 @@ pub fn read_and_pack<R: Read>(input: R, path: &Path, road: &Road) -> Result<Pack
             }
             _ => 0,
         };
+        // The kinds a run writes; anything else is not a run's file (and would be drawn as '?').
+        if !matches!(cell(c_kind), "cav" | "human") {
+            return Err(bad(c_kind, "a vehicle kind (cav or human)"));
+        }
         rows.push(Row {
             t,
             id,
