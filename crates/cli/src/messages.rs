@@ -63,3 +63,21 @@ pub fn check_experiment_duration(
     }
     Ok(())
 }
+
+/// `text` with its control characters written as escapes (`\u{1b}`), for names from a file
+/// printed to a terminal: an escape sequence in a scenario name must not clear the screen or
+/// set the window title (issue 35 item 8).
+pub fn printable(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.chars().any(char::is_control) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        if c.is_control() {
+            out.extend(c.escape_unicode());
+        } else {
+            out.push(c);
+        }
+    }
+    std::borrow::Cow::Owned(out)
+}

@@ -197,3 +197,43 @@ fn a_lane_drop_just_after_an_on_ramp_is_warned_about() {
          is known to collide; move one of them\n"
     );
 }
+
+/// Terminal escapes in a scenario name (issue 35 item 8) are printed as escapes, never raw: the
+/// name in the file clears the screen and sets the window title.
+#[test]
+fn control_characters_in_a_scenario_name_are_printed_escaped() {
+    let dir = scratch("escapes");
+    let file = dir.join("evil.toml");
+    let text = include_str!("../../scenario/scenarios/homogeneous.toml").replacen(
+        "name = \"homogeneous\"",
+        "name = \"evil\\u001b]0;pwned\\u0007\\u001b[2J\"",
+        1,
+    );
+    std::fs::write(&file, text).unwrap();
+    let out = dir.join("out");
+    for args in [
+        vec![
+            "run",
+            s(&file),
+            "--duration",
+            "30",
+            "--warmup",
+            "0",
+            "--out",
+            s(&out),
+        ],
+        vec!["show", s(&file)],
+    ] {
+        let o = platoonsim(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let text = String::from_utf8_lossy(&o.stdout).into_owned() + &stderr(&o);
+        assert!(
+            !text.contains(['\u{1b}', '\u{7}']),
+            "{args:?}: a raw control character in {text:?}"
+        );
+        assert!(
+            text.contains("evil\\u{1b}]0;pwned\\u{7}\\u{1b}[2J"),
+            "{args:?}: {text}"
+        );
+    }
+}

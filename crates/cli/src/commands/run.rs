@@ -15,9 +15,10 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
     let _lock = out_lock::lock(&args.out, out_lock::Share::Alone)?;
     output::remove_stale_tmp(&args.out)?;
 
-    let bar = progress::sim_bar(config.duration_s, progress::wanted(quiet), &config.name);
+    let name = crate::messages::printable(&config.name);
+    let bar = progress::sim_bar(config.duration_s, progress::wanted(quiet), &name);
     let out = progress::run_recording_with_bar(&config, &recording, &bar)
-        .with_context(|| format!("simulation of scenario '{}' failed", config.name))?;
+        .with_context(|| format!("simulation of scenario '{name}' failed"))?;
 
     let writing = std::time::Instant::now();
     let mut written = output::write_run_files(&args.out, &config, &out, args.format)?;
