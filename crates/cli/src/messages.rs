@@ -29,16 +29,28 @@ pub fn warmup_hint(duration: Option<f64>, warmup: Option<f64>, error: &str) -> O
     ))
 }
 
-/// `experiment`: the homogeneous-road experiments measure from a warm-up, which must end before
-/// the runs do; checked before anything is created. `capacity`'s baseline stage also measures
-/// from [`platoonsim_experiment::CAPACITY_FILL_S`].
+/// `experiment`'s --duration and --warmup, defaulted (3600 s, 1200 s). The homogeneous-road
+/// experiments measure from a warm-up, which must end before the runs do; checked before
+/// anything is created. `capacity`'s baseline stage also measures from
+/// [`platoonsim_experiment::CAPACITY_FILL_S`]. The SR-99 experiments simulate the paper's
+/// 4-hour morning and refuse both flags rather than ignore them (issue 35 item 6).
 pub fn check_experiment_duration(
     name: ExperimentName,
-    duration: f64,
-    warmup: f64,
-) -> Result<(), String> {
+    duration: Option<f64>,
+    warmup: Option<f64>,
+) -> Result<(f64, f64), String> {
+    let given = (duration.is_some(), warmup.is_some());
+    let (duration, warmup) = (duration.unwrap_or(3600.0), warmup.unwrap_or(1200.0));
     if matches!(name, ExperimentName::Sr99 | ExperimentName::Sr99Demand) {
-        return Ok(());
+        if given.0 || given.1 {
+            let flag = if given.0 { "--duration" } else { "--warmup" };
+            return Err(format!(
+                "experiment {name} does not take {flag}: it simulates the paper's SR-99 morning, \
+                 05:00-09:00 (14400 s), with the scenario's own warm-up; --duration and \
+                 --warmup apply to the homogeneous-road experiments"
+            ));
+        }
+        return Ok((duration, warmup));
     }
     if !(duration.is_finite() && duration > 0.0) {
         return Err(format!(
@@ -61,7 +73,7 @@ pub fn check_experiment_duration(
              {fill} s warm-up (the road fills), so --duration must be longer than {fill} s"
         ));
     }
-    Ok(())
+    Ok((duration, warmup))
 }
 
 /// `text` with its control characters written as escapes (`\u{1b}`), for names from a file

@@ -237,3 +237,29 @@ fn control_characters_in_a_scenario_name_are_printed_escaped() {
         );
     }
 }
+
+/// `experiment sr99` and `sr99-demand` simulate the paper's 4-hour morning: --duration and
+/// --warmup are refused, naming the flag, rather than silently ignored (issue 35 item 6).
+#[test]
+fn the_sr99_experiments_refuse_duration_and_warmup() {
+    let dir = scratch("sr99-duration");
+    for name in ["sr99", "sr99-demand"] {
+        for flag in ["--duration", "--warmup"] {
+            let o = platoonsim(&["experiment", name, flag, "600", "--out", s(&dir)]);
+            assert_eq!(o.status.code(), Some(1));
+            assert_eq!(
+                stderr(&o),
+                format!(
+                    "error: experiment {name} does not take {flag}: it simulates the paper's \
+                     SR-99 morning, 05:00-09:00 (14400 s), with the scenario's own warm-up; \
+                     --duration and --warmup apply to the homogeneous-road experiments\n"
+                )
+            );
+        }
+    }
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        0,
+        "nothing created"
+    );
+}

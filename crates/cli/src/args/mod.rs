@@ -601,7 +601,16 @@ mod tests {
         assert_eq!(e.speed_thresholds, [0.0]);
         assert_eq!(e.tolerance, 1.0);
         assert_eq!(e.grid.out, PathBuf::from("out"));
-        assert_eq!((e.duration, e.warmup), (3600.0, 1200.0));
+        // Not given: the defaults (3600 s, 1200 s) are applied by check_experiment_duration.
+        assert_eq!((e.duration, e.warmup), (None, None));
+        assert_eq!(
+            crate::messages::check_experiment_duration(
+                ExperimentName::from(e.name),
+                e.duration,
+                e.warmup
+            ),
+            Ok((3600.0, 1200.0))
+        );
 
         let cli = Cli::try_parse_from([
             "platoonsim",
