@@ -14,6 +14,26 @@ pub fn parse_seed(text: &str) -> Result<u64, String> {
     })
 }
 
+/// `--tolerance`: a finite percentage >= 0 (NaN compared false with every loss and so
+/// accepted every threshold).
+pub fn parse_tolerance(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        _ => Err("the tolerance is a discharge loss in percent: a finite number >= 0".into()),
+    }
+}
+
+/// A number as a message shows it: as written when short, in exponent form when its decimal
+/// expansion is long (`1e-300` rather than 300 digits).
+pub fn short_num(v: f64) -> String {
+    let plain = v.to_string();
+    if plain.len() <= 24 {
+        plain
+    } else {
+        format!("{v:e}")
+    }
+}
+
 /// A warm-up that `--duration` alone made too long (the scenario's own, not set by
 /// `--warmup`): the hint to add to the validation's message, naming `--warmup` and a value that
 /// works (a third of the duration).

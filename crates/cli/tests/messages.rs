@@ -263,3 +263,87 @@ fn the_sr99_experiments_refuse_duration_and_warmup() {
         "nothing created"
     );
 }
+
+/// The exit status with standard output closed by its reader before the command writes.
+fn with_closed_stdout(args: &[&str]) -> Option<i32> {
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_platoonsim"))
+        .args(args)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    child.wait().unwrap().code()
+}
+
+/// Issue 35 item 9: `--help | true` exits like every command whose reader went away (141), and
+/// a run with collisions keeps its 3 when nobody reads its summary.
+#[test]
+fn a_closed_stdout_keeps_the_collision_status_and_help_reports_the_pipe() {
+    let dir = scratch("closed-stdout");
+    let out = dir.join("out");
+    let run = [
+        "run",
+        "homogeneous",
+        "--duration",
+        "60",
+        "--warmup",
+        "0",
+        "--penetration",
+        "0.5",
+        "--set",
+        "cav.sensor_range_m=1",
+        "--out",
+        s(&out),
+    ];
+    assert_eq!(with_closed_stdout(&run), Some(3));
+    // Help is written at once: the reader may still be there (0), but a closed pipe is 141.
+    let codes: Vec<Option<i32>> = (0..20).map(|_| with_closed_stdout(&["--help"])).collect();
+    assert!(
+        codes.iter().all(|c| matches!(c, Some(0) | Some(141))),
+        "{codes:?}"
+    );
+    assert!(codes.contains(&Some(141)), "{codes:?}");
+}
+
+/// `--tolerance nan` and `--trajectories 1e-300` (issue 35 item 9): refused, with a short
+/// message.
+#[test]
+fn nan_tolerance_and_a_tiny_period_get_short_refusals() {
+    let o = platoonsim(&["experiment", "calibrate-flow-aware", "--tolerance", "nan"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("a finite number >= 0"),
+        "{}",
+        stderr(&o)
+    );
+    let o = platoonsim(&["run", "homogeneous", "--trajectories", "1e-300"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        stderr(&o),
+        "error: invalid --trajectories 1e-300: the sampling period (s) must be a positive \
+         multiple of the time step run.dt_s = 0.1 s\n"
+    );
+}
+
+/// A syntax error quotes at most 200 characters of the offending line (issue 35 item 9: a
+/// 200 KB line of brackets was echoed whole).
+#[test]
+fn a_syntax_error_quotes_a_long_line_cut_short() {
+    let dir = scratch("long-syntax");
+    let file = dir.join("nested.toml");
+    std::fs::write(
+        &file,
+        format!("a = {}{}\n", "[".repeat(100_000), "]".repeat(100_000)),
+    )
+    .unwrap();
+    let o = platoonsim(&["show", s(&file)]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(e.len() < 1000, "{} bytes", e.len());
+    assert!(e.contains("not valid TOML") && e.contains("…"), "{e}");
+    let long = format!("run.seed={}", "[".repeat(50_000));
+    let o = platoonsim(&["show", "homogeneous", "--set", &long]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).len() < 1000, "{} bytes", stderr(&o).len());
+}

@@ -101,7 +101,7 @@ pub struct ExperimentArgs {
     pub speed_thresholds: Vec<f64>,
 
     /// calibrate-flow-aware: the largest discharge loss accepted at any demand (%).
-    #[arg(long, value_name = "PCT", default_value_t = platoonsim_experiment::experiments::calibrate::TOLERANCE_PCT)]
+    #[arg(long, value_name = "PCT", default_value_t = platoonsim_experiment::experiments::calibrate::TOLERANCE_PCT, value_parser = crate::messages::parse_tolerance)]
     pub tolerance: f64,
 
     #[command(flatten)]

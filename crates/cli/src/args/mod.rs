@@ -281,8 +281,9 @@ impl RunArgs {
         let dt = config.dt_s;
         if period_steps(period_s, dt).is_none() {
             bail!(
-                "invalid --trajectories {period_s}: the sampling period (s) must be a positive \
-                 multiple of the time step run.dt_s = {dt} s"
+                "invalid --trajectories {}: the sampling period (s) must be a positive \
+                 multiple of the time step run.dt_s = {dt} s",
+                crate::messages::short_num(period_s)
             );
         }
         let window_s = match pair(&self.trajectory_window) {

@@ -40,36 +40,48 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
             args.out.join(output::COLLISIONS_FILE).display()
         );
     }
-    let paragraph = output::paragraph(&config, &out.summary, &args.out);
-    outln!(
-        "{}",
-        paragraph.replace("detectors.csv", &format!("detectors.{}", args.format.ext()))
-    )?;
-    let ext = args.format.ext();
-    let mut extra = Vec::new();
-    if let Some(trips) = &out.trips {
-        let queued = out.queued.as_ref().map_or(0, Vec::len);
-        extra.push(format!("trips.{ext} ({} rows)", trips.len() + queued));
-    }
-    if let Some(rows) = &out.trajectories {
-        extra.push(format!("trajectories.{ext} ({} rows)", rows.len()));
-    }
-    if !extra.is_empty() {
-        let bytes: u64 = written
-            .iter()
-            .filter_map(|p| std::fs::metadata(p).ok())
-            .map(|m| m.len())
-            .sum();
+    let failed = out.summary.collisions > 0 && !args.allow_collisions;
+    let printed = (|| -> Result<()> {
+        let paragraph = output::paragraph(&config, &out.summary, &args.out);
         outln!(
-            "Also written: {}. Output files: {:.1} MB written in {write_s:.2} s.",
-            extra.join(", "),
-            bytes as f64 / 1e6
+            "{}",
+            paragraph.replace("detectors.csv", &format!("detectors.{}", args.format.ext()))
         )?;
+        let ext = args.format.ext();
+        let mut extra = Vec::new();
+        if let Some(trips) = &out.trips {
+            let queued = out.queued.as_ref().map_or(0, Vec::len);
+            extra.push(format!("trips.{ext} ({} rows)", trips.len() + queued));
+        }
+        if let Some(rows) = &out.trajectories {
+            extra.push(format!("trajectories.{ext} ({} rows)", rows.len()));
+        }
+        if !extra.is_empty() {
+            let bytes: u64 = written
+                .iter()
+                .filter_map(|p| std::fs::metadata(p).ok())
+                .map(|m| m.len())
+                .sum();
+            outln!(
+                "Also written: {}. Output files: {:.1} MB written in {write_s:.2} s.",
+                extra.join(", "),
+                bytes as f64 / 1e6
+            )?;
+        }
+        if args.view {
+            outln!("Replay: {}", view_file.display())?;
+        }
+        Ok(())
+    })();
+    match printed {
+        // A failed run keeps its exit status when stdout is closed (`| true`): the collision
+        // is the news, the closed pipe is not.
+        Err(e) if failed && crate::stdout::find(&e).is_some_and(|w| w.is_broken_pipe()) => {
+            return Ok(ExitCode::from(EXIT_COLLISIONS));
+        }
+        r => r?,
     }
-    if args.view {
-        outln!("Replay: {}", view_file.display())?;
-    }
-    if out.summary.collisions > 0 && !args.allow_collisions {
+    if failed {
         return Ok(ExitCode::from(EXIT_COLLISIONS));
     }
     Ok(ExitCode::SUCCESS)
