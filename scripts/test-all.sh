@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Every test: the Rust workspace, the Python package's tests (python/tests: pytest in the venv
+# Every test: the Rust workspace, a smoke run of the fuzz targets (fuzz/, scripts/fuzz.sh), the
+# Python package's tests (python/tests: pytest in the venv
 # target/py-venv, scripts/python-tests.sh), then the viewer's browser tests (tests/browser:
 # headless Chromium from Debian's package driven by playwright-core). README and .ci/run call
 # this. With --install it first installs what the tests need (Debian's chromium, the npm
@@ -22,6 +23,9 @@ fi
 
 echo "== cargo test --workspace --release"
 cargo test --workspace --release
+
+echo "== fuzz smoke (scripts/fuzz.sh: every fuzz target for 3 s)"
+scripts/fuzz.sh 3
 
 echo "== Python tests (python/tests)"
 scripts/python-tests.sh ${1:+"$1"}

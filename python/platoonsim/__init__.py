@@ -233,11 +233,21 @@ class Simulation:
             )
         if lanes.dtype.kind not in "iu":
             raise CommandError(f"advise() must return integer lanes, got {lanes.dtype}")
-        strengths = (
-            np.ones(ids.shape, dtype=np.float64)
-            if strengths is None
-            else np.ascontiguousarray(np.broadcast_to(np.asarray(strengths, dtype=np.float64), ids.shape))
-        )
+        if lanes.size and lanes.min() < -1:
+            raise CommandError(
+                f"advise() returned lane {lanes.min()}: a lane is an engine index >= 0, or -1 for no advice"
+            )
+        if strengths is None:
+            strengths = np.ones(ids.shape, dtype=np.float64)
+        else:
+            given = np.asarray(strengths, dtype=np.float64)
+            try:
+                strengths = np.ascontiguousarray(np.broadcast_to(given, ids.shape))
+            except ValueError:
+                raise CommandError(
+                    f"advise() returned strengths of shape {given.shape} for {ids.shape[0]} vehicles "
+                    "(one each, or one for all)"
+                ) from None
         self._core.set_advice(ids, np.ascontiguousarray(lanes, dtype=np.int64), strengths)
 
     def step(self, n: int = 1) -> int:

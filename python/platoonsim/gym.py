@@ -30,6 +30,7 @@ num_envs=N)`` gives N of these environments stepped together (``platoonsim.vecto
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -155,6 +156,11 @@ class PlatoonEnv(gym.Env):
         if gate not in ("native", "python"):
             raise ValueError(f"gate = {gate!r}: must be \"native\" or \"python\"")
         self.gate = gate
+        # NaN compares false with every bound: each check says what is allowed.
+        if not (math.isfinite(discharge_penalty) and discharge_penalty >= 0):
+            raise ValueError(f"discharge_penalty = {discharge_penalty}: must be a finite number >= 0")
+        if not (math.isfinite(advice_every_s) and advice_every_s > 0):
+            raise ValueError(f"advice_every_s = {advice_every_s}: must be a finite number of seconds > 0")
         if decisions < 1 or decision_s <= 0 or warmup_s < 0:
             raise ValueError(
                 f"decisions = {decisions} (>= 1), decision_s = {decision_s} (> 0) and "

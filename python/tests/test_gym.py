@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from gymnasium.utils.env_checker import check_env
 
@@ -46,3 +47,18 @@ def test_a_thousand_random_steps():
     assert episodes == 16
     # Strings form: the platoon gain is positive on average at 50 % CAVs.
     assert np.mean(rewards) > 0
+
+
+@pytest.mark.parametrize(
+    "setting, message",
+    [
+        ({"discharge_penalty": float("nan")}, "discharge_penalty = nan"),
+        ({"discharge_penalty": -1.0}, "discharge_penalty = -1.0"),
+        ({"advice_every_s": 0.0}, "advice_every_s = 0.0"),
+        ({"advice_every_s": float("inf")}, "advice_every_s = inf"),
+    ],
+)
+def test_bad_settings_are_refused(setting, message):
+    # Issue 35 item 9: a NaN penalty gave NaN rewards, advice_every_s = 0 was accepted.
+    with pytest.raises(ValueError, match=message):
+        PlatoonEnv(**setting)

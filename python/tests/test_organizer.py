@@ -75,6 +75,13 @@ class Wrong:
         (lambda v: np.full(v["id"].size, 7), platoonsim.CommandError, "lane 7 does not exist"),
         (lambda v: (np.zeros(v["id"].size, dtype=int), 2.0), platoonsim.CommandError, "strength 2"),
         (lambda v: (1, 2, 3), platoonsim.CommandError, "pair"),
+        # Issue 35 item 9: taken as "no advice", and numpy's own ValueError.
+        (lambda v: np.full(v["id"].size, -2), platoonsim.CommandError, "lane -2: a lane is an engine index"),
+        (
+            lambda v: (np.zeros(v["id"].size, dtype=int), np.ones(v["id"].size + 1)),
+            platoonsim.CommandError,
+            "strengths of shape",
+        ),
         (lambda v: 1 / 0, ZeroDivisionError, "division"),
     ],
 )

@@ -263,3 +263,56 @@ describe('view of 3,000+ vehicles', { skip }, () => {
     assert.deepEqual(requests, []);
   });
 });
+
+describe('a run directory with hostile strings (issue 35 item 7)', { skip }, () => {
+  // Markup in trips.csv and in the mode column of trajectories.csv: the page shows it as text
+  // and runs nothing (it used to put trips.csv strings into innerHTML).
+  const evilTrip = '<img src=x onerror="window.__pwned=1">';
+  const evilDest = '<b id="pwned-b">bold</b>';
+  const evilMode = '<img src=y onerror="window.__pwned=2">';
+  let v, rows, id;
+  before(async () => {
+    const dir = makeRun('hostile', ['homogeneous', '--duration', '120', '--warmup', '0',
+      '--trajectories', '1', '--trips']);
+    const trips = readFileSync(join(dir, 'trips.csv'), 'utf8').split('\n');
+    const cols = trips[0].split(',');
+    const first = trips[1].split(',');
+    id = Number(first[cols.indexOf('id')]);
+    first[cols.indexOf('origin')] = evilTrip;
+    first[cols.indexOf('destination')] = evilDest;
+    trips[1] = first.join(',');
+    writeFileSync(join(dir, 'trips.csv'), trips.join('\n'));
+    const traj = readFileSync(join(dir, 'trajectories.csv'), 'utf8').split('\n');
+    const tcols = traj[0].split(',');
+    const m = tcols.indexOf('mode');
+    const row = traj[1].split(',');
+    row[m] = evilMode;
+    traj[1] = row.join(',');
+    writeFileSync(join(dir, 'trajectories.csv'), traj.join('\n'));
+    platoonsim(['view', dir]);
+    rows = readTrajectories(dir);
+    v = await openView(join(dir, 'view.html'));
+  });
+  after(async () => { if (v) await v.context.close(); });
+
+  test('shows trips.csv and mode strings as text and runs no script', async () => {
+    const { page, errors, requests } = v;
+    const t = 20;
+    const r = rows.find((q) => q.id === id && q.t_s === t);
+    assert.ok(r, `vehicle ${id} at t = ${t} s`);
+    await page.evaluate(([t, x0]) => { const V = window.__platoonsimView; V.setTime(t); V.setView(x0, 6); }, [t, r.x_m - 100]);
+    const rect = await page.evaluate((id) => window.__platoonsimView.vehicleRect(id), id);
+    await page.mouse.click(rect.x + rect.w / 2, rect.y + rect.h / 2);
+    assert.equal(await page.evaluate(() => window.__platoonsimView.selected()), id);
+    const text = await page.textContent('#vehicle');
+    assert.ok(text.includes(`origin${evilTrip}`), text);
+    assert.ok(text.includes(`destination${evilDest}`), text);
+    assert.equal(await page.locator('#vehicle img, #vehicle b').count(), 0);
+    await page.evaluate(() => window.__platoonsimView.setColour('mode'));
+    assert.ok((await page.textContent('#legend')).includes(evilMode));
+    assert.equal(await page.locator('#legend img').count(), 0);
+    assert.equal(await page.evaluate(() => window.__pwned), undefined);
+    assert.deepEqual(errors, []);
+    assert.deepEqual(requests, []);
+  });
+});

@@ -16,11 +16,13 @@ mod args;
 mod atomic;
 mod commands;
 mod messages;
+mod out_lock;
 mod output;
 mod progress;
 mod tables;
 
 use clap::Parser;
+use std::io::IsTerminal;
 use std::process::ExitCode;
 
 /// `run`: the simulation had at least one collision (the files are written all the same).
@@ -30,7 +32,10 @@ pub const EXIT_COLLISIONS: u8 = 3;
 pub const EXIT_BROKEN_PIPE: u8 = 141;
 
 fn main() -> ExitCode {
-    let cli = args::Cli::parse();
+    let cli = match args::Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return usage(e),
+    };
     match commands::dispatch(cli) {
         Ok(code) => code,
         Err(e) => match stdout::find(&e) {
@@ -40,5 +45,24 @@ fn main() -> ExitCode {
                 ExitCode::FAILURE
             }
         },
+    }
+}
+
+/// A parse that ends early: help and version go to standard output like every command's
+/// output, so a closed pipe (`--help | true`) exits with [`EXIT_BROKEN_PIPE`] as they do; a
+/// usage error is clap's (exit 2). On a terminal clap prints them itself, in colour.
+fn usage(e: clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    let to_stdout = matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion);
+    if !to_stdout || std::io::stdout().is_terminal() {
+        e.exit();
+    }
+    match stdout::print(&e.render().to_string()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(w) if w.is_broken_pipe() => ExitCode::from(EXIT_BROKEN_PIPE),
+        Err(w) => {
+            errln!("error: {w}");
+            ExitCode::FAILURE
+        }
     }
 }

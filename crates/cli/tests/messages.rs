@@ -174,3 +174,176 @@ fn a_run_cleans_stale_tmp_files_and_writes_the_summary_last() {
         );
     }
 }
+
+/// Geometry that is legal but known to collide (issue 35 item 4) gets a warning naming the
+/// elements, on stderr, before anything runs; the command goes on.
+#[test]
+fn a_lane_drop_just_after_an_on_ramp_is_warned_about() {
+    let dir = scratch("lane-drop-warning");
+    let file = dir.join("drop.toml");
+    let text = include_str!("../../scenario/tests/fixtures/small_corridor.toml").replacen(
+        "from_m = -200.0\nto_m = 1500.0\ncount = 2\n",
+        "from_m = -200.0\nto_m = 100.0\ncount = 3\n\n[[network.lanes]]\nfrom_m = 100.0\n\
+         to_m = 1500.0\ncount = 2\n",
+        1,
+    );
+    std::fs::write(&file, text).unwrap();
+    let o = platoonsim(&["show", s(&file)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        stderr(&o),
+        "warning: network.on_ramps[0] (OR1: First St) merges at 0 m, 100 m upstream of a lane \
+         drop (lateral lane 1 ends at 100 m): a lane drop within 300 m downstream of an on-ramp \
+         is known to collide; move one of them\n"
+    );
+}
+
+/// Terminal escapes in a scenario name (issue 35 item 8) are printed as escapes, never raw: the
+/// name in the file clears the screen and sets the window title.
+#[test]
+fn control_characters_in_a_scenario_name_are_printed_escaped() {
+    let dir = scratch("escapes");
+    let file = dir.join("evil.toml");
+    let text = include_str!("../../scenario/scenarios/homogeneous.toml").replacen(
+        "name = \"homogeneous\"",
+        "name = \"evil\\u001b]0;pwned\\u0007\\u001b[2J\"",
+        1,
+    );
+    std::fs::write(&file, text).unwrap();
+    let out = dir.join("out");
+    for args in [
+        vec![
+            "run",
+            s(&file),
+            "--duration",
+            "30",
+            "--warmup",
+            "0",
+            "--out",
+            s(&out),
+        ],
+        vec!["show", s(&file)],
+    ] {
+        let o = platoonsim(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let text = String::from_utf8_lossy(&o.stdout).into_owned() + &stderr(&o);
+        assert!(
+            !text.contains(['\u{1b}', '\u{7}']),
+            "{args:?}: a raw control character in {text:?}"
+        );
+        assert!(
+            text.contains("evil\\u{1b}]0;pwned\\u{7}\\u{1b}[2J"),
+            "{args:?}: {text}"
+        );
+    }
+}
+
+/// `experiment sr99` and `sr99-demand` simulate the paper's 4-hour morning: --duration and
+/// --warmup are refused, naming the flag, rather than silently ignored (issue 35 item 6).
+#[test]
+fn the_sr99_experiments_refuse_duration_and_warmup() {
+    let dir = scratch("sr99-duration");
+    for name in ["sr99", "sr99-demand"] {
+        for flag in ["--duration", "--warmup"] {
+            let o = platoonsim(&["experiment", name, flag, "600", "--out", s(&dir)]);
+            assert_eq!(o.status.code(), Some(1));
+            assert_eq!(
+                stderr(&o),
+                format!(
+                    "error: experiment {name} does not take {flag}: it simulates the paper's \
+                     SR-99 morning, 05:00-09:00 (14400 s), with the scenario's own warm-up; \
+                     --duration and --warmup apply to the homogeneous-road experiments\n"
+                )
+            );
+        }
+    }
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        0,
+        "nothing created"
+    );
+}
+
+/// The exit status with standard output closed by its reader before the command writes.
+fn with_closed_stdout(args: &[&str]) -> Option<i32> {
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_platoonsim"))
+        .args(args)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    child.wait().unwrap().code()
+}
+
+/// Issue 35 item 9: `--help | true` exits like every command whose reader went away (141), and
+/// a run with collisions keeps its 3 when nobody reads its summary.
+#[test]
+fn a_closed_stdout_keeps_the_collision_status_and_help_reports_the_pipe() {
+    let dir = scratch("closed-stdout");
+    let out = dir.join("out");
+    let run = [
+        "run",
+        "homogeneous",
+        "--duration",
+        "60",
+        "--warmup",
+        "0",
+        "--penetration",
+        "0.5",
+        "--set",
+        "cav.sensor_range_m=1",
+        "--out",
+        s(&out),
+    ];
+    assert_eq!(with_closed_stdout(&run), Some(3));
+    // Help is written at once: the reader may still be there (0), but a closed pipe is 141.
+    let codes: Vec<Option<i32>> = (0..20).map(|_| with_closed_stdout(&["--help"])).collect();
+    assert!(
+        codes.iter().all(|c| matches!(c, Some(0) | Some(141))),
+        "{codes:?}"
+    );
+    assert!(codes.contains(&Some(141)), "{codes:?}");
+}
+
+/// `--tolerance nan` and `--trajectories 1e-300` (issue 35 item 9): refused, with a short
+/// message.
+#[test]
+fn nan_tolerance_and_a_tiny_period_get_short_refusals() {
+    let o = platoonsim(&["experiment", "calibrate-flow-aware", "--tolerance", "nan"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("a finite number >= 0"),
+        "{}",
+        stderr(&o)
+    );
+    let o = platoonsim(&["run", "homogeneous", "--trajectories", "1e-300"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        stderr(&o),
+        "error: invalid --trajectories 1e-300: the sampling period (s) must be a positive \
+         multiple of the time step run.dt_s = 0.1 s\n"
+    );
+}
+
+/// A syntax error quotes at most 200 characters of the offending line (issue 35 item 9: a
+/// 200 KB line of brackets was echoed whole).
+#[test]
+fn a_syntax_error_quotes_a_long_line_cut_short() {
+    let dir = scratch("long-syntax");
+    let file = dir.join("nested.toml");
+    std::fs::write(
+        &file,
+        format!("a = {}{}\n", "[".repeat(100_000), "]".repeat(100_000)),
+    )
+    .unwrap();
+    let o = platoonsim(&["show", s(&file)]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(e.len() < 1000, "{} bytes", e.len());
+    assert!(e.contains("not valid TOML") && e.contains("…"), "{e}");
+    let long = format!("run.seed={}", "[".repeat(50_000));
+    let o = platoonsim(&["show", "homogeneous", "--set", &long]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).len() < 1000, "{} bytes", stderr(&o).len());
+}

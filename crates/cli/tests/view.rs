@@ -91,3 +91,65 @@ fn view_refuses_a_run_without_trajectories_and_a_bad_file() {
     let o = platoonsim(&["run", "homogeneous", "--view", "--out", s(&dir)]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+/// Files that no run writes (issue 35 item 7): an unknown vehicle kind, a lane the scenario's
+/// road does not have (trajectories from another run) and a truncated detectors.csv.
+#[test]
+fn view_refuses_unknown_kinds_a_mismatched_scenario_and_a_truncated_table() {
+    let dir = scratch("view_mismatch");
+    let o = platoonsim(&[
+        "run",
+        "homogeneous",
+        "--duration",
+        "300",
+        "--warmup",
+        "0",
+        "--trajectories",
+        "1",
+        "--quiet",
+        "--out",
+        s(&dir),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let traj = dir.join("trajectories.csv");
+    let good = std::fs::read_to_string(&traj).unwrap();
+    let header = good.lines().next().unwrap();
+    let first = good.lines().nth(1).unwrap();
+    let cells: Vec<&str> = first.split(',').collect();
+    let with = |col: usize, v: &str| {
+        let mut c = cells.clone();
+        c[col] = v;
+        format!("{header}\n{}\n", c.join(","))
+    };
+    let col = |name: &str| header.split(',').position(|h| h == name).unwrap();
+    for (text, want) in [
+        (
+            with(col("kind"), "truck"),
+            "line 2, column kind: 'truck' is not a vehicle kind (cav or human)",
+        ),
+        (
+            with(col("lane"), "9"),
+            "line 2, column lane: '9' is not a lane of the road in scenario.json (1 to 3): \
+             trajectories.csv and scenario.json are not from the same run",
+        ),
+    ] {
+        std::fs::write(&traj, text).unwrap();
+        let o = platoonsim(&["view", s(&dir)]);
+        assert_eq!(o.status.code(), Some(1));
+        assert!(stderr(&o).contains(want), "{}", stderr(&o));
+    }
+    std::fs::write(&traj, good).unwrap();
+    let det = dir.join("detectors.csv");
+    let table = std::fs::read_to_string(&det).unwrap();
+    std::fs::write(&det, &table[..table.len() - 3]).unwrap();
+    let o = platoonsim(&["view", s(&dir)]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("detectors.csv is truncated (its last line has no line break)"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!dir.join("view.html").exists());
+    std::fs::write(&det, table).unwrap();
+    assert!(platoonsim(&["view", s(&dir)]).status.success());
+}

@@ -1,6 +1,11 @@
 //! Atomic file writes: every result file goes through [`write_atomic`] (or
 //! [`write_atomic_with`] for one written piecewise), so a reader (or a rerun after an
 //! interruption) sees either the old file or the complete new one, never a half-written one.
+//!
+//! The rename replaces the directory entry, so only a regular file (or a new path) may be its
+//! target: a device, FIFO, directory or socket is refused with an error naming the path (as
+//! root, renaming over `/dev/null` would replace the device node for every other process), and
+//! a symbolic link is followed, its final target written atomically and the link kept.
 
 use std::fs::{self, File};
 use std::io::{self, Write};
@@ -28,6 +33,8 @@ pub fn write_atomic_file<F>(path: &Path, fill: F) -> io::Result<()>
 where
     F: FnOnce(&mut io::BufWriter<File>) -> io::Result<()>,
 {
+    let target = output_target(path)?;
+    let path = target.as_path();
     let tmp = tmp_path(path)?;
     let result = (|| {
         let mut f = io::BufWriter::with_capacity(1 << 16, File::create(&tmp)?);
@@ -43,6 +50,86 @@ where
     result?;
     sync_dir(path);
     Ok(())
+}
+
+/// Links followed at most, as the kernel's own limit (`ELOOP`).
+const MAX_LINKS: usize = 40;
+
+/// The path the rename may replace: `path` itself when it is absent or a regular file, the
+/// final target of a chain of symbolic links (absent or a regular file), otherwise an error
+/// naming `path` and what it is.
+pub fn output_target(path: &Path) -> io::Result<PathBuf> {
+    let mut p = path.to_path_buf();
+    for _ in 0..=MAX_LINKS {
+        let meta = match fs::symlink_metadata(&p) {
+            Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(p),
+            Err(e) => {
+                return Err(io::Error::new(
+                    e.kind(),
+                    format!("cannot write {}: {e}", path.display()),
+                ))
+            }
+            Ok(m) => m,
+        };
+        let kind = meta.file_type();
+        if kind.is_file() {
+            return Ok(p);
+        }
+        if kind.is_symlink() {
+            let link = fs::read_link(&p)?;
+            p = match p.parent() {
+                Some(dir) if link.is_relative() => dir.join(link),
+                _ => link,
+            };
+            continue;
+        }
+        let via = if p == path {
+            String::new()
+        } else {
+            format!(" (a link to {})", p.display())
+        };
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!(
+                "cannot write {}{via}: not a regular file (a {}); outputs are written only to \
+                 regular files or new paths",
+                path.display(),
+                describe(&kind)
+            ),
+        ));
+    }
+    Err(io::Error::new(
+        io::ErrorKind::InvalidInput,
+        format!(
+            "cannot write {}: more than {MAX_LINKS} symbolic links",
+            path.display()
+        ),
+    ))
+}
+
+/// What a non-regular file is, in words.
+fn describe(kind: &fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if kind.is_char_device() {
+            return "character device";
+        }
+        if kind.is_block_device() {
+            return "block device";
+        }
+        if kind.is_fifo() {
+            return "FIFO";
+        }
+        if kind.is_socket() {
+            return "socket";
+        }
+    }
+    if kind.is_dir() {
+        "directory"
+    } else {
+        "special file"
+    }
 }
 
 fn tmp_path(path: &Path) -> io::Result<PathBuf> {
@@ -139,6 +226,66 @@ mod tests {
         let got = fs::read(&path).unwrap();
         assert!(contents.contains(&got));
         assert_eq!(fs::read_dir(&dir).unwrap().count(), 1);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn never_replaces_a_fifo_a_directory_or_a_link() {
+        // Issue 35 item 1: `view --out /dev/null` as root replaced the device node. A FIFO
+        // stands in for the device (mknod needs root); a directory and a link chain too.
+        let dir = scratch("special");
+        let fifo = dir.join("pipe");
+        let made = std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap();
+        assert!(made.success());
+        let err = write_atomic(&fifo, b"x").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "cannot write {}: not a regular file (a FIFO); outputs are written only to \
+                 regular files or new paths",
+                fifo.display()
+            )
+        );
+        use std::os::unix::fs::FileTypeExt;
+        assert!(fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo());
+        let empty = dir.join("empty");
+        fs::create_dir(&empty).unwrap();
+        let err = write_atomic(&empty, b"x").unwrap_err().to_string();
+        assert!(err.contains("not a regular file (a directory)"), "{err}");
+        assert!(fs::symlink_metadata(&empty).unwrap().is_dir());
+
+        // A link to a link to a file: the file is written, both links stay links.
+        let real = dir.join("real.csv");
+        fs::write(&real, b"old").unwrap();
+        std::os::unix::fs::symlink("real.csv", dir.join("hop")).unwrap();
+        std::os::unix::fs::symlink(dir.join("hop"), dir.join("link.csv")).unwrap();
+        write_atomic(&dir.join("link.csv"), b"new").unwrap();
+        assert_eq!(fs::read(&real).unwrap(), b"new");
+        for l in ["hop", "link.csv"] {
+            assert!(fs::symlink_metadata(dir.join(l)).unwrap().is_symlink());
+        }
+        // A dangling link creates its target; a link to the FIFO is refused, naming both.
+        std::os::unix::fs::symlink("fresh.csv", dir.join("dangling")).unwrap();
+        write_atomic(&dir.join("dangling"), b"made").unwrap();
+        assert_eq!(fs::read(dir.join("fresh.csv")).unwrap(), b"made");
+        std::os::unix::fs::symlink("pipe", dir.join("to-pipe")).unwrap();
+        let err = write_atomic(&dir.join("to-pipe"), b"x")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("to-pipe (a link to") && err.contains("(a FIFO)"),
+            "{err}"
+        );
+        // A loop of links is an error, not a hang.
+        std::os::unix::fs::symlink("loop-b", dir.join("loop-a")).unwrap();
+        std::os::unix::fs::symlink("loop-a", dir.join("loop-b")).unwrap();
+        let err = write_atomic(&dir.join("loop-a"), b"x")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("more than 40 symbolic links"), "{err}");
     }
 
     #[test]

@@ -11,6 +11,7 @@ use std::path::{Path, PathBuf};
 
 use flate2::bufread::MultiGzDecoder;
 
+use crate::bounded;
 use crate::error::FieldError;
 
 /// The gzip magic bytes (RFC 1952, section 2.3.1).
@@ -29,13 +30,33 @@ pub(crate) fn open(path: &Path) -> Result<Input, FieldError> {
         file: path.to_path_buf(),
         source,
     };
+    // Never open what is not a regular file (a FIFO blocks the open, a device never ends).
+    let size = bounded::regular_file(path).map_err(io)?.len();
+    if size > bounded::MAX_FILE_BYTES {
+        return Err(io(std::io::Error::new(
+            ErrorKind::InvalidData,
+            format!(
+                "{size} bytes: a field file must be at most {} bytes",
+                bounded::MAX_FILE_BYTES
+            ),
+        )));
+    }
     let mut buf = BufReader::new(File::open(path).map_err(io)?);
     let head = buf.fill_buf().map_err(io)?;
     let gzip = head.starts_with(&GZIP_MAGIC);
+    // The text (decompressed if need be) is bounded in line length and in total, so a corrupt
+    // file never becomes one unbounded record.
+    let limit = |r: Box<dyn std::io::Read>| -> Box<dyn BufRead> {
+        Box::new(BufReader::new(bounded::LineLimit::new(
+            r,
+            bounded::MAX_LINE_BYTES,
+            bounded::MAX_TEXT_BYTES,
+        )))
+    };
     let reader: Box<dyn BufRead> = if gzip {
-        Box::new(BufReader::new(MultiGzDecoder::new(buf)))
+        limit(Box::new(MultiGzDecoder::new(buf)))
     } else {
-        Box::new(buf)
+        limit(Box::new(buf))
     };
     Ok(Input {
         path: path.to_path_buf(),
@@ -123,5 +144,36 @@ impl Rows {
                 source: std::io::Error::other(format!("{other:?}")),
             },
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn special_files_and_endless_lines_are_refused() {
+        // Issue 35 item 5: a FIFO blocked the open; a line without end became one record.
+        let dir =
+            std::env::temp_dir().join(format!("platoonsim-field-input-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let e = Rows::open(Path::new("/dev/zero"), Dialect::PemsComma)
+            .err()
+            .unwrap()
+            .to_string();
+        assert_eq!(
+            e,
+            "/dev/zero: cannot read the file: not a regular file (a character device)"
+        );
+        let long = dir.join("long.txt");
+        std::fs::write(&long, format!("a,b\n{}\n", "9".repeat(100_000))).unwrap();
+        let mut rows = Rows::open(&long, Dialect::PemsComma).unwrap();
+        assert!(rows.next_row().unwrap().is_some());
+        let e = rows.next_row().unwrap_err().to_string();
+        assert!(
+            e.ends_with("line 2 is longer than 65536 bytes (not a file of records)"),
+            "{e}"
+        );
     }
 }

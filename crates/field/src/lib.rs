@@ -30,6 +30,7 @@ pub mod demand;
 use serde::{Deserialize, Serialize};
 
 pub mod aggregate;
+mod bounded;
 pub mod clock;
 mod error;
 mod input;

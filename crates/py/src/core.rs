@@ -532,7 +532,8 @@ impl Core {
     }
 
     /// The advice for the next steps: vehicle `ids[i]` joins lane `lanes[i]` (engine index,
-    /// 0 = rightmost; negative: no advice) with desire `strengths[i]`.
+    /// 0 = rightmost; -1: no advice, and the Python layer refuses lanes below -1) with desire
+    /// `strengths[i]`.
     fn set_advice(
         &self,
         ids: PyReadonlyArray1<'_, i64>,

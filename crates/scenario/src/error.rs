@@ -17,7 +17,9 @@ pub struct Problem {
 
 impl fmt::Display for Problem {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} = {}: {}", self.field, self.value, self.allowed)
+        // A value quoted from the input is cut to a readable length.
+        let value = crate::raw::clip_lines(&self.value, crate::raw::MAX_ECHO_CHARS);
+        write!(f, "{} = {}: {}", self.field, value, self.allowed)
     }
 }
 
@@ -42,12 +44,12 @@ pub enum ScenarioError {
     )]
     NotToml { origin: String },
 
-    /// The file exists but cannot be read.
-    #[error("cannot read scenario file {}: {source}", path.display())]
+    /// The file exists but cannot be read. The I/O error is part of the message and not a
+    /// separate cause, so that a chain printed with its causes says it once.
+    #[error("cannot read scenario file {}: {cause}", path.display())]
     Io {
         path: PathBuf,
-        #[source]
-        source: std::io::Error,
+        cause: std::io::Error,
     },
 
     /// Larger than [`crate::limits::MAX_FILE_BYTES`]; refused before parsing, so that a huge
@@ -65,7 +67,10 @@ pub enum ScenarioError {
     Syntax { origin: String, message: String },
 
     /// Valid TOML, but a key is unknown or a value has the wrong type.
-    #[error("{origin}: {path}: {message}")]
+    #[error(
+        "{origin}: {path}: {}",
+        crate::raw::clip_lines(message, crate::raw::MAX_ECHO_CHARS)
+    )]
     Structure {
         origin: String,
         /// Key path, e.g. `road.foo` or `human.headway_s`.
@@ -74,7 +79,10 @@ pub enum ScenarioError {
     },
 
     /// A `--set KEY=VALUE` (or typed) override that cannot be applied.
-    #[error("invalid override '{arg}': {reason}")]
+    #[error(
+        "invalid override '{}': {reason}",
+        crate::raw::clip_lines(arg, crate::raw::MAX_ECHO_CHARS)
+    )]
     Override { arg: String, reason: String },
 
     /// Well-formed, but some values are out of range or inconsistent.

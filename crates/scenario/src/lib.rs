@@ -37,6 +37,7 @@
 //! buffer_s = 0.2
 //! ```
 
+pub mod bounded;
 pub mod clock;
 pub mod demand_scales;
 pub mod error;
@@ -139,7 +140,15 @@ pub fn resolve(name_or_path: &str) -> Result<Source, ScenarioError> {
             builtins: builtins(),
         });
     }
-    if !path.is_file() {
+    if path.exists() {
+        // A device, FIFO or socket: say so (it exists), and never open it.
+        if let Err(cause) = bounded::regular_file(path) {
+            return Err(ScenarioError::Io {
+                path: path.to_path_buf(),
+                cause,
+            });
+        }
+    } else {
         return Err(ScenarioError::UnknownScenario {
             name: name_or_path.to_string(),
             builtins: builtins(),
@@ -162,10 +171,12 @@ pub fn resolve(name_or_path: &str) -> Result<Source, ScenarioError> {
 /// [`limits::MAX_FILE_BYTES`] (a file that grows while read is caught too).
 pub(crate) fn read_limited(path: &Path) -> Result<String, ScenarioError> {
     use std::io::Read;
-    let io = |source| ScenarioError::Io {
+    let io = |cause| ScenarioError::Io {
         path: path.to_path_buf(),
-        source,
+        cause,
     };
+    // Never open what is not a regular file: a FIFO blocks the open, a device never ends.
+    bounded::regular_file(path).map_err(io)?;
     let file = std::fs::File::open(path).map_err(io)?;
     let size = file.metadata().map_err(io)?.len();
     let too_large = |bytes: u64| ScenarioError::TooLarge {

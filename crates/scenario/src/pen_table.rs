@@ -13,9 +13,12 @@ pub(crate) fn parse<const N: usize>(
     text: &str,
     columns: [&str; N],
 ) -> Result<Vec<(f64, [f64; N])>, TableError> {
-    let doc: toml::Table = text
-        .parse()
-        .map_err(|e: toml::de::Error| TableError::Syntax(e.to_string().trim_end().to_string()))?;
+    let doc: toml::Table = text.parse().map_err(|e: toml::de::Error| {
+        TableError::Syntax(crate::raw::clip_lines(
+            e.to_string().trim_end(),
+            crate::raw::MAX_ECHO_CHARS,
+        ))
+    })?;
     let mut rows = Vec::new();
     let Some(list) = doc.get("penetration").and_then(Value::as_array) else {
         return Ok(rows);

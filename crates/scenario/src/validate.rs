@@ -32,7 +32,11 @@ mod strategy;
 
 #[path = "validate_models.rs"]
 mod models;
+
+#[path = "validate_room.rs"]
+mod room;
 use models::{all_finite, check_cav, check_human, check_lane_change, check_safety};
+pub use room::{warnings, LANE_DROP_WARN_M, SHORT_ACCEL_LANE_M};
 
 /// Defaults of the optional keys.
 pub mod defaults {
@@ -338,6 +342,10 @@ pub fn validate_in(
         if let Err(message) = config.check() {
             c.push("(engine check)", "-", message.to_string());
         }
+    }
+    if c.problems.is_empty() {
+        // Room for a vehicle at merge points and lane ends, on the engine's geometry.
+        room::check_room(&mut c, &config);
     }
     if c.problems.is_empty() {
         Ok(config)

@@ -144,18 +144,18 @@ pub(super) fn check_human(c: &mut Checker, h: &HumanDists) {
     );
 }
 
-/// b_e (positive, m/s²) in [normal, `MAX_EMERGENCY_DECEL_MPS2`]: a negative value would make
-/// the braking limit an acceleration, one below the normal limit b would cut the laws short
-/// (docs/safety.md).
+/// b_e (positive, m/s²) in (normal, `MAX_EMERGENCY_DECEL_MPS2`]: a negative value would make
+/// the braking limit an acceleration, one at or below the normal limit b would cut the laws
+/// short and hide every emergency braking (none can exceed b) (docs/safety.md).
 fn emergency_decel(c: &mut Checker, field: &str, b_e: f64, normal: f64, what: &str) {
     let lo = normal.max(0.0);
     c.value(
         field,
         b_e,
-        b_e > 0.0 && b_e >= lo && b_e <= MAX_EMERGENCY_DECEL_MPS2,
+        b_e > 0.0 && b_e > lo && b_e <= MAX_EMERGENCY_DECEL_MPS2,
         &format!(
-            "must be in [{}, {}] m/s²: positive (a deceleration, as SUMO's emergencyDecel), no \
-             weaker than {what} = {}, at most about 1.2 g",
+            "must be in ({}, {}] m/s²: positive (a deceleration, as SUMO's emergencyDecel), \
+             harder than {what} = {}, at most about 1.2 g",
             num(lo),
             num(MAX_EMERGENCY_DECEL_MPS2),
             num(normal)

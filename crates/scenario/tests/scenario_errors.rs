@@ -611,11 +611,11 @@ fn readme_example_scenario_is_valid() {
 
 // ---------------------------------------------------------------- braking limits and [safety]
 
-const CAV_B_E: &str = "must be in [4, 12] m/s²: positive (a deceleration, as SUMO's \
-                       emergencyDecel), no weaker than the normal limit -cav.max_decel = 4, at \
+const CAV_B_E: &str = "must be in (4, 12] m/s²: positive (a deceleration, as SUMO's \
+                       emergencyDecel), harder than the normal limit -cav.max_decel = 4, at \
                        most about 1.2 g";
-const HUMAN_B_E: &str = "must be in [4, 12] m/s²: positive (a deceleration, as SUMO's \
-                         emergencyDecel), no weaker than the hardest normal limit a driver \
+const HUMAN_B_E: &str = "must be in (4, 12] m/s²: positive (a deceleration, as SUMO's \
+                         emergencyDecel), harder than the hardest normal limit a driver \
                          draws, -human.max_decel.min = 4, at most about 1.2 g";
 
 #[test]
@@ -630,6 +630,29 @@ fn a_negative_emergency_deceleration_is_refused() {
     );
     let p = problems(with_set(HOMOGENEOUS, &["cav.emergency_decel_mps2=0"]));
     assert_eq!(p, vec![format!("cav.emergency_decel_mps2 = 0: {CAV_B_E}")]);
+    // Above the physical bound, and tiny values (issue 35 item 2).
+    for v in ["12.5", "1e-9"] {
+        let p = problems(with_set(
+            HOMOGENEOUS,
+            &[&format!("human.emergency_decel_mps2={v}")],
+        ));
+        assert_eq!(p.len(), 1, "{v}: {p:?}");
+        assert!(p[0].starts_with("human.emergency_decel_mps2 = "), "{p:?}");
+    }
+}
+
+#[test]
+fn an_emergency_limit_equal_to_the_normal_one_is_refused() {
+    // Issue 35 item 2: b_e = |max_decel| hides every emergency braking (none exceeds b).
+    let p = problems(with_set(HOMOGENEOUS, &["cav.emergency_decel_mps2=4"]));
+    assert_eq!(p, vec![format!("cav.emergency_decel_mps2 = 4: {CAV_B_E}")]);
+    let p = problems(with_set(HOMOGENEOUS, &["human.emergency_decel_mps2=4"]));
+    assert_eq!(
+        p,
+        vec![format!("human.emergency_decel_mps2 = 4: {HUMAN_B_E}")]
+    );
+    assert!(with_set(HOMOGENEOUS, &["human.emergency_decel_mps2=4.01"]).is_ok());
+    assert!(with_set(HOMOGENEOUS, &["cav.emergency_decel_mps2=12"]).is_ok());
 }
 
 #[test]
@@ -644,14 +667,14 @@ fn an_emergency_limit_weaker_than_the_normal_one_is_refused() {
         p,
         vec![format!("human.emergency_decel_mps2 = 3.5: {HUMAN_B_E}")]
     );
-    // A normal limit raised to 7 m/s² needs b_e >= 7.
+    // A normal limit raised to 7 m/s² needs b_e > 7.
     let p = problems(with_set(
         HOMOGENEOUS,
         &["cav.max_decel=-7", "cav.emergency_decel_mps2=6"],
     ));
     assert_eq!(p.len(), 1, "{p:?}");
     assert!(
-        p[0].starts_with("cav.emergency_decel_mps2 = 6: must be in [7, 12] m/s²")
+        p[0].starts_with("cav.emergency_decel_mps2 = 6: must be in (7, 12] m/s²")
             && p[0].contains("-cav.max_decel = 7"),
         "{p:?}"
     );
@@ -665,12 +688,15 @@ fn an_emergency_limit_weaker_than_the_normal_one_is_refused() {
     ));
     assert_eq!(p.len(), 1, "{p:?}");
     assert!(
-        p[0].starts_with("human.emergency_decel_mps2 = 6: must be in [7, 12] m/s²"),
+        p[0].starts_with("human.emergency_decel_mps2 = 6: must be in (7, 12] m/s²"),
         "{p:?}"
     );
-    // At the normal limit, and the findings' 6 m/s² with b = 4, are fine.
+    // Just above the normal limit, and the findings' 6 m/s² with b = 4, are fine.
     for ok in [
-        &["cav.emergency_decel_mps2=4", "human.emergency_decel_mps2=4"][..],
+        &[
+            "cav.emergency_decel_mps2=4.5",
+            "human.emergency_decel_mps2=4.5",
+        ][..],
         &["cav.emergency_decel_mps2=6", "human.emergency_decel_mps2=6"],
         &["cav.emergency_decel_mps2=12"],
     ] {

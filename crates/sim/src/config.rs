@@ -466,7 +466,7 @@ impl Config {
             MAX_DEMAND_VPHPL,
             " veh/h/lane",
         )?;
-        // Braking limits: b_e positive, no weaker than the normal limit (docs/safety.md).
+        // Braking limits: b_e positive, harder than the normal limit (docs/safety.md).
         use platoonsim_model::safety::{MAX_EMERGENCY_DECEL_MPS2, MAX_TTC_THRESHOLD_S};
         for (name, b_e, normal) in [
             (
@@ -481,13 +481,13 @@ impl Config {
             ),
         ] {
             pos(name, b_e)?;
-            within(
-                name,
-                b_e,
-                normal.max(0.0),
-                MAX_EMERGENCY_DECEL_MPS2,
-                " m/s² (no weaker than the normal braking limit)",
-            )?;
+            let lo = normal.max(0.0);
+            if !(b_e > lo && b_e <= MAX_EMERGENCY_DECEL_MPS2) {
+                return Err(SimError::Config(format!(
+                    "{name} = {b_e}: must be in ({lo}, {MAX_EMERGENCY_DECEL_MPS2}] m/s² (harder \
+                     than the normal braking limit)"
+                )));
+            }
         }
         pos("safety.ttc_threshold_s", self.safety.ttc_threshold_s)?;
         within(

@@ -371,6 +371,14 @@ impl Inserting<'_> {
         let list = &self.traffic.lanes[lane];
         let j = list.partition_point(|&o| self.traffic.vehicles[o as usize].x > x);
         let ld = (j > 0).then(|| list[j - 1]);
+        // The nearest vehicle behind the merge point must be clear of the new one's body even
+        // when a wall stops it before the merge point (it waits at the end of an upstream
+        // acceleration lane of the same index, issue 35 item 4).
+        if let Some(&b) = list.get(j) {
+            if self.traffic.vehicles[b as usize].x > x - head.driver.human.length_m {
+                return;
+            }
+        }
         // The follower, unless a wall stops it before the merge point (the end of an
         // upstream acceleration lane of the same index).
         let fo = list.get(j).copied().filter(|&f| {

@@ -5,6 +5,8 @@
 
 (async function main() {
   const meta = JSON.parse(document.getElementById('meta').textContent);
+  // Text from the run's files as HTML text: the browser's own escaping.
+  const esc = (text) => { const d = document.createElement('div'); d.textContent = String(text); return d.innerHTML; };
   const road = meta.road;
   const D = await unpack(meta, document.getElementById('data').textContent.trim());
   const L = road.vehicle_length_m;
@@ -474,11 +476,19 @@
     } else if (meta.trips.id.length === 0) {
       rows.push(['trip', 'no trips.csv in the run (run with --trips)']);
     }
-    box.innerHTML = '<table>' + rows.map(([a, b]) => `<tr><td>${a}</td><td>${b}</td></tr>`).join('') + '</table>';
+    // Cells by textContent: trips.csv and trajectories.csv strings are data, never markup.
+    const table = document.createElement('table');
+    for (const [a, b] of rows) {
+      const tr = table.insertRow();
+      tr.insertCell().textContent = a;
+      tr.insertCell().textContent = b;
+    }
+    box.replaceChildren(table);
   }
 
   function legend() {
-    const sw = (c, text) => `<div><span class="sw" style="background:${css(c)}"></span>${text}</div>`;
+    // Names from the run's files (modes, regimes) are escaped; the rest is the page's own.
+    const sw = (c, text) => `<div><span class="sw" style="background:${css(c)}"></span>${esc(text)}</div>`;
     let h = '';
     if (S.colour === 'kind') {
       h += sw(KIND.cav, 'CAV') + sw(KIND.human, 'human-driven');

@@ -8,6 +8,7 @@
 //! This crate depends on no engine crate: it reads the files by their header names, so a file
 //! with extra columns still works, and what it shows is what the run wrote.
 
+mod bounded;
 mod pack;
 mod page;
 mod road;
@@ -36,7 +37,7 @@ pub struct View {
 /// the column.
 pub fn build(dir: &Path) -> Result<View> {
     let traj = dir.join("trajectories.csv");
-    if !traj.is_file() {
+    if !traj.exists() {
         bail!(
             "{} not found: the viewer replays a run's trajectories; make them with `platoonsim \
              run ... --trajectories PERIOD_S --out {}`",
@@ -45,19 +46,24 @@ pub fn build(dir: &Path) -> Result<View> {
         );
     }
     let scenario_path = dir.join("scenario.json");
-    let scenario_text = std::fs::read_to_string(&scenario_path).with_context(|| {
-        format!(
-            "cannot read {} (the run's resolved scenario, written by `platoonsim run`)",
-            scenario_path.display()
-        )
-    })?;
+    let scenario_text = bounded::read_text(&scenario_path, bounded::MAX_SCENARIO_BYTES)
+        .with_context(|| {
+            format!(
+                "cannot read {} (the run's resolved scenario, written by `platoonsim run`)",
+                scenario_path.display()
+            )
+        })?;
     let scenario: serde_json::Value = serde_json::from_str(&scenario_text)
         .with_context(|| format!("{} is not valid JSON", scenario_path.display()))?;
     let road = road::Road::from_scenario(&scenario)
         .with_context(|| format!("in {}", scenario_path.display()))?;
 
-    let file =
-        std::fs::File::open(&traj).with_context(|| format!("cannot read {}", traj.display()))?;
+    let file = bounded::open_records(
+        &traj,
+        bounded::MAX_RECORD_FILE_BYTES,
+        bounded::MAX_RECORD_LINE_BYTES,
+    )
+    .with_context(|| format!("cannot read {}", traj.display()))?;
     let packed = tracks::read_and_pack(std::io::BufReader::new(file), &traj, &road)?;
 
     let detectors = tables::detectors(&dir.join("detectors.csv"))?;

@@ -3,7 +3,7 @@
 //! vehicle) and `collisions.csv` (events marked on the road). Columns are found by header
 //! name; a missing file gives an empty table.
 
-use anyhow::{anyhow, Context, Result};
+use anyhow::{anyhow, bail, Context, Result};
 use serde::Serialize;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -49,9 +49,20 @@ fn open(path: &Path) -> Result<Option<(csv::StringRecord, Vec<csv::StringRecord>
     if !path.exists() {
         return Ok(None);
     }
-    let mut r = csv::ReaderBuilder::new()
-        .from_path(path)
-        .with_context(|| format!("cannot read {}", path.display()))?;
+    let file = crate::bounded::open_records(
+        path,
+        crate::bounded::MAX_TABLE_BYTES,
+        crate::bounded::MAX_RECORD_LINE_BYTES,
+    )
+    .with_context(|| format!("cannot read {}", path.display()))?;
+    if !ends_with_newline(path).with_context(|| format!("cannot read {}", path.display()))? {
+        bail!(
+            "{} is truncated (its last line has no line break): a run writes it whole; run \
+             again to replace it",
+            path.display()
+        );
+    }
+    let mut r = csv::ReaderBuilder::new().from_reader(file);
     let header = r
         .headers()
         .with_context(|| format!("cannot read {}", path.display()))?
@@ -61,6 +72,19 @@ fn open(path: &Path) -> Result<Option<(csv::StringRecord, Vec<csv::StringRecord>
         .collect::<Result<Vec<_>, _>>()
         .with_context(|| format!("cannot read {}", path.display()))?;
     Ok(Some((header, rows)))
+}
+
+/// Whether the file is empty or its last byte is a line break (every table a run writes is).
+fn ends_with_newline(path: &Path) -> std::io::Result<bool> {
+    use std::io::{Read, Seek, SeekFrom};
+    let mut f = std::fs::File::open(path)?;
+    if f.metadata()?.len() == 0 {
+        return Ok(true);
+    }
+    f.seek(SeekFrom::End(-1))?;
+    let mut last = [0u8];
+    f.read_exact(&mut last)?;
+    Ok(last[0] == b'\n')
 }
 
 /// Column lookups with errors that name the file, line and column.

@@ -157,6 +157,16 @@ pub fn read_and_pack<R: Read>(input: R, path: &Path, road: &Road) -> Result<Pack
             .ok()
             .filter(|l| *l >= 1 && *l < NONE)
             .ok_or_else(|| bad(c_lane, "a lane number from 1 to 254"))?;
+        if u32::from(lane) > road.lanes {
+            return Err(bad(
+                c_lane,
+                &format!(
+                    "a lane of the road in scenario.json (1 to {}): trajectories.csv and \
+                     scenario.json are not from the same run",
+                    road.lanes
+                ),
+            ));
+        }
         let x = float(c_x)?;
         let v = float(c_v)?;
         let a = match c_a {
@@ -172,6 +182,10 @@ pub fn read_and_pack<R: Read>(input: R, path: &Path, road: &Road) -> Result<Pack
             }
             _ => 0,
         };
+        // The kinds a run writes; anything else is not a run's file (and would be drawn as '?').
+        if !matches!(cell(c_kind), "cav" | "human") {
+            return Err(bad(c_kind, "a vehicle kind (cav or human)"));
+        }
         rows.push(Row {
             t,
             id,
@@ -223,12 +237,18 @@ fn frame_times(rows: &[Row]) -> Vec<f64> {
         return ts;
     }
     let t0 = ts[0];
-    let n = ((ts[ts.len() - 1] - t0) / step).round() as usize + 1;
+    // The grid's length in floating point first: times far apart on a fine step (found by
+    // fuzzing: 0, 1, 2e19) would overflow the count.
+    let span = ((ts[ts.len() - 1] - t0) / step).round();
+    if !(span.is_finite() && span + 1.0 <= 4.0 * ts.len() as f64) {
+        return ts;
+    }
+    let n = span as usize + 1;
     let on_grid = ts.iter().all(|&t| {
         let k = ((t - t0) / step).round();
         (t0 + k * step - t).abs() <= 1e-6 * step.max(1.0)
     });
-    if on_grid && n <= 4 * ts.len() {
+    if on_grid {
         // Rounded to the microsecond, so that 0.1-s steps print as the CSV's times.
         (0..n)
             .map(|k| ((t0 + k as f64 * step) * 1e6).round() / 1e6)
@@ -450,6 +470,31 @@ mod tests {
         }))
         .unwrap();
         read_and_pack(csv.as_bytes(), Path::new("trajectories.csv"), &road)
+    }
+
+    fn row(t: f64) -> Row {
+        Row {
+            t,
+            id: 0,
+            kind: 0,
+            lane: 1,
+            x: 0.0,
+            v: 0.0,
+            a: 0.0,
+            mode: NONE,
+            pos: 0,
+            regime: NONE,
+        }
+    }
+
+    #[test]
+    fn frame_times_of_far_apart_samples_are_the_samples() {
+        // Found by fuzzing (issue 35): a grid of 2e19 steps overflowed its count (a panic with
+        // overflow checks, an empty frame list without).
+        let rows: Vec<Row> = [0.0, 1.0, 2e19].into_iter().map(row).collect();
+        assert_eq!(frame_times(&rows), vec![0.0, 1.0, 2e19]);
+        let rows: Vec<Row> = [0.0, 0.5, 1.5].into_iter().map(row).collect();
+        assert_eq!(frame_times(&rows), vec![0.0, 0.5, 1.0, 1.5]);
     }
 
     #[test]

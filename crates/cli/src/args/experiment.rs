@@ -82,22 +82,15 @@ pub struct ExperimentArgs {
     pub grid: GridArgs,
 
     /// Simulated time of every run, for a quicker look (the paper's: 3600 s).
-    #[arg(
-        long,
-        value_name = "S",
-        default_value_t = 3600.0,
-        allow_negative_numbers = true
-    )]
-    pub duration: f64,
+    /// [default: 3600; refused by sr99 and sr99-demand, which simulate the paper's 4-hour
+    /// morning]
+    #[arg(long, value_name = "S", allow_negative_numbers = true)]
+    pub duration: Option<f64>,
 
-    /// Warm-up of the runs that have one; PD acts after it (the paper's: 1200 s).
-    #[arg(
-        long,
-        value_name = "S",
-        default_value_t = 1200.0,
-        allow_negative_numbers = true
-    )]
-    pub warmup: f64,
+    /// Warm-up of the runs that have one; PD acts after it (the paper's: 1200 s) [default:
+    /// 1200; refused by sr99 and sr99-demand]
+    #[arg(long, value_name = "S", allow_negative_numbers = true)]
+    pub warmup: Option<f64>,
 
     /// calibrate-flow-aware: the rho_q values to try (veh/h/lane), comma-separated.
     #[arg(long, value_name = "LIST", value_delimiter = ',', default_values_t = platoonsim_experiment::experiments::calibrate::FLOW_THRESHOLDS)]
@@ -108,7 +101,7 @@ pub struct ExperimentArgs {
     pub speed_thresholds: Vec<f64>,
 
     /// calibrate-flow-aware: the largest discharge loss accepted at any demand (%).
-    #[arg(long, value_name = "PCT", default_value_t = platoonsim_experiment::experiments::calibrate::TOLERANCE_PCT)]
+    #[arg(long, value_name = "PCT", default_value_t = platoonsim_experiment::experiments::calibrate::TOLERANCE_PCT, value_parser = crate::messages::parse_tolerance)]
     pub tolerance: f64,
 
     #[command(flatten)]

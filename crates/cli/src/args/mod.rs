@@ -160,7 +160,13 @@ impl ScenarioArgs {
     /// Load and validate the scenario with the overrides.
     pub fn load(&self) -> Result<Config> {
         match platoonsim_scenario::load_with(&self.scenario, &self.overrides()) {
-            Ok(config) => Ok(config),
+            Ok(config) => {
+                // Legal geometry known to collide: said once, before anything runs.
+                for w in platoonsim_scenario::validate::warnings(&config) {
+                    errln!("warning: {w}");
+                }
+                Ok(config)
+            }
             // Name the flag rather than the key it sets.
             Err(ScenarioError::Override { arg, reason })
                 if self.demand_scale.map(demand_scale_set).as_ref() == Some(&arg) =>
@@ -279,8 +285,9 @@ impl RunArgs {
         let dt = config.dt_s;
         if period_steps(period_s, dt).is_none() {
             bail!(
-                "invalid --trajectories {period_s}: the sampling period (s) must be a positive \
-                 multiple of the time step run.dt_s = {dt} s"
+                "invalid --trajectories {}: the sampling period (s) must be a positive \
+                 multiple of the time step run.dt_s = {dt} s",
+                crate::messages::short_num(period_s)
             );
         }
         let window_s = match pair(&self.trajectory_window) {
@@ -599,7 +606,16 @@ mod tests {
         assert_eq!(e.speed_thresholds, [0.0]);
         assert_eq!(e.tolerance, 1.0);
         assert_eq!(e.grid.out, PathBuf::from("out"));
-        assert_eq!((e.duration, e.warmup), (3600.0, 1200.0));
+        // Not given: the defaults (3600 s, 1200 s) are applied by check_experiment_duration.
+        assert_eq!((e.duration, e.warmup), (None, None));
+        assert_eq!(
+            crate::messages::check_experiment_duration(
+                ExperimentName::from(e.name),
+                e.duration,
+                e.warmup
+            ),
+            Ok((3600.0, 1200.0))
+        );
 
         let cli = Cli::try_parse_from([
             "platoonsim",

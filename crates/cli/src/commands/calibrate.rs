@@ -78,15 +78,19 @@ pub fn calibrate(args: &CalibrateArgs, quiet: bool) -> Result<()> {
     };
     for f in &args.source.field {
         let bytes =
-            std::fs::read(f).with_context(|| format!("cannot read --field {}", f.display()))?;
+            // A regular file, bounded like the field readers (16 GiB).
+            platoonsim_scenario::bounded::read(f, 16 << 30)
+                .with_context(|| format!("cannot read --field {}", f.display()))?;
         field.files.push((
             f.display().to_string(),
             format!("{:016x}", platoonsim_experiment::hash::fnv1a64(&bytes)),
         ));
     }
+    let out = args.out.join(&params.name);
+    let _lock = crate::out_lock::lock(&out, super::sweep::share(shard.is_some()))?;
     let opts = calibrate::Options {
         scenario: args.scenario.clone(),
-        out: args.out.join(&params.name),
+        out,
         jobs: args.jobs.map(|n| n as usize),
         shard,
         fresh: args.fresh,

@@ -117,6 +117,7 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
         );
     }
     let out = args.out_dir();
+    let _lock = crate::out_lock::lock(&out, crate::out_lock::Share::Alone)?;
     let inputs = files::Inputs {
         runs: args.runs.iter().map(|p| p.display().to_string()).collect(),
         field_files: args

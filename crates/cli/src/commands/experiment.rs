@@ -23,20 +23,22 @@ pub fn settings(grid: &GridArgs, seeds: u32, quiet: bool) -> Settings {
 
 pub fn experiment(args: &ExperimentArgs, quiet: bool) -> Result<()> {
     let name = ExperimentName::from(args.name);
-    crate::messages::check_experiment_duration(name, args.duration, args.warmup)
-        .map_err(anyhow::Error::msg)?;
+    let (duration, warmup) =
+        crate::messages::check_experiment_duration(name, args.duration, args.warmup)
+            .map_err(anyhow::Error::msg)?;
     let default_seeds = match name {
         ExperimentName::CalibrateFlowAware | ExperimentName::Sr99Demand => 3,
         _ => 10,
     };
     let mut s = settings(&args.grid, args.seeds.unwrap_or(default_seeds), quiet);
-    s.duration_s = args.duration;
-    s.warmup_s = args.warmup;
+    s.duration_s = duration;
+    s.warmup_s = warmup;
     s.flow_thresholds = args.flow_thresholds.clone();
     s.speed_thresholds = args.speed_thresholds.clone();
     s.tolerance_pct = args.tolerance;
     s.format = args.format.table();
     network(&mut s, &args.network, name)?;
+    let _lock = crate::out_lock::lock(&s.out.join(name.as_str()), crate::out_lock::Share::Alone)?;
     let out = run_experiment(name, &s).with_context(|| format!("experiment {name} failed"))?;
     crate::stdout::print(&describe(&out))?;
     if let Some(p) = &s.write_table {

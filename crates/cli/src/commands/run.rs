@@ -1,7 +1,7 @@
 //! `platoonsim run`: one scenario, one seed, files in the output directory.
 
 use crate::args::RunArgs;
-use crate::{output, progress, EXIT_COLLISIONS};
+use crate::{out_lock, output, progress, EXIT_COLLISIONS};
 use anyhow::{Context, Result};
 use std::process::ExitCode;
 
@@ -10,14 +10,15 @@ use std::process::ExitCode;
 pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
     let config = args.scenario.load()?;
     let recording = args.recording(&config)?;
-    // Create the directory before simulating, so that an unwritable one fails at once.
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("cannot create the output directory {}", args.out.display()))?;
+    // Create and lock the directory before simulating, so that an unwritable one, or one
+    // another process is writing, fails at once.
+    let _lock = out_lock::lock(&args.out, out_lock::Share::Alone)?;
     output::remove_stale_tmp(&args.out)?;
 
-    let bar = progress::sim_bar(config.duration_s, progress::wanted(quiet), &config.name);
+    let name = crate::messages::printable(&config.name);
+    let bar = progress::sim_bar(config.duration_s, progress::wanted(quiet), &name);
     let out = progress::run_recording_with_bar(&config, &recording, &bar)
-        .with_context(|| format!("simulation of scenario '{}' failed", config.name))?;
+        .with_context(|| format!("simulation of scenario '{name}' failed"))?;
 
     let writing = std::time::Instant::now();
     let mut written = output::write_run_files(&args.out, &config, &out, args.format)?;
@@ -39,36 +40,48 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
             args.out.join(output::COLLISIONS_FILE).display()
         );
     }
-    let paragraph = output::paragraph(&config, &out.summary, &args.out);
-    outln!(
-        "{}",
-        paragraph.replace("detectors.csv", &format!("detectors.{}", args.format.ext()))
-    )?;
-    let ext = args.format.ext();
-    let mut extra = Vec::new();
-    if let Some(trips) = &out.trips {
-        let queued = out.queued.as_ref().map_or(0, Vec::len);
-        extra.push(format!("trips.{ext} ({} rows)", trips.len() + queued));
-    }
-    if let Some(rows) = &out.trajectories {
-        extra.push(format!("trajectories.{ext} ({} rows)", rows.len()));
-    }
-    if !extra.is_empty() {
-        let bytes: u64 = written
-            .iter()
-            .filter_map(|p| std::fs::metadata(p).ok())
-            .map(|m| m.len())
-            .sum();
+    let failed = out.summary.collisions > 0 && !args.allow_collisions;
+    let printed = (|| -> Result<()> {
+        let paragraph = output::paragraph(&config, &out.summary, &args.out);
         outln!(
-            "Also written: {}. Output files: {:.1} MB written in {write_s:.2} s.",
-            extra.join(", "),
-            bytes as f64 / 1e6
+            "{}",
+            paragraph.replace("detectors.csv", &format!("detectors.{}", args.format.ext()))
         )?;
+        let ext = args.format.ext();
+        let mut extra = Vec::new();
+        if let Some(trips) = &out.trips {
+            let queued = out.queued.as_ref().map_or(0, Vec::len);
+            extra.push(format!("trips.{ext} ({} rows)", trips.len() + queued));
+        }
+        if let Some(rows) = &out.trajectories {
+            extra.push(format!("trajectories.{ext} ({} rows)", rows.len()));
+        }
+        if !extra.is_empty() {
+            let bytes: u64 = written
+                .iter()
+                .filter_map(|p| std::fs::metadata(p).ok())
+                .map(|m| m.len())
+                .sum();
+            outln!(
+                "Also written: {}. Output files: {:.1} MB written in {write_s:.2} s.",
+                extra.join(", "),
+                bytes as f64 / 1e6
+            )?;
+        }
+        if args.view {
+            outln!("Replay: {}", view_file.display())?;
+        }
+        Ok(())
+    })();
+    match printed {
+        // A failed run keeps its exit status when stdout is closed (`| true`): the collision
+        // is the news, the closed pipe is not.
+        Err(e) if failed && crate::stdout::find(&e).is_some_and(|w| w.is_broken_pipe()) => {
+            return Ok(ExitCode::from(EXIT_COLLISIONS));
+        }
+        r => r?,
     }
-    if args.view {
-        outln!("Replay: {}", view_file.display())?;
-    }
-    if out.summary.collisions > 0 && !args.allow_collisions {
+    if failed {
         return Ok(ExitCode::from(EXIT_COLLISIONS));
     }
     Ok(ExitCode::SUCCESS)

@@ -10,8 +10,8 @@ pub fn show(args: &ShowArgs) -> Result<()> {
         ShowFormat::Toml => format!(
             "# Scenario '{}' with every key resolved (`platoonsim show {}`).\n\
              # Save it to a .toml file, edit it, and run it with `platoonsim run FILE.toml`.\n\n{}",
-            config.name,
-            args.scenario.scenario,
+            crate::messages::printable(&config.name),
+            crate::messages::printable(&args.scenario.scenario),
             platoonsim_scenario::to_toml(&config)
         ),
         ShowFormat::Json => String::from_utf8(output::json(&config)?)?,

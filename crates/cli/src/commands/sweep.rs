@@ -51,6 +51,15 @@ pub struct SweepArgs {
     pub format: crate::tables::FormatArg,
 }
 
+/// How a sweep or a calibration shares its directory: shards with each other.
+pub fn share(sharded: bool) -> crate::out_lock::Share {
+    if sharded {
+        crate::out_lock::Share::Shard
+    } else {
+        crate::out_lock::Share::Alone
+    }
+}
+
 /// Which shard this process runs: the flag, else the environment (unless --collect or
 /// --no-shard).
 fn shard(args: &SweepArgs) -> Result<Option<Shard>> {
@@ -99,6 +108,7 @@ pub fn sweep(args: &SweepArgs, quiet: bool) -> Result<ExitCode> {
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from("out/sweeps").join(&spec.name));
+    let _lock = crate::out_lock::lock(&out, share(shard.is_some()))?;
     let opts = sweep::Options {
         out,
         jobs: args.jobs.map(|n| n as usize),

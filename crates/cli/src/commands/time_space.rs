@@ -14,8 +14,13 @@ use std::path::Path;
 
 pub fn time_space(args: &TimeSpaceArgs) -> Result<()> {
     let lane = args.lane()?;
-    let file = std::fs::File::open(&args.csv)
-        .with_context(|| format!("cannot read {}", args.csv.display()))?;
+    use platoonsim_scenario::bounded;
+    let file = bounded::open_records(
+        &args.csv,
+        bounded::MAX_RECORD_FILE_BYTES,
+        bounded::MAX_RECORD_LINE_BYTES,
+    )
+    .with_context(|| format!("cannot read {}", args.csv.display()))?;
     let tracks = read_tracks(file, &args.csv, lane)?;
     let title = format!("Time-space diagram, lane {lane} (lane 1 = rightmost)");
     let ts = TimeSpace {

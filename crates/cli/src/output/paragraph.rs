@@ -1,5 +1,6 @@
 //! The one-paragraph human summary printed after a run, and its number formatting.
 
+use crate::messages::printable;
 use platoonsim_sim::{Config, Summary};
 use std::path::Path;
 
@@ -14,6 +15,7 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
         .detectors
         .get(config.measurement_detector)
         .map_or("?", |d| d.name.as_str());
+    let detector = printable(detector);
     let rate = if s.wall_seconds > 0.0 {
         format!(
             " ({} per second)",
@@ -56,7 +58,7 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
          {max_decel:.2} m/s² over the whole run. \
          Collisions: {collisions}. {updates} vehicle updates in {wall:.2} s{rate}. \
          Files in {dir}: summary.json, detectors.csv, scenario.json, scenario.toml{collisions_file}.",
-        name = s.scenario,
+        name = printable(&s.scenario),
         dur = s.duration_s,
         dt = s.dt_s,
         warm = s.warmup_s,
@@ -103,7 +105,7 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
         },
         updates = s.vehicle_updates,
         wall = s.wall_seconds,
-        dir = dir.display(),
+        dir = printable(&dir.display().to_string()),
     );
     wrap(&text, 96)
 }

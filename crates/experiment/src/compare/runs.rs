@@ -8,6 +8,7 @@ use crate::detectors::from_csv;
 use crate::field_obs::{mean_over_runs, to_obs};
 use crate::Error;
 use platoonsim_field::{Obs, Placed, StationKind};
+use platoonsim_scenario::bounded;
 use platoonsim_scenario::clock::{format_clock, parse_clock};
 use platoonsim_sim::DetectorRecord;
 use std::collections::{BTreeMap, BTreeSet};
@@ -38,7 +39,8 @@ fn other(msg: String) -> Error {
 /// `run.clock_start` of a run's `scenario.toml`, s after midnight.
 pub fn clock_start(dir: &Path) -> Result<u32, Error> {
     let path = dir.join("scenario.toml");
-    let text = std::fs::read_to_string(&path).map_err(|e| Error::io(&path, e))?;
+    let text = bounded::read_text(&path, platoonsim_scenario::limits::MAX_FILE_BYTES as u64)
+        .map_err(|e| Error::io(&path, e))?;
     let value: toml::Value = toml::from_str(&text)
         .map_err(|e| other(format!("{}: not a scenario file: {e}", path.display())))?;
     let clock = value.get("run").and_then(|r| r.get("clock_start"));
@@ -96,7 +98,8 @@ pub fn places(records: &[DetectorRecord]) -> Vec<Placed> {
 pub fn read_run(dir: &Path) -> Result<Run, Error> {
     let clock_start_s = clock_start(dir)?;
     let path = dir.join("detectors.csv");
-    let bytes = match std::fs::read(&path) {
+    // Read whole: bounded like the viewer's tables (5 million detector records are ~500 MB).
+    let bytes = match bounded::read(&path, 2 << 30) {
         Ok(b) => b,
         Err(e) if dir.join("detectors.parquet").exists() => {
             return Err(other(format!(

@@ -104,7 +104,11 @@ impl Scales {
         }
         match &s.demand_scale_table {
             Some(path) => {
-                let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+                let text = platoonsim_scenario::bounded::read_text(
+                    path,
+                    platoonsim_scenario::limits::MAX_FILE_BYTES as u64,
+                )
+                .map_err(|e| Error::io(path, e))?;
                 let rows = demand_scales::parse(&text).map_err(|message| Error::Io {
                     path: path.display().to_string(),
                     message: message.to_string(),

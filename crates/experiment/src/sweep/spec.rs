@@ -83,14 +83,16 @@ pub(crate) fn read_bounded(
         key: "(file)".into(),
         message,
     };
-    let meta = std::fs::metadata(path).map_err(|e| err(format!("cannot read it: {e}")))?;
+    use platoonsim_scenario::bounded;
+    // Regular files only (a FIFO blocks the open, /dev/zero never ends), size checked first.
+    let meta = bounded::regular_file(path).map_err(|e| err(format!("cannot read it: {e}")))?;
     if meta.len() > max {
         return Err(err(format!(
             "{} bytes: {what} must be at most {max} bytes",
             meta.len()
         )));
     }
-    let text = std::fs::read_to_string(path).map_err(|e| err(format!("cannot read it: {e}")))?;
+    let text = bounded::read_text(path, max).map_err(|e| err(format!("cannot read it: {e}")))?;
     let stem = path.file_stem().map_or_else(
         || default_stem.to_string(),
         |s| s.to_string_lossy().into_owned(),
