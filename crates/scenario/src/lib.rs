@@ -47,6 +47,7 @@ pub mod network;
 pub mod overrides;
 mod pen_table;
 pub mod raw;
+pub mod sweep_spec;
 pub mod tables;
 pub mod thresholds;
 pub mod validate;

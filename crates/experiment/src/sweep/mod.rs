@@ -19,7 +19,9 @@ pub mod collect;
 pub mod plan;
 pub mod report;
 pub mod shard;
-pub mod spec;
+// The sweep file format lives with the scenario format (the fuzz targets read it without
+// this crate).
+pub use platoonsim_scenario::sweep_spec as spec;
 
 use crate::atomic::write_atomic;
 use crate::design::{self, Cell, Labels};

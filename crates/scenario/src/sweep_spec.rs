@@ -2,7 +2,7 @@
 //! cartesian product makes the cells, and an optional reference level for paired
 //! differences. Keys under `[set]`, `[axes]` and `[compare]` are the dotted keys of
 //! `platoonsim run --set`; every value is checked by the scenario crate exactly as a `--set`
-//! of it would be (see [`super::plan`]). Every error here names the spec key.
+//! of it would be (`platoonsim_experiment::sweep::plan`). Every error here names the spec key.
 //!
 //! ```toml
 //! name = "my-study"                    # optional: the output directory's name (default: file stem)
@@ -71,7 +71,7 @@ pub struct Spec {
 
 /// The text of a spec file of at most `max` bytes (`what` names it in the error), with its
 /// origin for messages and its stem (`default_stem` if it has none).
-pub(crate) fn read_bounded(
+pub fn read_bounded(
     path: &Path,
     what: &str,
     max: u64,
@@ -83,7 +83,7 @@ pub(crate) fn read_bounded(
         key: "(file)".into(),
         message,
     };
-    use platoonsim_scenario::bounded;
+    use crate::bounded;
     // Regular files only (a FIFO blocks the open, /dev/zero never ends), size checked first.
     let meta = bounded::regular_file(path).map_err(|e| err(format!("cannot read it: {e}")))?;
     if meta.len() > max {
@@ -107,8 +107,7 @@ impl Spec {
         let mut spec = Spec::from_toml(&text, &origin, &stem)?;
         // A scenario path is relative to the sweep file, so a spec and its corridor travel
         // together.
-        if looks_like_path(&spec.scenario) || platoonsim_scenario::builtin(&spec.scenario).is_none()
-        {
+        if looks_like_path(&spec.scenario) || crate::builtin(&spec.scenario).is_none() {
             let p = PathBuf::from(&spec.scenario);
             if p.is_relative() {
                 let dir = path.parent().unwrap_or(Path::new(""));
@@ -331,7 +330,7 @@ fn looks_like_path(s: &str) -> bool {
     s.contains(['/', '\\']) || s.ends_with(".toml")
 }
 
-pub(crate) fn valid_name(s: &str) -> bool {
+pub fn valid_name(s: &str) -> bool {
     !s.is_empty()
         && !s.starts_with('.')
         && s.len() <= 100
@@ -340,10 +339,8 @@ pub(crate) fn valid_name(s: &str) -> bool {
 }
 
 /// A dotted scenario key, as `--set` reads it; the seed is the sweep's own.
-pub(crate) fn check_key(k: &str) -> Result<(), String> {
-    if let Err(platoonsim_scenario::ScenarioError::Override { reason, .. }) =
-        platoonsim_scenario::overrides::check_key(k)
-    {
+pub fn check_key(k: &str) -> Result<(), String> {
+    if let Err(crate::ScenarioError::Override { reason, .. }) = crate::overrides::check_key(k) {
         return Err(reason);
     }
     if k == "run.seed" {
@@ -393,7 +390,7 @@ fn seeds(v: Option<&Value>) -> Result<Vec<u64>, String> {
 pub fn label(v: &Value) -> String {
     match v {
         Value::String(s) => s.clone(),
-        Value::Float(f) => crate::design::num(*f),
+        Value::Float(f) => format!("{f}"),
         Value::Integer(i) => i.to_string(),
         other => other.to_string(),
     }
