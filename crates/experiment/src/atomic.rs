@@ -94,7 +94,7 @@ pub fn output_target(path: &Path) -> io::Result<PathBuf> {
                 "cannot write {}{via}: not a regular file (a {}); outputs are written only to \
                  regular files or new paths",
                 path.display(),
-                describe(&kind)
+                platoonsim_scenario::bounded::describe(&kind)
             ),
         ));
     }
@@ -105,31 +105,6 @@ pub fn output_target(path: &Path) -> io::Result<PathBuf> {
             path.display()
         ),
     ))
-}
-
-/// What a non-regular file is, in words.
-fn describe(kind: &fs::FileType) -> &'static str {
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::FileTypeExt;
-        if kind.is_char_device() {
-            return "character device";
-        }
-        if kind.is_block_device() {
-            return "block device";
-        }
-        if kind.is_fifo() {
-            return "FIFO";
-        }
-        if kind.is_socket() {
-            return "socket";
-        }
-    }
-    if kind.is_dir() {
-        "directory"
-    } else {
-        "special file"
-    }
 }
 
 fn tmp_path(path: &Path) -> io::Result<PathBuf> {

@@ -10,7 +10,7 @@ pub enum ImportError {
         path: PathBuf,
         source: std::io::Error,
     },
-    #[error("{}: not a regular file ({kind}); give a SUMO XML file", path.display())]
+    #[error("{}: not a regular file (a {kind}); give a SUMO XML file", path.display())]
     NotRegular { path: PathBuf, kind: &'static str },
     #[error("{}: {size} bytes, more than the {limit} bytes a SUMO file may have here", path.display())]
     TooLarge {

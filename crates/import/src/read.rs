@@ -19,14 +19,9 @@ pub fn text(path: &Path) -> Result<String, ImportError> {
     let meta = std::fs::metadata(path).map_err(io)?;
     let ft = meta.file_type();
     if !ft.is_file() {
-        let kind = if ft.is_dir() {
-            "a directory"
-        } else {
-            "a device, FIFO or socket"
-        };
         return Err(ImportError::NotRegular {
             path: path.to_path_buf(),
-            kind,
+            kind: platoonsim_scenario::bounded::describe(&ft),
         });
     }
     if meta.len() > MAX_BYTES {
