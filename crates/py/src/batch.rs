@@ -89,6 +89,15 @@ impl BatchCore {
         py: Python<'_>,
         f: impl Fn(&mut Inner) -> Result<T, String> + Sync,
     ) -> PyResult<Vec<T>> {
+        self.par_indexed(py, |_, w| f(w))
+    }
+
+    /// [`BatchCore::par`] for work that needs the world's index.
+    fn par_indexed<T: Send>(
+        &self,
+        py: Python<'_>,
+        f: impl Fn(usize, &mut Inner) -> Result<T, String> + Sync,
+    ) -> PyResult<Vec<T>> {
         let _busy = self.busy.try_lock().map_err(|_| {
             SimulationError::new_err("the batch is busy in another thread (one thread per batch)")
         })?;
@@ -96,9 +105,10 @@ impl BatchCore {
             self.pool.install(|| {
                 self.worlds
                     .par_iter()
-                    .map(|w| {
+                    .enumerate()
+                    .map(|(i, w)| {
                         let mut g = w.lock().unwrap_or_else(|e| e.into_inner());
-                        f(&mut g)
+                        f(i, &mut g)
                     })
                     .collect()
             })
@@ -375,30 +385,7 @@ impl BatchCore {
             )));
         }
         let rows: Vec<Vec<f64>> = a.outer_iter().map(|r| r.to_vec()).collect();
-        // Each world takes its own row; par_iter keeps world order.
-        let idx: Vec<usize> = (0..self.worlds.len()).collect();
-        let outs = {
-            let _busy = self.busy.try_lock().map_err(|_| {
-                SimulationError::new_err(
-                    "the batch is busy in another thread (one thread per batch)",
-                )
-            })?;
-            let results: Vec<Result<control::Out, String>> = py.detach(|| {
-                self.pool.install(|| {
-                    idx.par_iter()
-                        .map(|&i| {
-                            let mut g = self.worlds[i].lock().unwrap_or_else(|e| e.into_inner());
-                            control::step(&mut g, &spec, &rows[i])
-                        })
-                        .collect()
-                })
-            });
-            results
-                .into_iter()
-                .enumerate()
-                .map(|(i, r)| r.map_err(|e| SimulationError::new_err(format!("world {i}: {e}"))))
-                .collect::<PyResult<Vec<_>>>()?
-        };
+        let outs = self.par_indexed(py, |i, w| control::step(w, &spec, &rows[i]))?;
         control_tuple(py, outs, spec.k)
     }
 
