@@ -53,6 +53,13 @@ pub fn text(path: &Path) -> Result<String, ImportError> {
     })
 }
 
+/// Every file of `paths` read with [`text`], in order, with its path.
+pub fn texts(
+    paths: &[std::path::PathBuf],
+) -> Result<Vec<(std::path::PathBuf, String)>, ImportError> {
+    paths.iter().map(|p| Ok((p.clone(), text(p)?))).collect()
+}
+
 fn too_large(path: &Path, size: u64) -> ImportError {
     ImportError::TooLarge {
         path: path.to_path_buf(),

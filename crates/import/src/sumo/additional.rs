@@ -26,11 +26,7 @@ pub fn read(
     paths: &[PathBuf],
     net: &Net,
 ) -> Result<(Vec<Loop>, BTreeMap<String, usize>), ImportError> {
-    let texts = paths
-        .iter()
-        .map(|p| Ok((p.clone(), crate::read::text(p)?)))
-        .collect::<Result<Vec<_>, ImportError>>()?;
-    parse(&texts, net)
+    parse(&crate::read::texts(paths)?, net)
 }
 
 /// [`read`] for texts already read: (the path for messages, the text), in order.

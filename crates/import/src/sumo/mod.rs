@@ -181,19 +181,10 @@ fn gcd(a: u64, b: u64) -> u64 {
 
 /// Imports a SUMO network with its routes and loops.
 pub fn import(opts: &Options) -> Result<Imported, ImportError> {
-    let read_all = |paths: &[PathBuf]| {
-        paths
-            .iter()
-            .map(|p| Ok((p.clone(), crate::read::text(p)?)))
-            .collect::<Result<Vec<_>, ImportError>>()
-    };
     let net_text = crate::read::text(&opts.net)?;
-    from_texts(
-        opts,
-        &net_text,
-        &read_all(&opts.routes)?,
-        &read_all(&opts.additional)?,
-    )
+    let routes = crate::read::texts(&opts.routes)?;
+    let additional = crate::read::texts(&opts.additional)?;
+    from_texts(opts, &net_text, &routes, &additional)
 }
 
 /// [`import`] for texts already read (`opts`' paths then only name the files in messages):

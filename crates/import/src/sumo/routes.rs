@@ -82,11 +82,7 @@ pub fn read(
     net: &Net,
     notes: &mut Notes,
 ) -> Result<Routes, ImportError> {
-    let texts = paths
-        .iter()
-        .map(|p| Ok((p.clone(), crate::read::text(p)?)))
-        .collect::<Result<Vec<_>, ImportError>>()?;
-    parse(&texts, net, notes)
+    parse(&crate::read::texts(paths)?, net, notes)
 }
 
 /// [`read`] for texts already read: (the path for messages, the text), in order.
