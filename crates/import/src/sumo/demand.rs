@@ -24,10 +24,12 @@ pub enum Exit {
 }
 
 /// A path's entrance and exit on the corridor, or `None` if it never uses the mainline. The
-/// notes collect paths that had to be reduced (keyed so that each kind is said once).
+/// notes collect paths that had to be reduced (keyed so that each kind is said once), naming
+/// edges by `names`.
 pub fn on_corridor(
     c: &Corridor,
     path: &[usize],
+    names: &dyn Fn(usize) -> String,
     reduced: &mut BTreeMap<String, f64>,
     weight: f64,
 ) -> Option<(Entry, Exit)> {
@@ -37,9 +39,9 @@ pub fn on_corridor(
         if k0 > 0 {
             *reduced
                 .entry(format!(
-                    "routes that start on mainline edge {} (not the first) enter at the \
+                    "routes that start on mainline edge \"{}\" (not the first) enter at the \
                      mainline entrance",
-                    path[0]
+                    names(path[0])
                 ))
                 .or_default() += weight;
         }
@@ -65,9 +67,9 @@ pub fn on_corridor(
                 if k1 + 1 < c.chain.len() {
                     *reduced
                         .entry(format!(
-                            "routes that leave the mainline after edge {} other than by an \
+                            "routes that leave the mainline after edge \"{}\" other than by an \
                              off-ramp drive to the end",
-                            path[i1]
+                            names(path[i1])
                         ))
                         .or_default() += weight;
                 }
@@ -78,8 +80,8 @@ pub fn on_corridor(
         if k1 + 1 < c.chain.len() {
             *reduced
                 .entry(format!(
-                    "routes that end on mainline edge {} drive to the end",
-                    path[i1]
+                    "routes that end on mainline edge \"{}\" drive to the end",
+                    names(path[i1])
                 ))
                 .or_default() += weight;
         }
@@ -147,7 +149,7 @@ pub fn series(
         let total: f64 = veh.iter().sum();
         for (path, share) in &d.paths {
             let w = total * share;
-            match on_corridor(c, path, &mut reduced, w) {
+            match on_corridor(c, path, names, &mut reduced, w) {
                 Some(key) => {
                     let slot = od.entry(key).or_insert_with(|| vec![0.0; count]);
                     for (s, v) in slot.iter_mut().zip(&veh) {
@@ -160,8 +162,7 @@ pub fn series(
         }
     }
     for (what, veh) in reduced {
-        // Edge indices in the keys are replaced by their ids for the reader.
-        notes.reduce(format!("{} ({veh:.0} vehicles)", with_ids(&what, names)));
+        notes.reduce(format!("{what} ({veh:.0} vehicles)"));
     }
     if off_corridor > 0.0 {
         notes.drop(format!(
@@ -212,24 +213,6 @@ pub fn series(
         }
     }
     s
-}
-
-/// Replaces "edge N" placeholders (edge indices) by the edge ids.
-fn with_ids(s: &str, names: &dyn Fn(usize) -> String) -> String {
-    let mut out = String::new();
-    let mut rest = s;
-    while let Some(i) = rest.find("edge ") {
-        out.push_str(&rest[..i + 5]);
-        rest = &rest[i + 5..];
-        let digits: String = rest.chars().take_while(|c| c.is_ascii_digit()).collect();
-        if digits.is_empty() {
-            continue;
-        }
-        out.push_str(&format!("\"{}\"", names(digits.parse().unwrap())));
-        rest = &rest[digits.len()..];
-    }
-    out.push_str(rest);
-    out
 }
 
 #[cfg(test)]
