@@ -40,6 +40,7 @@ from gymnasium import spaces
 from gymnasium.vector import AutoresetMode, VectorEnv
 
 import platoonsim
+from platoonsim.vector import world_seeds
 
 FEATURES = 6
 
@@ -236,18 +237,7 @@ class CavControlVecEnv(VectorEnv):
         return obs.reshape(self.num_envs, -1), info
 
     def reset(self, *, seed: int | Sequence[int] | None = None, options: dict[str, Any] | None = None):
-        if seed is None:
-            if self._rng is None:
-                self._rng, _ = gym.utils.seeding.np_random(None)
-            seeds = _seeds(self._rng, self.num_envs)
-        elif isinstance(seed, (int, np.integer)) and not isinstance(seed, bool):
-            self._rng, _ = gym.utils.seeding.np_random(int(seed))
-            seeds = int(seed) + np.arange(self.num_envs)
-        else:
-            seeds = np.asarray(seed)
-            if seeds.shape != (self.num_envs,) or seeds.dtype.kind not in "iu":
-                raise ValueError(f"reset: seed must be an int or {self.num_envs} ints (one per world), got {seed!r}")
-            self._rng, _ = gym.utils.seeding.np_random(int(seeds[0]))
+        self._rng, seeds = world_seeds(seed, self.num_envs, self._rng)
         return self._start(seeds)
 
     def step(self, actions: Any):

@@ -31,6 +31,25 @@ import platoonsim
 from platoonsim.gym import ORGANIZE, PlatoonEnv, observation, reward
 
 
+def world_seeds(
+    seed: int | Sequence[int] | None, n: int, rng: np.random.Generator | None
+) -> tuple[np.random.Generator, np.ndarray]:
+    """The engine seeds of a vector reset and the generator of later episodes' seeds: an int s
+    gives s + i to world i, a sequence one seed per world, None seeds from the generator."""
+    if seed is None:
+        if rng is None:
+            rng, _ = gym.utils.seeding.np_random(None)
+        return rng, rng.integers(0, 2**31 - 1, size=n)
+    if isinstance(seed, (int, np.integer)) and not isinstance(seed, bool):
+        rng, _ = gym.utils.seeding.np_random(int(seed))
+        return rng, int(seed) + np.arange(n)
+    seeds = np.asarray(seed)
+    if seeds.shape != (n,) or seeds.dtype.kind not in "iu":
+        raise ValueError(f"reset: seed must be an int or {n} ints (one per world), got {seed!r}")
+    rng, _ = gym.utils.seeding.np_random(int(seeds[0]))
+    return rng, seeds
+
+
 class PlatoonVecEnv(VectorEnv):
     """``num_envs`` worlds of ``PlatoonEnv``; the other parameters are ``PlatoonEnv``'s, plus
     ``threads`` (the pool's size, default every core)."""
@@ -94,20 +113,7 @@ class PlatoonVecEnv(VectorEnv):
     def reset(
         self, *, seed: int | Sequence[int] | None = None, options: dict[str, Any] | None = None
     ) -> tuple[np.ndarray, dict[str, Any]]:
-        if seed is None:
-            if self._np_random is None:
-                self._np_random, _ = gym.utils.seeding.np_random(None)
-            seeds = self._np_random.integers(0, 2**31 - 1, size=self.num_envs)
-        elif isinstance(seed, (int, np.integer)) and not isinstance(seed, bool):
-            self._np_random, _ = gym.utils.seeding.np_random(int(seed))
-            seeds = int(seed) + np.arange(self.num_envs)
-        else:
-            seeds = np.asarray(seed)
-            if seeds.shape != (self.num_envs,) or seeds.dtype.kind not in "iu":
-                raise ValueError(
-                    f"reset: seed must be an int or {self.num_envs} ints (one per world), got {seed!r}"
-                )
-            self._np_random, _ = gym.utils.seeding.np_random(int(seeds[0]))
+        self._np_random, seeds = world_seeds(seed, self.num_envs, self._np_random)
         return self._start(seeds)
 
     def step(self, actions: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]:
