@@ -1,6 +1,6 @@
 //! Golden digests (issue 18 item 7): "outputs bit-identical" checked by CI, not by hand.
 //!
-//! Three short runs of the `platoonsim` binary, each with the defaults of its scenario
+//! Four short runs of the `platoonsim` binary, each with the defaults of its scenario
 //! otherwise:
 //!
 //! | name | command |
@@ -16,13 +16,18 @@
 //! byte for byte. They are compared with `tests/golden/digests.txt` (one line per run: name,
 //! summary digest, detectors digest; `#` lines are comments).
 //!
+//! Beside the digests, readable copies of each run: `tests/golden/<name>.summary.txt` (the
+//! summary without `wall_seconds`, one `path = value` line per figure, sorted) and
+//! `tests/golden/<name>.detectors.csv` (the header and the cross-section rows), so that a
+//! failure prints which figures moved, stored against now.
+//!
 //! Regenerate after a change that is meant to change the outputs:
 //!
 //! ```text
 //! PLATOONSIM_BLESS=1 cargo test --release -p platoonsim --test golden
 //! ```
 //!
-//! which rewrites the file instead of comparing. A commit that changes the digests must say
+//! which rewrites the digests and the text copies instead of comparing. A commit that changes the digests must say
 //! why the outputs changed (and a commit that claims "outputs bit-identical" must not change
 //! them).
 
@@ -102,10 +107,95 @@ fn summary_text(dir: &Path) -> String {
     out
 }
 
+/// `summary.json` without `wall_seconds` as one `path = value` line per leaf, sorted by
+/// path: the readable copy of the summary digest, so that a failure shows which figures moved.
+fn flat_summary(dir: &Path) -> String {
+    fn walk(v: &serde_json::Value, path: String, out: &mut Vec<String>) {
+        use serde_json::Value;
+        match v {
+            Value::Object(m) => {
+                for (k, x) in m {
+                    let p = if path.is_empty() {
+                        k.clone()
+                    } else {
+                        format!("{path}.{k}")
+                    };
+                    walk(x, p, out);
+                }
+            }
+            Value::Array(a) if !a.is_empty() => {
+                for (i, x) in a.iter().enumerate() {
+                    walk(x, format!("{path}[{i}]"), out);
+                }
+            }
+            other => out.push(format!(
+                "{path} = {}",
+                serde_json::to_string(other).unwrap()
+            )),
+        }
+    }
+    let mut v: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("summary.json")).unwrap()).unwrap();
+    v.as_object_mut().unwrap().remove("wall_seconds");
+    let mut lines = Vec::new();
+    walk(&v, String::new(), &mut lines);
+    lines.sort();
+    lines.iter().map(|l| format!("{l}\n")).collect()
+}
+
+/// The header and the cross-section rows (`lane` = `all`) of `detectors.csv`: the readable
+/// excerpt of the detectors digest.
+fn cross_sections(csv: &str) -> String {
+    let mut lines = csv.lines();
+    let header = lines.next().unwrap_or_default();
+    let lane = header
+        .split(',')
+        .position(|c| c == "lane")
+        .expect("detectors.csv has a lane column");
+    std::iter::once(header)
+        .chain(lines.filter(|l| l.split(',').nth(lane) == Some("all")))
+        .map(|l| format!("{l}\n"))
+        .collect()
+}
+
+/// The lines of `now` that differ from `stored`, side by side (at most 40), or `None`.
+fn line_diff(stored: &str, now: &str) -> Option<String> {
+    let (a, b): (Vec<&str>, Vec<&str>) = (stored.lines().collect(), now.lines().collect());
+    let mut out = Vec::new();
+    for i in 0..a.len().max(b.len()) {
+        let (x, y) = (a.get(i).copied(), b.get(i).copied());
+        if x != y {
+            out.push(format!(
+                "    line {}: stored {}\n    {:>width$}  now    {}",
+                i + 1,
+                x.unwrap_or("(none)"),
+                "",
+                y.unwrap_or("(none)"),
+                width = (i + 1).to_string().len() + 5
+            ));
+        }
+    }
+    let n = out.len();
+    out.truncate(40);
+    (n > 0).then(|| format!("{} line(s) differ:\n{}", n, out.join("\n")))
+}
+
+/// The readable copies of run `name`: (flattened summary, detectors excerpt).
+fn text_files(name: &str) -> (PathBuf, PathBuf) {
+    let dir = digests_file().parent().unwrap().to_path_buf();
+    (
+        dir.join(format!("{name}.summary.txt")),
+        dir.join(format!("{name}.detectors.csv")),
+    )
+}
+
 struct Digest {
     name: &'static str,
     summary: u64,
     detectors: u64,
+    /// The readable copies: the summary flattened, the detectors' cross-section rows.
+    summary_lines: String,
+    detectors_lines: String,
 }
 
 /// The golden runs: name and arguments after `run`.
@@ -151,10 +241,13 @@ fn compute() -> Vec<Digest> {
                     a.extend(["--out", s(&out)]);
                     let o = platoonsim(&a);
                     assert!(o.status.success(), "{name}: {a:?}\n{}", stderr(&o));
+                    let detectors = std::fs::read(out.join("detectors.csv")).unwrap();
                     Digest {
                         name,
                         summary: fnv1a64(summary_text(&out).as_bytes()),
-                        detectors: fnv1a64(&std::fs::read(out.join("detectors.csv")).unwrap()),
+                        detectors: fnv1a64(&detectors),
+                        summary_lines: flat_summary(&out),
+                        detectors_lines: cross_sections(&String::from_utf8(detectors).unwrap()),
                     }
                 })
             })
@@ -198,7 +291,15 @@ fn outputs_match_the_golden_digests() {
     if std::env::var_os(BLESS).is_some_and(|v| !v.is_empty() && v != "0") {
         std::fs::create_dir_all(path.parent().unwrap()).unwrap();
         std::fs::write(&path, render(&digests)).unwrap();
-        eprintln!("{BLESS}: wrote {}", path.display());
+        for d in &digests {
+            let (sum, det) = text_files(d.name);
+            std::fs::write(sum, &d.summary_lines).unwrap();
+            std::fs::write(det, &d.detectors_lines).unwrap();
+        }
+        eprintln!(
+            "{BLESS}: wrote {} and the runs' text copies",
+            path.display()
+        );
         return;
     }
     let stored = std::fs::read_to_string(&path).unwrap_or_else(|e| {
@@ -221,17 +322,36 @@ fn outputs_match_the_golden_digests() {
             format!("{:016x}", d.summary),
             format!("{:016x}", d.detectors),
         );
+        let (sum_file, det_file) = text_files(d.name);
+        let read = |p: &Path| std::fs::read_to_string(p).unwrap_or_default();
         if &now_sum != sum {
             changed.push(format!(
-                "{}: summary.json (without wall_seconds) changed: stored {sum}, now {now_sum}",
-                d.name
+                "{}: summary.json (without wall_seconds) changed: stored {sum}, now {now_sum}; {}",
+                d.name,
+                line_diff(&read(&sum_file), &d.summary_lines)
+                    .unwrap_or_else(|| format!("{} is out of date", sum_file.display()))
             ));
         }
         if &now_det != det {
             changed.push(format!(
-                "{}: detectors.csv changed: stored {det}, now {now_det}",
-                d.name
+                "{}: detectors.csv changed: stored {det}, now {now_det}; cross-sections: {}",
+                d.name,
+                line_diff(&read(&det_file), &d.detectors_lines)
+                    .unwrap_or_else(|| "equal (a per-lane row changed)".into())
             ));
+        }
+        // The text copies are part of the golden state: stale copies fail too.
+        for (file, now) in [
+            (&sum_file, &d.summary_lines),
+            (&det_file, &d.detectors_lines),
+        ] {
+            if &read(file) != now {
+                changed.push(format!(
+                    "{}: {} differs from this run",
+                    d.name,
+                    file.display()
+                ));
+            }
         }
     }
     assert!(
