@@ -4,8 +4,8 @@
 # target/py-venv, scripts/python-tests.sh), then the viewer's browser tests (tests/browser:
 # headless Chromium from Debian's package driven by playwright-core). README and .ci/run call
 # this. With --install it first installs what the tests need (Debian's chromium, the npm
-# packages of tests/browser/package-lock.json, the Python packages of .ci/python-deps, the
-# venv); without it a missing browser, venv or package skips those tests, except under
+# packages of tests/browser/package-lock.json, the venv target/py-venv with the Python packages
+# of .ci/python-deps); without it a missing browser, venv or package skips those tests, except under
 # CI=true, where it fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,9 +16,13 @@ if [ "${1:-}" = "--install" ]; then
         DEBIAN_FRONTEND=noninteractive apt-get install -y chromium
     fi
     (cd tests/browser && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund)
-    # The Python packages that tests drive: HyperQueue (the real-scheduler test), pyarrow
-    # (Parquet read back).
+    # The Python packages that tests drive (HyperQueue, pyarrow, SUMO's netconvert), into the
+    # venv target/py-venv.
     bash .ci/python-deps
+fi
+# The tests call python3, hq and netconvert: those of the venv when there is one.
+if [ -x target/py-venv/bin/python ]; then
+    export PATH="$PWD/target/py-venv/bin:$PATH"
 fi
 
 echo "== cargo test --workspace --release"
