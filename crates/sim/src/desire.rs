@@ -6,7 +6,7 @@ use crate::decide::View;
 use crate::decide::{v_des_of, Desire};
 use crate::network::NO_LANE;
 use crate::organize::Advice;
-use crate::sense::Neighbours;
+use crate::state::Neighbours;
 use crate::vehicle::{Kind, Vehicle, NEVER, NO_EXIT};
 use platoonsim_model::bounded;
 use platoonsim_model::driver;

@@ -11,10 +11,10 @@
 //! and the trip and trajectory records are called through [`Observer`] (statically, without a
 //! virtual call).
 
-use crate::summary::CollisionEvent;
 use crate::vehicle::{Kind, ModeLabel, Vehicle};
 use crate::Simulation;
 use platoonsim_model::cav::CavMode;
+use serde::Serialize;
 
 /// Why a vehicle changed lanes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -147,4 +147,45 @@ impl<T: std::any::Any> AsAny for T {
     fn as_any(&self) -> &dyn std::any::Any {
         self
     }
+}
+
+/// How a collision happened.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CollisionKind {
+    /// A follower's front passed its leader's rear in the same lane.
+    RearEnd,
+    /// A vehicle's front passed the end of its lane (an acceleration lane or a dropped lane).
+    LaneEnd,
+}
+
+impl CollisionKind {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            CollisionKind::RearEnd => "rear-end",
+            CollisionKind::LaneEnd => "lane-end",
+        }
+    }
+}
+
+/// One collision (`collisions.csv`): when and where it started, and who was involved.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CollisionEvent {
+    /// Simulated time at the end of the step in which it happened (s).
+    pub t_s: f64,
+    pub kind: CollisionKind,
+    /// Lane counted from the right, 1 = rightmost (the numbering of `detectors.csv`).
+    pub lane: u32,
+    /// Front position of the colliding vehicle (output coordinate, m).
+    pub x_m: f64,
+    /// The colliding (following) vehicle: id, "human" or "cav", speed (m/s).
+    pub vehicle: u64,
+    pub vehicle_kind: &'static str,
+    pub v_mps: f64,
+    /// The vehicle it ran into (none for a lane end).
+    pub other: Option<u64>,
+    pub other_kind: Option<&'static str>,
+    pub other_v_mps: Option<f64>,
+    /// How far the fronts/rear overlap (or the front is past the lane end), m.
+    pub overlap_m: f64,
 }

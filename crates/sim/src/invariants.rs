@@ -4,7 +4,7 @@
 use crate::error::SimError;
 use crate::safety::Safety;
 use crate::state::{Clock, Traffic};
-use crate::summary::CollisionKind;
+use crate::events::CollisionKind;
 use crate::vehicle::Vehicle;
 
 /// A rear-end collision starts when the pair (follower in slot `f`, leader in slot `ld`)

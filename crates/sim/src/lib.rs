@@ -37,6 +37,7 @@ mod sense;
 mod sim;
 pub mod snapshot;
 mod state;
+mod steer;
 pub mod summary;
 #[cfg(test)]
 mod tests_safe_gaps;

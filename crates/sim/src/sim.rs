@@ -12,36 +12,12 @@ use crate::organize::{self, Organizer};
 use crate::record::{Recorder, Recording, TrajectoryRecorder};
 use crate::safety::Safety;
 use crate::state::{Clock, Control, Detectors, Measures, RoadState, Scratch, Traffic, Watch};
+use crate::events::CollisionKind;
 use crate::summary::{Output, Summary};
 use crate::vehicle::Vehicle;
-use platoonsim_model::lanechange::Side;
 
 /// Steps between two renumberings of the vehicle slots (`Simulation::compact`).
 const COMPACT_EVERY_STEPS: u64 = 600;
-
-/// Per-vehicle result of the decide phase (indexed by slot).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Decision {
-    pub accel: f64,
-    pub mode: crate::vehicle::Mode,
-    pub family: platoonsim_model::cav::Family,
-    /// The control regime of an automated CAV's controller in this step (`None`: manual).
-    pub regime: Option<platoonsim_model::cav::CavMode>,
-    /// Effective CAV time gap after this step (spec 3.5 transitions).
-    pub time_gap: f64,
-    /// Lane change to execute after integration, and why.
-    pub change: Option<Side>,
-    pub why: crate::events::LaneChangeReason,
-    /// An automated CAV hands over to its driver in this step: relaxation starts (spec 4.6).
-    pub takeover: bool,
-    /// The change is a cooperative one, made under automation (spec 9.2).
-    pub coop: bool,
-    /// Spec 9.3: AEB intervenes (the automation's demand exceeds its braking bound); an
-    /// automated CAV behind a CAV runs ACC for want of V2V beacons.
-    pub auto: crate::vehicle::AutoFlags,
-    /// The change is mandatory with γ ≥ 1: the safe rule's harder bound (spec 9.1).
-    pub urgent: bool,
-}
 
 /// The whole simulation state.
 pub struct Simulation {
@@ -291,7 +267,7 @@ impl Simulation {
     }
 
     /// The collisions so far, in time order.
-    pub fn collision_events(&self) -> &[crate::summary::CollisionEvent] {
+    pub fn collision_events(&self) -> &[crate::events::CollisionEvent] {
         &self.measures.safety.collisions.events
     }
 
@@ -414,6 +390,54 @@ impl Simulation {
             self.notify();
         }
         checked
+    }
+
+    /// Phase 3: the decided acceleration bounded by the vehicle's emergency limit
+    /// (`safety.rs`), then v' = max(0, v + aΔt); x' = x + ½(v + v')Δt, or the stopping point
+    /// when the speed would turn negative. A vehicle whose front passes the end of its lane
+    /// has collided with it: the event is recorded and the vehicle leaves the road.
+    pub(crate) fn integrate(&mut self) {
+        crate::integrate::move_vehicles(
+            &self.clock,
+            &self.road.geom,
+            &mut self.traffic,
+            &mut self.scratch,
+            &mut self.measures,
+        );
+        if self.watch.observing {
+            self.log_brakings();
+        }
+        if !self.scratch.crashed.is_empty() {
+            self.remove_crashed();
+        }
+    }
+
+    /// The vehicles that ran past the end of their lane in this step: one collision each, and
+    /// they leave the road (their trip ends as `collided`). Removing them keeps every lane
+    /// sorted.
+    #[cold]
+    #[inline(never)]
+    fn remove_crashed(&mut self) {
+        let t = crate::record::step_time(self.clock.step + 1, self.clock.dt);
+        let origin = self.origin_m();
+        for (s, l, w) in std::mem::take(&mut self.scratch.crashed) {
+            let v = &self.traffic.vehicles[s as usize];
+            self.measures.safety.collide(
+                t,
+                CollisionKind::LaneEnd,
+                l as usize,
+                v.x + origin,
+                v,
+                None,
+                v.x - w,
+            );
+            if self.watch.observing {
+                self.log_collisions();
+            }
+            self.traffic.lanes[l as usize].retain(|&o| o != s);
+            self.leave(s, Departure::Collided);
+            self.traffic.free.push(s);
+        }
     }
 
     /// Run to the end and produce the outputs.

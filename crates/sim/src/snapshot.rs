@@ -3,7 +3,7 @@
 //! whole arrays per step (the Python package, docs/python.md); they never change the
 //! simulation.
 
-use crate::summary::DetectorRecord;
+use crate::detector::DetectorRecord;
 use crate::vehicle::{ModeLabel, NEVER};
 use crate::Simulation;
 use platoonsim_model::cav::CavMode;
