@@ -8,6 +8,7 @@ use crate::network::NO_LANE;
 use crate::organize::Advice;
 use crate::state::Neighbours;
 use crate::vehicle::{Kind, Vehicle, NEVER, NO_EXIT};
+use crate::view::VehicleView;
 use platoonsim_model::bounded;
 use platoonsim_model::driver;
 use platoonsim_model::lanechange::{self as lcm, Side};
@@ -64,7 +65,7 @@ impl View<'_> {
     ) -> Option<Desire> {
         let advice =
             self.organizer
-                .advise(v, self.clock.step as f64 * self.clock.dt, &self.road.geom);
+                .advise(VehicleView::new(v), self.clock.step as f64 * self.clock.dt, &self.road.geom);
         let avoid = match advice {
             Advice::Avoid { lane, from_m } => Some((lane, from_m)),
             _ => None,
@@ -119,7 +120,7 @@ impl View<'_> {
         }
         match self
             .organizer
-            .advise(v, self.clock.step as f64 * self.clock.dt, &self.road.geom)
+            .advise(VehicleView::new(v), self.clock.step as f64 * self.clock.dt, &self.road.geom)
         {
             Advice::Join { lane, .. } => driver::toward(v.lane, lane),
             _ => None,

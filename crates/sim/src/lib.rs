@@ -42,6 +42,7 @@ pub mod summary;
 #[cfg(test)]
 mod tests_safe_gaps;
 pub mod vehicle;
+pub mod view;
 mod yielding;
 
 pub use command::Command;
@@ -51,7 +52,7 @@ pub use config::{
 };
 pub use energy::{EnergyMeter, EnergySummary, TripEnergy};
 pub use error::SimError;
-pub use events::{Departure, Event, LaneChangeReason, Observer};
+pub use events::{Departure, Event, LaneChangeReason, Observer, StepView};
 pub use organize::{Advice, LaneChoice, Organizer, StrategyKind, UnknownStrategy, STRATEGIES};
 pub use platoonsim_model::lanechange::Side;
 pub use record::{Queued, Recording, TrajectoryPoint, TrajectorySpec, Trip, TripStatus};
@@ -62,7 +63,8 @@ pub use summary::{
     BrakingPeaks, CollisionEvent, CollisionKind, CountedMeasure, CountedMeasures, DetectorRecord,
     Output, Summary,
 };
-pub use vehicle::{Kind, ModeLabel, Vehicle};
+pub use vehicle::{Kind, Mode, ModeLabel};
+pub use view::VehicleView;
 
 /// Progress callback: called with (simulated seconds so far, total seconds) every simulated minute.
 pub type Progress<'a> = &'a mut dyn FnMut(f64, f64);

@@ -3,7 +3,7 @@
 use crate::config::{Config, DetectorKind};
 use crate::detector::Detector;
 use crate::error::SimError;
-use crate::events::{Departure, Event, Observer};
+use crate::events::{Departure, Event, Observer, StepView};
 use crate::here::HereTables;
 use crate::insert::Entrance;
 use crate::metrics::Metrics;
@@ -14,7 +14,7 @@ use crate::safety::Safety;
 use crate::state::{Clock, Control, Detectors, Measures, RoadState, Scratch, Traffic, Watch};
 use crate::events::CollisionKind;
 use crate::summary::{Output, Summary};
-use crate::vehicle::Vehicle;
+use crate::view::VehicleView;
 
 /// Steps between two renumberings of the vehicle slots (`Simulation::compact`).
 const COMPACT_EVERY_STEPS: u64 = 600;
@@ -243,12 +243,11 @@ impl Simulation {
         &self.cfg
     }
 
-    /// Vehicles on the road, lane by lane (0 = rightmost), front first.
-    pub fn lane_vehicles(&self, lane: usize) -> impl Iterator<Item = &Vehicle> + '_ {
-        self.traffic.lanes[lane]
-            .iter()
-            .map(move |&s| &self.traffic.vehicles[s as usize])
+    /// Vehicles on the road in `lane` (0 = rightmost), front first.
+    pub fn lane_vehicles(&self, lane: usize) -> impl Iterator<Item = VehicleView<'_>> + '_ {
+        crate::view::lane(&self.traffic.lanes[lane], &self.traffic.vehicles)
     }
+
 
     /// Number of vehicles on the road.
     pub fn vehicles_in_network(&self) -> usize {
@@ -372,13 +371,13 @@ impl Simulation {
             .as_ref()
             .is_some_and(|t| t.due(self.clock.step))
         {
-            let mut rec = std::mem::take(&mut self.rec);
-            rec.on_step(self, &[]);
-            self.rec = rec;
+            let origin_m = self.origin_m();
+            self.rec
+                .on_step(&step_view(&self.clock, origin_m, &self.traffic, &[]));
         }
-        if let Some(mut e) = self.energy.take() {
-            e.on_step(self, &[]);
-            self.energy = Some(e);
+        if let Some(e) = self.energy.as_mut() {
+            let origin_m = self.cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m);
+            e.on_step(&step_view(&self.clock, origin_m, &self.traffic, &[]));
         }
         let checked = crate::invariants::check_invariants(
             &self.clock,
@@ -627,12 +626,15 @@ impl Simulation {
                 }
             }
         }
-        let mut observers = std::mem::take(&mut self.watch.observers);
-        for o in &mut observers {
-            o.on_step(self, &self.watch.events);
+        let Watch {
+            observers, events, ..
+        } = &mut self.watch;
+        let origin_m = self.cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m);
+        let view = step_view(&self.clock, origin_m, &self.traffic, events);
+        for o in observers.iter_mut() {
+            o.on_step(&view);
         }
-        self.watch.observers = observers;
-        self.watch.events.clear();
+        events.clear();
     }
 
     /// At the end of an aggregation interval: the detectors' broadcasts to the organizer
@@ -680,4 +682,21 @@ impl Simulation {
         self.traffic.free.clear();
         self.scratch.changed_this_step.fill(u64::MAX);
     }
+}
+
+/// The state after the last step as an observer sees it, with `events` as its events.
+fn step_view<'a>(
+    clock: &Clock,
+    origin_m: f64,
+    traffic: &'a Traffic,
+    events: &'a [Event],
+) -> StepView<'a> {
+    StepView::new(
+        clock.step,
+        crate::record::step_time(clock.step, clock.dt),
+        origin_m,
+        &traffic.lanes,
+        &traffic.vehicles,
+        events,
+    )
 }

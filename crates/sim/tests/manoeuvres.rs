@@ -24,7 +24,7 @@ fn run(sim: &mut Simulation, secs: f64, mut watch: impl FnMut(&Simulation)) {
 /// Bumper-to-bumper gap from `follower` to `leader` (m).
 fn gap(sim: &Simulation, leader: u64, follower: u64) -> f64 {
     let (l, f) = (sim.vehicle(leader).unwrap(), sim.vehicle(follower).unwrap());
-    l.x - l.driver.human.length_m - f.x
+    l.x() - l.length_m() - f.x()
 }
 
 #[test]
@@ -36,14 +36,14 @@ fn a_driver_closing_on_a_slow_vehicle_settles_behind_it_without_hard_braking() {
     let fast = sim.place_vehicle(Kind::Human, 0, 1100.0, 30.0).unwrap();
     let mut hardest: f64 = 0.0;
     run(&mut sim, 120.0, |s| {
-        hardest = hardest.min(s.vehicle(fast).unwrap().a)
+        hardest = hardest.min(s.vehicle(fast).unwrap().a())
     });
     let f = sim.vehicle(fast).unwrap();
     // It matches the slow speed, behind it at a gap between the jam gap and a 3 s headway,
     // having braked no harder than the model's comfortable bound b = 4 m/s².
-    assert!((f.v - 15.0).abs() < 0.3, "speed {}", f.v);
+    assert!((f.v() - 15.0).abs() < 0.3, "speed {}", f.v());
     let g = gap(&sim, slow, fast);
-    assert!(g > f.driver.human.jam_gap_m && g < 3.0 * 15.0, "gap {g} m");
+    assert!(g > f.driver_params().jam_gap_m && g < 3.0 * 15.0, "gap {g} m");
     assert!(hardest >= -4.0, "hardest braking {hardest} m/s²");
     assert_eq!(sim.collisions(), 0);
 }
@@ -59,14 +59,14 @@ fn a_cav_behind_a_cav_closes_to_its_cacc_time_gap() {
     let f = sim.vehicle(follow).unwrap();
     // It joined the leader's string and follows at its own CACC gap t_C (the time gap of the
     // gap it keeps, bumper to bumper, at the common speed).
-    assert_eq!(f.cacc.pred, lead, "the follower is in the leader's string");
-    let t = gap(&sim, lead, follow) / f.v;
+    assert_eq!(f.joined(), Some(lead), "the follower is in the leader's string");
+    let t = gap(&sim, lead, follow) / f.v();
     assert!(
-        (t - f.cacc.gap_s).abs() < 0.1,
+        (t - f.cacc_gap_s()).abs() < 0.1,
         "time gap {t:.3} s against t_C {:.3} s",
-        f.cacc.gap_s
+        f.cacc_gap_s()
     );
-    assert!((f.v - 25.0).abs() < 0.1, "speed {}", f.v);
+    assert!((f.v() - 25.0).abs() < 0.1, "speed {}", f.v());
 }
 
 #[test]
@@ -89,10 +89,10 @@ fn a_cav_makes_room_for_a_driver_that_must_move_in_ahead_of_it() {
     let mut hardest: f64 = 0.0;
     let mut moved_in = None;
     run(&mut sim, 30.0, |s| {
-        hardest = hardest.min(s.vehicle(cav).unwrap().a);
+        hardest = hardest.min(s.vehicle(cav).unwrap().a());
         let (h, c) = (s.vehicle(human).unwrap(), s.vehicle(cav).unwrap());
-        if moved_in.is_none() && h.lane == 0 {
-            moved_in = Some((s.time_s(), h.x - h.driver.human.length_m - c.x));
+        if moved_in.is_none() && h.lane() == 0 {
+            moved_in = Some((s.time_s(), h.x() - h.length_m() - c.x()));
         }
     });
     let (t, g) = moved_in.expect("the driver never moved right");
@@ -125,10 +125,10 @@ fn a_stopped_vehicle_ahead_brings_a_follower_to_a_stop_behind_it() {
     let driver = sim.place_vehicle(Kind::Human, 0, 1850.0, 30.0).unwrap();
     let mut hardest: f64 = 0.0;
     run(&mut sim, 60.0, |s| {
-        hardest = hardest.min(s.vehicle(driver).unwrap().a)
+        hardest = hardest.min(s.vehicle(driver).unwrap().a())
     });
     let d = sim.vehicle(driver).unwrap();
-    assert!(d.v < 0.1, "still at {} m/s", d.v);
+    assert!(d.v() < 0.1, "still at {} m/s", d.v());
     let g = gap(&sim, stopped, driver);
     assert!(g > 0.0 && g < 10.0, "stopped {g} m behind");
     assert!(hardest >= -9.0, "braked at {hardest} m/s²");

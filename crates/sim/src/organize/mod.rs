@@ -21,7 +21,7 @@ mod pd;
 use crate::config::{Config, PdConfig};
 use crate::detector::Broadcast;
 use crate::network::Geometry;
-use crate::vehicle::Vehicle;
+use crate::view::VehicleView;
 use std::fmt;
 use std::str::FromStr;
 
@@ -69,7 +69,7 @@ pub trait Organizer: Send + fmt::Debug {
     /// scenario's detectors.
     fn on_broadcasts(&mut self, _road: &Geometry, _broadcasts: &[(f64, Broadcast)]) {}
     /// The advice for vehicle `v` at simulated time `t_s` (the step start).
-    fn advise(&self, v: &Vehicle, t_s: f64, road: &Geometry) -> Advice;
+    fn advise(&self, v: VehicleView<'_>, t_s: f64, road: &Geometry) -> Advice;
 }
 
 /// One registered strategy.
