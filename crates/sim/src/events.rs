@@ -207,9 +207,7 @@ impl<'a> StepView<'a> {
     /// Every vehicle on the road, lane by lane (0 = rightmost), front first within a lane.
     pub fn vehicles(&self) -> impl Iterator<Item = VehicleView<'a>> + 'a {
         let vehicles = self.vehicles;
-        self.lanes
-            .iter()
-            .flat_map(move |l| view::lane(l, vehicles))
+        self.lanes.iter().flat_map(move |l| view::lane(l, vehicles))
     }
 
     /// The number of vehicles on the road.

@@ -1,6 +1,7 @@
 //! Phase 3 (integrate): every vehicle moves by its decided acceleration, bounded by its
 //! emergency limit (`safety.rs`); a vehicle past the end of its lane is a lane-end collision
-//! and leaves the road.
+//! and leaves the road (its removal, which reaches the records and the observers, is the cold
+//! tail of `Simulation::integrate` in `sim.rs`, so that this phase does not import the step).
 
 use crate::network::Geometry;
 use crate::safety::Counted;

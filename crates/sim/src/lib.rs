@@ -4,7 +4,8 @@
 //! [`Simulation::step`], whose doc lists the phases), [`Output`]/[`Summary`]/[`DetectorRecord`]
 //! (what a run produces), and [`run`] (config → output, single-threaded and deterministic).
 //! Optional per-vehicle records: [`Recording`] → [`Trip`]s and [`TrajectoryPoint`]s
-//! ([`run_recording`], module `record`).
+//! ([`run_recording`], module `record`). What a library user reads of the state: vehicles as
+//! [`VehicleView`]s (module `view`), and after each step an [`Observer`]'s [`StepView`].
 //!
 //! Modules by phase: `sense` (neighbours, platoons), `decide` (lane-change decisions and
 //! accelerations), `execute` (lane changes), `insert` (arrivals, insertion), `detector`,

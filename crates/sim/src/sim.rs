@@ -3,6 +3,7 @@
 use crate::config::{Config, DetectorKind};
 use crate::detector::Detector;
 use crate::error::SimError;
+use crate::events::CollisionKind;
 use crate::events::{Departure, Event, Observer, StepView};
 use crate::here::HereTables;
 use crate::insert::Entrance;
@@ -12,7 +13,6 @@ use crate::organize::{self, Organizer};
 use crate::record::{Recorder, Recording, TrajectoryRecorder};
 use crate::safety::Safety;
 use crate::state::{Clock, Control, Detectors, Measures, RoadState, Scratch, Traffic, Watch};
-use crate::events::CollisionKind;
 use crate::summary::{Output, Summary};
 use crate::view::VehicleView;
 
@@ -247,7 +247,6 @@ impl Simulation {
     pub fn lane_vehicles(&self, lane: usize) -> impl Iterator<Item = VehicleView<'_>> + '_ {
         crate::view::lane(&self.traffic.lanes[lane], &self.traffic.vehicles)
     }
-
 
     /// Number of vehicles on the road.
     pub fn vehicles_in_network(&self) -> usize {

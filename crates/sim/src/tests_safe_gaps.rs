@@ -44,7 +44,11 @@ fn the_safe_rule_refuses_a_cut_in_that_the_published_rule_accepts() {
     for kind in [Kind::Human, Kind::Cav] {
         let (mut published, c, _) = cut_in(GapRule::Published, kind, 30.0);
         published.step().unwrap();
-        assert_eq!(find(&published, c).lane(), 1, "{kind:?}: published: at once");
+        assert_eq!(
+            find(&published, c).lane(),
+            1,
+            "{kind:?}: published: at once"
+        );
         let (mut safe, c, f) = cut_in(GapRule::Safe, kind, 30.0);
         safe.step().unwrap();
         assert_eq!(find(&safe, c).lane(), 0, "{kind:?}: safe: refused");

@@ -30,13 +30,13 @@ fn followers(sim: &Simulation) -> Vec<(u64, bool, f64, f64)> {
         let vs: Vec<_> = sim.lane_vehicles(lane).collect();
         for w in vs.windows(2) {
             let (l, f) = (w[0], w[1]);
-            if l.is_cav() && f.is_cav() && l.rear() - f.x() < 100.0 && f.automated() && f.x() > 1000.0 {
-                out.push((
-                    f.id(),
-                    f.cacc_fallback(),
-                    f.time_gap_s(),
-                    f.cacc_gap_s(),
-                ));
+            if l.is_cav()
+                && f.is_cav()
+                && l.rear() - f.x() < 100.0
+                && f.automated()
+                && f.x() > 1000.0
+            {
+                out.push((f.id(), f.cacc_fallback(), f.time_gap_s(), f.cacc_gap_s()));
             }
         }
     }

@@ -187,7 +187,12 @@ impl Organizer for Swap {
     fn name(&self) -> &str {
         "swap"
     }
-    fn advise(&self, v: VehicleView<'_>, _t_s: f64, _road: &platoonsim_sim::network::Geometry) -> Advice {
+    fn advise(
+        &self,
+        v: VehicleView<'_>,
+        _t_s: f64,
+        _road: &platoonsim_sim::network::Geometry,
+    ) -> Advice {
         let lane = if v.id() == self.a {
             1
         } else if v.id() == self.b {

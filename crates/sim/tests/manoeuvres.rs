@@ -43,7 +43,10 @@ fn a_driver_closing_on_a_slow_vehicle_settles_behind_it_without_hard_braking() {
     // having braked no harder than the model's comfortable bound b = 4 m/s².
     assert!((f.v() - 15.0).abs() < 0.3, "speed {}", f.v());
     let g = gap(&sim, slow, fast);
-    assert!(g > f.driver_params().jam_gap_m && g < 3.0 * 15.0, "gap {g} m");
+    assert!(
+        g > f.driver_params().jam_gap_m && g < 3.0 * 15.0,
+        "gap {g} m"
+    );
     assert!(hardest >= -4.0, "hardest braking {hardest} m/s²");
     assert_eq!(sim.collisions(), 0);
 }
@@ -59,7 +62,11 @@ fn a_cav_behind_a_cav_closes_to_its_cacc_time_gap() {
     let f = sim.vehicle(follow).unwrap();
     // It joined the leader's string and follows at its own CACC gap t_C (the time gap of the
     // gap it keeps, bumper to bumper, at the common speed).
-    assert_eq!(f.joined(), Some(lead), "the follower is in the leader's string");
+    assert_eq!(
+        f.joined(),
+        Some(lead),
+        "the follower is in the leader's string"
+    );
     let t = gap(&sim, lead, follow) / f.v();
     assert!(
         (t - f.cacc_gap_s()).abs() < 0.1,
