@@ -5,7 +5,7 @@
 use platoonsim_sim::detector::Broadcast;
 use platoonsim_sim::network::Geometry;
 use platoonsim_sim::VehicleView;
-use platoonsim_sim::{Advice, Event, Observer, Organizer, Simulation, StepView};
+use platoonsim_sim::{Advice, Event, Observer, Organizer, StepView};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 

@@ -272,7 +272,7 @@ impl Vehicle {
 }
 
 /// The driving mode as the trajectory records give it: the [`Mode`] variant, and whether a
-/// CAV's automation is engaged ([`Vehicle::automated`]; never for a human driver).
+/// CAV's automation is engaged ([`crate::VehicleView::automated`]; never for a human driver).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ModeLabel {
     Cf,
