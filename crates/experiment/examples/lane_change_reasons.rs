@@ -24,8 +24,8 @@ pub struct LaneChangeCounter {
 }
 
 impl Observer for LaneChangeCounter {
-    fn on_step(&mut self, _sim: &Simulation, events: &[Event]) {
-        for e in events {
+    fn on_step(&mut self, step: &platoonsim_sim::StepView<'_>) {
+        for e in step.events() {
             match *e {
                 Event::Entered { t_s, id, kind, .. } if t_s >= self.from_s => {
                     self.measured.insert(id);

@@ -27,8 +27,8 @@ fn homogeneous(penetration: f64, demand: f64, duration_s: f64, seed: u64, set: &
 struct Log(Vec<Event>);
 
 impl Observer for Log {
-    fn on_step(&mut self, _: &Simulation, events: &[Event]) {
-        self.0.extend_from_slice(events);
+    fn on_step(&mut self, step: &platoonsim_sim::StepView<'_>) {
+        self.0.extend_from_slice(step.events());
     }
 }
 
@@ -44,11 +44,11 @@ fn a_commanded_lane_change_happens_when_and_where_commanded() {
     sim.observe(Box::new(Log::default())).unwrap();
     run_until(&mut sim, 300.0);
     // A driver in the rightmost lane with nobody within 150 m in the lane to its left.
-    let free = |x: f64, sim: &Simulation| sim.lane_vehicles(1).all(|o| (o.x - x).abs() > 80.0);
+    let free = |x: f64, sim: &Simulation| sim.lane_vehicles(1).all(|o| (o.x() - x).abs() > 80.0);
     let (id, x0, v0) = sim
         .lane_vehicles(0)
-        .filter(|v| v.x > 1000.0 && v.x < 4000.0 && free(v.x, &sim))
-        .map(|v| (v.id, v.x, v.v))
+        .filter(|v| v.x() > 1000.0 && v.x() < 4000.0 && free(v.x(), &sim))
+        .map(|v| (v.id(), v.x(), v.v()))
         .next()
         .expect("a driver with a free lane beside it");
     sim.command(id, Command::ChangeLane { side: Side::Left })
@@ -82,7 +82,7 @@ fn a_commanded_lane_change_happens_when_and_where_commanded() {
     sim.step().unwrap();
     assert!(sim.commanded().next().is_none());
     // The vehicle is in lane 2 (index 1) now, and a second command to the left, too.
-    assert!(sim.lane_vehicles(1).any(|v| v.id == id));
+    assert!(sim.lane_vehicles(1).any(|v| v.id() == id));
     assert!(sim.command(id, Command::Release).is_ok());
     assert!(sim
         .command(
@@ -120,11 +120,11 @@ fn shock(seed: u64) -> (f64, f64) {
     for lane in 0..1 {
         let v = sim
             .lane_vehicles(lane)
-            .find(|v| v.x <= X_STOP)
+            .find(|v| v.x() <= X_STOP)
             .expect("traffic in every lane");
-        stopped.push((v.id, v.x));
+        stopped.push((v.id(), v.x()));
         sim.command(
-            v.id,
+            v.id(),
             Command::Accelerate {
                 accel_mps2: -4.0,
                 steps: 1500,
@@ -217,7 +217,7 @@ fn a_capped_acceleration_never_exceeds_the_models_and_never_collides() {
         let c = homogeneous(0.5, 1800.0, 400.0, 3, &["road.lanes=1"]);
         let mut sim = Simulation::new(c).unwrap();
         run_until(&mut sim, 300.0);
-        let ids: Vec<u64> = sim.lane_vehicles(0).map(|v| v.id).collect();
+        let ids: Vec<u64> = sim.lane_vehicles(0).map(|v| v.id()).collect();
         for id in ids {
             let (accel_mps2, steps) = (3.0, 600);
             let cmd = if capped {
@@ -230,7 +230,7 @@ fn a_capped_acceleration_never_exceeds_the_models_and_never_collides() {
         let mut max_a: f64 = f64::NEG_INFINITY;
         while !sim.finished() {
             sim.step().unwrap();
-            max_a = sim.lane_vehicles(0).map(|v| v.a).fold(max_a, f64::max);
+            max_a = sim.lane_vehicles(0).map(|v| v.a()).fold(max_a, f64::max);
         }
         (sim.finish(0.0).summary.collisions, max_a)
     };

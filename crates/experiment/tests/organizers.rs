@@ -6,7 +6,8 @@
 
 use platoonsim_scenario::{load_with, Overrides, StrategyKind};
 use platoonsim_sim::network::Geometry;
-use platoonsim_sim::vehicle::{Kind, Vehicle};
+use platoonsim_sim::vehicle::Kind;
+use platoonsim_sim::VehicleView;
 use platoonsim_sim::{
     run_recording, Advice, Config, Organizer, Output, Recording, Simulation, TrajectorySpec,
 };
@@ -123,9 +124,9 @@ impl Organizer for MiddleLane {
     fn name(&self) -> &str {
         "middle-lane"
     }
-    fn advise(&self, v: &Vehicle, _t_s: f64, road: &Geometry) -> Advice {
-        match road.leftmost_through(v.x) {
-            Some(left) if v.x > 1000.0 && left > 0 => Advice::Join {
+    fn advise(&self, v: VehicleView<'_>, _t_s: f64, road: &Geometry) -> Advice {
+        match road.leftmost_through(v.x()) {
+            Some(left) if v.x() > 1000.0 && left > 0 => Advice::Join {
                 lane: left - 1,
                 strength: 1.0,
             },
@@ -216,11 +217,11 @@ struct SafetyCounter {
 }
 
 impl platoonsim_sim::Observer for SafetyCounter {
-    fn on_step(&mut self, sim: &Simulation, events: &[platoonsim_sim::Event]) {
+    fn on_step(&mut self, step: &platoonsim_sim::StepView<'_>) {
         use platoonsim_sim::{Event, ModeLabel};
-        for e in events {
+        for e in step.events() {
             assert!(e.t_s() >= self.last_t, "events in time order");
-            assert_eq!(e.t_s(), sim.time_s(), "stamped with the end of the step");
+            assert_eq!(e.t_s(), step.time_s(), "stamped with the end of the step");
             self.last_t = e.t_s();
             match e {
                 Event::HardBraking { t_s, kind, .. } if *t_s > self.warmup_s => {

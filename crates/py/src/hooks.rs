@@ -4,8 +4,8 @@
 
 use platoonsim_sim::detector::Broadcast;
 use platoonsim_sim::network::Geometry;
-use platoonsim_sim::vehicle::Vehicle;
-use platoonsim_sim::{Advice, Event, Observer, Organizer, Simulation};
+use platoonsim_sim::VehicleView;
+use platoonsim_sim::{Advice, Event, Observer, Organizer, StepView};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 
@@ -72,8 +72,8 @@ impl Organizer for TableOrganizer {
     fn advises_humans(&self) -> bool {
         self.humans
     }
-    fn advise(&self, v: &Vehicle, _t_s: f64, _road: &Geometry) -> Advice {
-        lock(&self.table).get(v.id)
+    fn advise(&self, v: VehicleView<'_>, _t_s: f64, _road: &Geometry) -> Advice {
+        lock(&self.table).get(v.id())
     }
 }
 
@@ -99,7 +99,7 @@ impl Organizer for GatedOrganizer {
     fn on_broadcasts(&mut self, road: &Geometry, broadcasts: &[(f64, Broadcast)]) {
         self.inner.on_broadcasts(road, broadcasts)
     }
-    fn advise(&self, v: &Vehicle, t_s: f64, road: &Geometry) -> Advice {
+    fn advise(&self, v: VehicleView<'_>, t_s: f64, road: &Geometry) -> Advice {
         if self.on.load(Ordering::Relaxed) {
             self.inner.advise(v, t_s, road)
         } else {
@@ -115,7 +115,7 @@ pub struct EventBuffer {
 }
 
 impl Observer for EventBuffer {
-    fn on_step(&mut self, _sim: &Simulation, events: &[Event]) {
-        lock(&self.events).extend_from_slice(events);
+    fn on_step(&mut self, step: &StepView<'_>) {
+        lock(&self.events).extend_from_slice(step.events());
     }
 }

@@ -13,7 +13,6 @@
 
 use crate::config::Config;
 use crate::rng::{self, Purpose};
-use crate::sim::Simulation;
 use crate::vehicle::Vehicle;
 use platoonsim_model::cav;
 
@@ -69,7 +68,7 @@ impl Automation {
 }
 
 impl Beacons {
-    fn new(seed: u64, delay_steps: u64, loss: f64, cfg: &Config) -> Beacons {
+    pub(crate) fn new(seed: u64, delay_steps: u64, loss: f64, cfg: &Config) -> Beacons {
         let timeout_steps = cav::whole_steps(cfg.cav.beacon_timeout_s, cfg.dt_s);
         Beacons {
             delay_steps,
@@ -136,41 +135,5 @@ impl Beacons {
             log[new * d..(new + 1) * d].copy_from_slice(&self.log[old..old + d]);
         }
         self.log = log;
-    }
-}
-
-impl Simulation {
-    /// Set the probability that a CAV's V2V beacon reception fails, from the next step on
-    /// (spec 9.3; `cav.packet_loss`), e.g. a V2V outage (1) and its end (0). Must be in
-    /// [0, 1]. With the delay and the loss off until now the broadcast log starts here, every
-    /// vehicle's row filled with its current speed.
-    pub fn set_packet_loss(&mut self, p: f64) -> Result<(), crate::SimError> {
-        if !(0.0..=1.0).contains(&p) {
-            return Err(crate::SimError::Command(format!(
-                "packet_loss = {p}: must be in [0, 1]"
-            )));
-        }
-        self.cfg.cav.packet_loss = p;
-        if p == 0.0 {
-            // Every reception of the next step succeeds (`receive` draws nothing at p = 0).
-            for v in &mut self.traffic.vehicles {
-                v.cacc.beacon_age = 0;
-            }
-        }
-        let auto = &mut self.traffic.auto;
-        match &mut auto.beacons {
-            Some(b) => b.loss = p,
-            None if p > 0.0 => {
-                let mut b = Beacons::new(self.cfg.seed, 0, p, &self.cfg);
-                for lane in &self.traffic.lanes {
-                    for &s in lane {
-                        b.fill(s, self.traffic.vehicles[s as usize].v);
-                    }
-                }
-                auto.beacons = Some(b);
-            }
-            None => {}
-        }
-        Ok(())
     }
 }

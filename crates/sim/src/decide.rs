@@ -8,9 +8,9 @@ use crate::events::LaneChangeReason;
 use crate::config::Config;
 use crate::insert::Entrance;
 use crate::organize::Organizer;
-use crate::sense::{Neighbours, Sensed, NONE};
-use crate::sim::Decision;
+use crate::state::Decision;
 use crate::state::{Clock, Control, RoadState, Scratch, Traffic};
+use crate::state::{Neighbours, Sensed, NONE};
 use crate::vehicle::{AutoFlags, Mode, Relaxation, Vehicle};
 use platoonsim_model::cav::{self, Family};
 use platoonsim_model::driver;
@@ -19,6 +19,7 @@ use platoonsim_model::lanechange::{self as lcm, Side};
 use platoonsim_model::safegap;
 use platoonsim_model::{Leader, Relax};
 
+mod commands;
 mod cooperate;
 mod safe_gaps;
 pub(crate) use safe_gaps::{follower_accel_after, safe_decel};
@@ -113,7 +114,7 @@ pub(crate) fn decide(
         }
     }
     if !control.commands.is_empty() {
-        crate::command::apply_commands(&view, &mut control.commands, decisions);
+        commands::apply_commands(&view, &mut control.commands, decisions);
     }
 }
 

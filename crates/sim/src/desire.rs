@@ -6,8 +6,9 @@ use crate::decide::View;
 use crate::decide::{v_des_of, Desire};
 use crate::network::NO_LANE;
 use crate::organize::Advice;
-use crate::sense::Neighbours;
+use crate::state::Neighbours;
 use crate::vehicle::{Kind, Vehicle, NEVER, NO_EXIT};
+use crate::view::VehicleView;
 use platoonsim_model::bounded;
 use platoonsim_model::driver;
 use platoonsim_model::lanechange::{self as lcm, Side};
@@ -62,9 +63,11 @@ impl View<'_> {
         nb: &Neighbours,
         since: Option<f64>,
     ) -> Option<Desire> {
-        let advice =
-            self.organizer
-                .advise(v, self.clock.step as f64 * self.clock.dt, &self.road.geom);
+        let advice = self.organizer.advise(
+            VehicleView::new(v),
+            self.clock.step as f64 * self.clock.dt,
+            &self.road.geom,
+        );
         let avoid = match advice {
             Advice::Avoid { lane, from_m } => Some((lane, from_m)),
             _ => None,
@@ -117,10 +120,11 @@ impl View<'_> {
         if !self.advise[v.kind as usize] || self.exit_near(v) {
             return None;
         }
-        match self
-            .organizer
-            .advise(v, self.clock.step as f64 * self.clock.dt, &self.road.geom)
-        {
+        match self.organizer.advise(
+            VehicleView::new(v),
+            self.clock.step as f64 * self.clock.dt,
+            &self.road.geom,
+        ) {
             Advice::Join { lane, .. } => driver::toward(v.lane, lane),
             _ => None,
         }

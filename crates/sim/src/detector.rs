@@ -6,7 +6,7 @@
 //! time the detector point lies under the vehicle body ([x − L, x)), integrated within each
 //! step assuming constant speed over the step.
 
-use crate::summary::DetectorRecord;
+use serde::Serialize;
 
 /// One vehicle's movement during one step: front bumper from `x0` to `x1` (x1 ≥ x0), speed from
 /// `v0` to `v1`, vehicle length `len`.
@@ -204,6 +204,28 @@ fn sum(lanes: &[Acc]) -> Acc {
 
 fn mean_speed_kmh(a: &Acc) -> Option<f64> {
     (a.count > 0).then(|| a.speed_sum / a.count as f64 * 3.6)
+}
+
+/// One detector, lane and aggregation interval (`detectors.csv`). `lane` is the lane number
+/// from the right starting at 1, or "all" for the cross-section.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DetectorRecord {
+    pub detector: String,
+    /// "mainline", "off-ramp" or "on-ramp".
+    pub kind: String,
+    /// Output coordinate (engine x + the network origin).
+    pub position_m: f64,
+    pub lane: String,
+    pub interval_start_s: f64,
+    pub interval_s: f64,
+    pub count: u64,
+    /// Of which CAVs.
+    pub cav_count: u64,
+    pub flow_vph: f64,
+    /// Time-mean speed of the vehicles that crossed (km/h); empty (NaN-free: `None`) if none.
+    pub speed_kmh: Option<f64>,
+    /// Share of the interval the detector was occupied, in [0, 1].
+    pub occupancy: f64,
 }
 
 #[cfg(test)]

@@ -19,9 +19,9 @@
 //! sweep costs about a sense pass per step (docs/energy.md).
 
 use crate::config::Config;
-use crate::events::{Departure, Event, Observer};
+use crate::events::{Departure, Observer, StepView};
 use crate::vehicle::{Kind, Vehicle};
-use crate::Simulation;
+use crate::view::VehicleView;
 use platoonsim_model::energy::drag::Drag;
 use platoonsim_model::energy::electric::{Electric, J_PER_KWH};
 use platoonsim_model::energy::vt_cpfm::VtCpfm;
@@ -260,12 +260,13 @@ impl EnergyMeter {
 const DEEPEST: u32 = 4;
 
 impl Observer for EnergyMeter {
-    fn on_step(&mut self, sim: &Simulation, _events: &[Event]) {
-        let step = (sim.time_s() / self.dt).round() as u64;
-        for l in 0..self.lanes {
+    fn on_step(&mut self, view: &StepView<'_>) {
+        let step = view.step();
+        let (lanes, vehicles) = view.records();
+        for lane in &lanes[..self.lanes] {
             // Front to back: the chain position of the vehicle ahead and its rear.
             let mut ahead: Option<(u32, f64)> = None;
-            let mut it = sim.lane_vehicles(l).peekable();
+            let mut it = lane.iter().map(|&s| &vehicles[s as usize]).peekable();
             while let Some(v) = it.next() {
                 let behind_m = it.peek().map_or(f64::INFINITY, |b| v.rear() - b.x);
                 let ahead_m = ahead.map_or(f64::INFINITY, |(_, rear)| rear - v.x);
@@ -288,7 +289,8 @@ impl Observer for EnergyMeter {
         }
     }
 
-    fn on_exit(&mut self, v: &Vehicle, how: Departure, _t_s: f64) {
+    fn on_exit(&mut self, v: VehicleView<'_>, how: Departure, _t_s: f64) {
+        let v = v.record();
         if how != Departure::OnRoad {
             // The step in which it left: it moved, then left before the sweep.
             let f = self

@@ -7,14 +7,19 @@
 //! driving-mode changes seen at the end of the step. All carry the simulated time at the end of
 //! the step.
 //!
-//! The built-in records are observers too: the paper's statistics ([`crate::metrics::Metrics`])
-//! and the trip and trajectory records are called through [`Observer`] (statically, without a
-//! virtual call).
+//! An observer sees a [`StepView`] after each step (the time, the vehicles as
+//! [`VehicleView`]s, the step's events) and a [`VehicleView`] of each vehicle that leaves: never
+//! the engine itself, so this module and the observers depend on the vehicle record's public
+//! face only.
+//!
+//! The built-in records are observers too: the paper's statistics ([`crate::metrics::Metrics`]),
+//! the trip and trajectory records and the energy meter are called through [`Observer`]
+//! (statically, without a virtual call).
 
-use crate::summary::CollisionEvent;
 use crate::vehicle::{Kind, ModeLabel, Vehicle};
-use crate::Simulation;
+use crate::view::{self, VehicleView};
 use platoonsim_model::cav::CavMode;
+use serde::Serialize;
 
 /// Why a vehicle changed lanes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -130,12 +135,96 @@ impl Event {
 
 /// Something that watches a run: it reads, it never changes the simulation.
 pub trait Observer: AsAny + Send {
-    /// After each step: the step's events (in phase order) and the state after the step.
-    fn on_step(&mut self, _sim: &Simulation, _events: &[Event]) {}
-    /// A vehicle leaves the road (`how`), with its record as it leaves; at the end of the run,
+    /// After each step: the state after the step and the step's events (in phase order).
+    fn on_step(&mut self, _step: &StepView<'_>) {}
+    /// A vehicle leaves the road (`how`), as it is when it leaves; at the end of the run,
     /// once for each vehicle still on the road ([`Departure::OnRoad`]). `t_s` is the time at
     /// the end of the step.
-    fn on_exit(&mut self, _v: &Vehicle, _how: Departure, _t_s: f64) {}
+    fn on_exit(&mut self, _v: VehicleView<'_>, _how: Departure, _t_s: f64) {}
+}
+
+/// What an observer sees after a step: the time, the vehicles on the road (lane by lane, front
+/// first, as [`VehicleView`]s) and the step's events. Borrowed from the engine: building it
+/// copies nothing.
+#[derive(Clone, Copy)]
+pub struct StepView<'a> {
+    step: u64,
+    t_s: f64,
+    origin_m: f64,
+    lanes: &'a [Vec<u32>],
+    vehicles: &'a [Vehicle],
+    events: &'a [Event],
+}
+
+impl<'a> StepView<'a> {
+    /// The view after step `step`, which ends at `t_s`; `lanes` lists each lane's slots into
+    /// `vehicles` front first.
+    #[inline]
+    pub(crate) fn new(
+        step: u64,
+        t_s: f64,
+        origin_m: f64,
+        lanes: &'a [Vec<u32>],
+        vehicles: &'a [Vehicle],
+        events: &'a [Event],
+    ) -> Self {
+        StepView {
+            step,
+            t_s,
+            origin_m,
+            lanes,
+            vehicles,
+            events,
+        }
+    }
+
+    /// Steps done (this step is the `step()`-th).
+    pub fn step(&self) -> u64 {
+        self.step
+    }
+
+    /// Simulated time at the end of the step (s), as [`crate::Simulation::time_s`] gives it.
+    pub fn time_s(&self) -> f64 {
+        self.t_s
+    }
+
+    /// Output coordinate of engine x = 0 (the network origin; 0 on a plain road): the
+    /// records' and the events' positions are engine positions plus this.
+    pub fn origin_m(&self) -> f64 {
+        self.origin_m
+    }
+
+    /// The number of lanes.
+    pub fn lanes(&self) -> usize {
+        self.lanes.len()
+    }
+
+    /// The vehicles in `lane` (0 = rightmost), front first.
+    pub fn lane_vehicles(&self, lane: usize) -> impl Iterator<Item = VehicleView<'a>> + 'a {
+        view::lane(&self.lanes[lane], self.vehicles)
+    }
+
+    /// Every vehicle on the road, lane by lane (0 = rightmost), front first within a lane.
+    pub fn vehicles(&self) -> impl Iterator<Item = VehicleView<'a>> + 'a {
+        let vehicles = self.vehicles;
+        self.lanes.iter().flat_map(move |l| view::lane(l, vehicles))
+    }
+
+    /// The number of vehicles on the road.
+    pub fn vehicles_in_network(&self) -> usize {
+        self.lanes.iter().map(Vec::len).sum()
+    }
+
+    /// The step's events, in the order of the step's phases (module doc).
+    pub fn events(&self) -> &'a [Event] {
+        self.events
+    }
+
+    /// The engine's lane lists and records (for the engine's own observers).
+    #[inline]
+    pub(crate) fn records(&self) -> (&'a [Vec<u32>], &'a [Vehicle]) {
+        (self.lanes, self.vehicles)
+    }
 }
 
 /// Lets [`crate::Simulation::observer`] hand back an observer as its own type.
@@ -147,4 +236,45 @@ impl<T: std::any::Any> AsAny for T {
     fn as_any(&self) -> &dyn std::any::Any {
         self
     }
+}
+
+/// How a collision happened.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CollisionKind {
+    /// A follower's front passed its leader's rear in the same lane.
+    RearEnd,
+    /// A vehicle's front passed the end of its lane (an acceleration lane or a dropped lane).
+    LaneEnd,
+}
+
+impl CollisionKind {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            CollisionKind::RearEnd => "rear-end",
+            CollisionKind::LaneEnd => "lane-end",
+        }
+    }
+}
+
+/// One collision (`collisions.csv`): when and where it started, and who was involved.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CollisionEvent {
+    /// Simulated time at the end of the step in which it happened (s).
+    pub t_s: f64,
+    pub kind: CollisionKind,
+    /// Lane counted from the right, 1 = rightmost (the numbering of `detectors.csv`).
+    pub lane: u32,
+    /// Front position of the colliding vehicle (output coordinate, m).
+    pub x_m: f64,
+    /// The colliding (following) vehicle: id, "human" or "cav", speed (m/s).
+    pub vehicle: u64,
+    pub vehicle_kind: &'static str,
+    pub v_mps: f64,
+    /// The vehicle it ran into (none for a lane end).
+    pub other: Option<u64>,
+    pub other_kind: Option<&'static str>,
+    pub other_v_mps: Option<f64>,
+    /// How far the fronts/rear overlap (or the front is past the lane end), m.
+    pub overlap_m: f64,
 }

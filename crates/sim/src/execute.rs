@@ -5,7 +5,7 @@
 
 use crate::config::Config;
 use crate::events::Event;
-use crate::sense::NONE;
+use crate::state::NONE;
 use crate::state::{Clock, RoadState, Scratch, Traffic, Watch};
 use crate::vehicle::{Mode, Relaxation};
 use platoonsim_model::cav::CavParams;

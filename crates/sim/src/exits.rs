@@ -9,6 +9,7 @@ use crate::metrics::Metrics;
 use crate::record::Recorder;
 use crate::state::{Clock, RoadState, Traffic, Watch};
 use crate::vehicle::{Vehicle, NO_EXIT};
+use crate::view::VehicleView;
 
 /// Who hears of a departure: the paper's statistics, the trip record, the energy meter, the
 /// user's observers (and the step's event list), in that order.
@@ -34,16 +35,17 @@ impl Departures<'_> {
             _ => self.clock.step + 1,
         };
         let t = crate::record::step_time(step, self.clock.dt);
-        self.metrics.on_exit(v, how, t);
+        let view = VehicleView::new(v);
+        self.metrics.on_exit(view, how, t);
         if self.rec.trips.is_some() {
-            self.rec.on_exit(v, how, t);
+            self.rec.on_exit(view, how, t);
         }
         if let Some(e) = self.energy.as_mut() {
-            e.on_exit(v, how, t);
+            e.on_exit(view, how, t);
         }
         if self.watch.observing {
             for o in &mut self.watch.observers {
-                o.on_exit(v, how, t);
+                o.on_exit(view, how, t);
             }
             if how != Departure::OnRoad {
                 self.watch.events.push(Event::Exited {

@@ -18,7 +18,7 @@ use crate::events::Event;
 use crate::network::NO_LANE;
 use crate::record::Recorder;
 use crate::rng::{Purpose, Stream};
-use crate::sense::Sensed;
+use crate::state::Sensed;
 use crate::state::{Clock, RoadState, Traffic, Watch};
 use crate::vehicle::{
     AutoFlags, CaccState, Driver, Kind, LaneChangeState, Mode, ModeLabel, Relaxation, Route, Stats,

@@ -1,72 +1,20 @@
 //! Phase 3 (integrate): every vehicle moves by its decided acceleration, bounded by its
 //! emergency limit (`safety.rs`); a vehicle past the end of its lane is a lane-end collision
-//! and leaves the road.
+//! and leaves the road (its removal, which reaches the records and the observers, is the cold
+//! tail of `Simulation::integrate` in `sim.rs`, so that this phase does not import the step).
 
-use crate::events::Departure;
 use crate::network::Geometry;
 use crate::safety::Counted;
-use crate::sim::Simulation;
 use crate::state::{Clock, Measures, Scratch, Traffic};
-use crate::summary::CollisionKind;
 use crate::vehicle::{Relaxation, NO_EXIT};
 use platoonsim_model::safety as law;
-
-impl Simulation {
-    /// Phase 3: the decided acceleration bounded by the vehicle's emergency limit
-    /// (`safety.rs`), then v' = max(0, v + aΔt); x' = x + ½(v + v')Δt, or the stopping point
-    /// when the speed would turn negative. A vehicle whose front passes the end of its lane
-    /// has collided with it: the event is recorded and the vehicle leaves the road.
-    pub(crate) fn integrate(&mut self) {
-        move_vehicles(
-            &self.clock,
-            &self.road.geom,
-            &mut self.traffic,
-            &mut self.scratch,
-            &mut self.measures,
-        );
-        if self.watch.observing {
-            self.log_brakings();
-        }
-        if !self.scratch.crashed.is_empty() {
-            self.remove_crashed();
-        }
-    }
-
-    /// The vehicles that ran past the end of their lane in this step: one collision each, and
-    /// they leave the road (their trip ends as `collided`). Removing them keeps every lane
-    /// sorted.
-    #[cold]
-    #[inline(never)]
-    fn remove_crashed(&mut self) {
-        let t = crate::record::step_time(self.clock.step + 1, self.clock.dt);
-        let origin = self.origin_m();
-        for (s, l, w) in std::mem::take(&mut self.scratch.crashed) {
-            let v = &self.traffic.vehicles[s as usize];
-            self.measures.safety.collide(
-                t,
-                CollisionKind::LaneEnd,
-                l as usize,
-                v.x + origin,
-                v,
-                None,
-                v.x - w,
-            );
-            if self.watch.observing {
-                self.log_collisions();
-            }
-            self.traffic.lanes[l as usize].retain(|&o| o != s);
-            self.leave(s, Departure::Collided);
-            self.traffic.free.push(s);
-        }
-    }
-}
 
 /// Phase 3 without its cold tail: every vehicle moves by its decided acceleration bounded by
 /// its emergency limit; reads the clock, the geometry (walls, off-ramps) and the decisions,
 /// writes the vehicles, the scratch flags (`exit_due`, `lanes_sorted`, `crashed`) and the
 /// safety measures.
 #[inline]
-fn move_vehicles(
+pub(crate) fn move_vehicles(
     clock: &Clock,
     geom: &Geometry,
     traffic: &mut Traffic,

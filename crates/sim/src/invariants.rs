@@ -2,9 +2,9 @@
 //! the surrogate safety measures and finiteness.
 
 use crate::error::SimError;
+use crate::events::CollisionKind;
 use crate::safety::Safety;
 use crate::state::{Clock, Traffic};
-use crate::summary::CollisionKind;
 use crate::vehicle::Vehicle;
 
 /// A rear-end collision starts when the pair (follower in slot `f`, leader in slot `ld`)

@@ -4,7 +4,8 @@
 //! [`Simulation::step`], whose doc lists the phases), [`Output`]/[`Summary`]/[`DetectorRecord`]
 //! (what a run produces), and [`run`] (config → output, single-threaded and deterministic).
 //! Optional per-vehicle records: [`Recording`] → [`Trip`]s and [`TrajectoryPoint`]s
-//! ([`run_recording`], module `record`).
+//! ([`run_recording`], module `record`). What a library user reads of the state: vehicles as
+//! [`VehicleView`]s (module `view`), and after each step an [`Observer`]'s [`StepView`].
 //!
 //! Modules by phase: `sense` (neighbours, platoons), `decide` (lane-change decisions and
 //! accelerations), `execute` (lane changes), `insert` (arrivals, insertion), `detector`,
@@ -37,10 +38,12 @@ mod sense;
 mod sim;
 pub mod snapshot;
 mod state;
+mod steer;
 pub mod summary;
 #[cfg(test)]
 mod tests_safe_gaps;
 pub mod vehicle;
+pub mod view;
 mod yielding;
 
 pub use command::Command;
@@ -50,7 +53,7 @@ pub use config::{
 };
 pub use energy::{EnergyMeter, EnergySummary, TripEnergy};
 pub use error::SimError;
-pub use events::{Departure, Event, LaneChangeReason, Observer};
+pub use events::{Departure, Event, LaneChangeReason, Observer, StepView};
 pub use organize::{Advice, LaneChoice, Organizer, StrategyKind, UnknownStrategy, STRATEGIES};
 pub use platoonsim_model::lanechange::Side;
 pub use record::{Queued, Recording, TrajectoryPoint, TrajectorySpec, Trip, TripStatus};
@@ -61,7 +64,8 @@ pub use summary::{
     BrakingPeaks, CollisionEvent, CollisionKind, CountedMeasure, CountedMeasures, DetectorRecord,
     Output, Summary,
 };
-pub use vehicle::{Kind, ModeLabel, Vehicle};
+pub use vehicle::{Kind, Mode, ModeLabel};
+pub use view::VehicleView;
 
 /// Progress callback: called with (simulated seconds so far, total seconds) every simulated minute.
 pub type Progress<'a> = &'a mut dyn FnMut(f64, f64);

@@ -3,6 +3,7 @@
 
 use crate::events::{Departure, Observer};
 use crate::vehicle::Vehicle;
+use crate::view::VehicleView;
 
 #[derive(Clone, Debug, Default)]
 pub struct Metrics {
@@ -44,13 +45,13 @@ impl Metrics {
     }
 
     /// A vehicle that left the road.
-    pub fn exited(&mut self, v: &Vehicle) {
+    pub(crate) fn exited(&mut self, v: &Vehicle) {
         self.exited += 1;
         self.count(v);
     }
 
     /// A vehicle that did not leave by an exit (collided, or on the road at the end).
-    pub fn stayed(&mut self, v: &Vehicle) {
+    pub(crate) fn stayed(&mut self, v: &Vehicle) {
         self.count(v);
     }
 
@@ -91,7 +92,8 @@ impl Metrics {
 /// exited; a lane-end collision and the vehicles still on the road at the end count in the
 /// statistics only.
 impl Observer for Metrics {
-    fn on_exit(&mut self, v: &Vehicle, how: Departure, _t_s: f64) {
+    fn on_exit(&mut self, v: VehicleView<'_>, how: Departure, _t_s: f64) {
+        let v = v.record();
         match how {
             Departure::OffRamp(_) | Departure::RoadEnd => self.exited(v),
             Departure::Collided | Departure::OnRoad => self.stayed(v),

@@ -4,7 +4,8 @@
 use crate::error::SimError;
 use crate::events::Event;
 use crate::sim::Simulation;
-use crate::vehicle::{Kind, Vehicle};
+use crate::vehicle::Kind;
+use crate::view::VehicleView;
 use platoonsim_model::cav::{self, Family};
 
 impl Simulation {
@@ -90,12 +91,9 @@ impl Simulation {
     }
 
     /// The vehicle with id `id`, if it is on the road.
-    pub fn vehicle(&self, id: u64) -> Option<&Vehicle> {
+    pub fn vehicle(&self, id: u64) -> Option<VehicleView<'_>> {
         self.traffic
-            .lanes
-            .iter()
-            .flatten()
-            .map(|&s| &self.traffic.vehicles[s as usize])
-            .find(|v| v.id == id)
+            .slot_of(id)
+            .map(|s| VehicleView::new(&self.traffic.vehicles[s as usize]))
     }
 }

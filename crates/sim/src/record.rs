@@ -8,9 +8,9 @@
 
 use crate::config::Config;
 use crate::error::SimError;
-use crate::events::{Departure, Event, Observer};
-use crate::sim::Simulation;
+use crate::events::{Departure, Observer, StepView};
 use crate::vehicle::{Kind, ModeLabel, Vehicle, NEVER, NO_EXIT};
+use crate::view::VehicleView;
 use platoonsim_model::cav::CavMode;
 
 /// What to record besides the summary and the detectors.
@@ -261,15 +261,17 @@ impl Recorder {
 }
 
 impl Observer for Recorder {
-    fn on_step(&mut self, sim: &Simulation, _events: &[Event]) {
+    fn on_step(&mut self, step: &StepView<'_>) {
         if let Some(t) = self.trajectories.as_mut() {
-            if t.due(sim.clock.step) {
-                t.sample(sim.clock.step, &sim.traffic.vehicles, &sim.traffic.lanes);
+            if t.due(step.step()) {
+                let (lanes, vehicles) = step.records();
+                t.sample(step.step(), vehicles, lanes);
             }
         }
     }
 
-    fn on_exit(&mut self, v: &Vehicle, how: Departure, t_s: f64) {
+    fn on_exit(&mut self, v: VehicleView<'_>, how: Departure, t_s: f64) {
+        let v = v.record();
         let Some(trips) = self.trips.as_mut() else {
             return;
         };

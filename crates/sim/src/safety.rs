@@ -9,7 +9,7 @@
 //! window, like the paper's statistics.
 
 use crate::config::Config;
-use crate::summary::{CollisionEvent, CollisionKind};
+use crate::events::{CollisionEvent, CollisionKind};
 use crate::vehicle::{Kind, Vehicle};
 use platoonsim_model::safety as law;
 

@@ -3,7 +3,8 @@
 use crate::config::{Config, DetectorKind};
 use crate::detector::Detector;
 use crate::error::SimError;
-use crate::events::{Departure, Event, Observer};
+use crate::events::CollisionKind;
+use crate::events::{Departure, Event, Observer, StepView};
 use crate::here::HereTables;
 use crate::insert::Entrance;
 use crate::metrics::Metrics;
@@ -13,35 +14,10 @@ use crate::record::{Recorder, Recording, TrajectoryRecorder};
 use crate::safety::Safety;
 use crate::state::{Clock, Control, Detectors, Measures, RoadState, Scratch, Traffic, Watch};
 use crate::summary::{Output, Summary};
-use crate::vehicle::Vehicle;
-use platoonsim_model::lanechange::Side;
+use crate::view::VehicleView;
 
 /// Steps between two renumberings of the vehicle slots (`Simulation::compact`).
 const COMPACT_EVERY_STEPS: u64 = 600;
-
-/// Per-vehicle result of the decide phase (indexed by slot).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Decision {
-    pub accel: f64,
-    pub mode: crate::vehicle::Mode,
-    pub family: platoonsim_model::cav::Family,
-    /// The control regime of an automated CAV's controller in this step (`None`: manual).
-    pub regime: Option<platoonsim_model::cav::CavMode>,
-    /// Effective CAV time gap after this step (spec 3.5 transitions).
-    pub time_gap: f64,
-    /// Lane change to execute after integration, and why.
-    pub change: Option<Side>,
-    pub why: crate::events::LaneChangeReason,
-    /// An automated CAV hands over to its driver in this step: relaxation starts (spec 4.6).
-    pub takeover: bool,
-    /// The change is a cooperative one, made under automation (spec 9.2).
-    pub coop: bool,
-    /// Spec 9.3: AEB intervenes (the automation's demand exceeds its braking bound); an
-    /// automated CAV behind a CAV runs ACC for want of V2V beacons.
-    pub auto: crate::vehicle::AutoFlags,
-    /// The change is mandatory with γ ≥ 1: the safe rule's harder bound (spec 9.1).
-    pub urgent: bool,
-}
 
 /// The whole simulation state.
 pub struct Simulation {
@@ -267,11 +243,9 @@ impl Simulation {
         &self.cfg
     }
 
-    /// Vehicles on the road, lane by lane (0 = rightmost), front first.
-    pub fn lane_vehicles(&self, lane: usize) -> impl Iterator<Item = &Vehicle> + '_ {
-        self.traffic.lanes[lane]
-            .iter()
-            .map(move |&s| &self.traffic.vehicles[s as usize])
+    /// Vehicles on the road in `lane` (0 = rightmost), front first.
+    pub fn lane_vehicles(&self, lane: usize) -> impl Iterator<Item = VehicleView<'_>> + '_ {
+        crate::view::lane(&self.traffic.lanes[lane], &self.traffic.vehicles)
     }
 
     /// Number of vehicles on the road.
@@ -291,7 +265,7 @@ impl Simulation {
     }
 
     /// The collisions so far, in time order.
-    pub fn collision_events(&self) -> &[crate::summary::CollisionEvent] {
+    pub fn collision_events(&self) -> &[crate::events::CollisionEvent] {
         &self.measures.safety.collisions.events
     }
 
@@ -308,7 +282,7 @@ impl Simulation {
     /// 5. **boundaries**: exits at the downstream end, then arrivals and insertion from the
     ///    virtual entry queue.
     /// 6. **detectors**: crossings and occupancy; interval close and broadcast.
-    /// 7. **invariants**: no overlap (counted; a panic in debug builds), all states finite.
+    /// 7. **invariants**: no overlap (an overlap is counted as a collision), all states finite.
     pub fn step(&mut self) -> Result<(), SimError> {
         if let Some(b) = &self.traffic.auto.beacons {
             b.receive(
@@ -396,13 +370,13 @@ impl Simulation {
             .as_ref()
             .is_some_and(|t| t.due(self.clock.step))
         {
-            let mut rec = std::mem::take(&mut self.rec);
-            rec.on_step(self, &[]);
-            self.rec = rec;
+            let origin_m = self.origin_m();
+            self.rec
+                .on_step(&step_view(&self.clock, origin_m, &self.traffic, &[]));
         }
-        if let Some(mut e) = self.energy.take() {
-            e.on_step(self, &[]);
-            self.energy = Some(e);
+        if let Some(e) = self.energy.as_mut() {
+            let origin_m = self.cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m);
+            e.on_step(&step_view(&self.clock, origin_m, &self.traffic, &[]));
         }
         let checked = crate::invariants::check_invariants(
             &self.clock,
@@ -414,6 +388,54 @@ impl Simulation {
             self.notify();
         }
         checked
+    }
+
+    /// Phase 3: the decided acceleration bounded by the vehicle's emergency limit
+    /// (`safety.rs`), then v' = max(0, v + aΔt); x' = x + ½(v + v')Δt, or the stopping point
+    /// when the speed would turn negative. A vehicle whose front passes the end of its lane
+    /// has collided with it: the event is recorded and the vehicle leaves the road.
+    pub(crate) fn integrate(&mut self) {
+        crate::integrate::move_vehicles(
+            &self.clock,
+            &self.road.geom,
+            &mut self.traffic,
+            &mut self.scratch,
+            &mut self.measures,
+        );
+        if self.watch.observing {
+            self.log_brakings();
+        }
+        if !self.scratch.crashed.is_empty() {
+            self.remove_crashed();
+        }
+    }
+
+    /// The vehicles that ran past the end of their lane in this step: one collision each, and
+    /// they leave the road (their trip ends as `collided`). Removing them keeps every lane
+    /// sorted.
+    #[cold]
+    #[inline(never)]
+    fn remove_crashed(&mut self) {
+        let t = crate::record::step_time(self.clock.step + 1, self.clock.dt);
+        let origin = self.origin_m();
+        for (s, l, w) in std::mem::take(&mut self.scratch.crashed) {
+            let v = &self.traffic.vehicles[s as usize];
+            self.measures.safety.collide(
+                t,
+                CollisionKind::LaneEnd,
+                l as usize,
+                v.x + origin,
+                v,
+                None,
+                v.x - w,
+            );
+            if self.watch.observing {
+                self.log_collisions();
+            }
+            self.traffic.lanes[l as usize].retain(|&o| o != s);
+            self.leave(s, Departure::Collided);
+            self.traffic.free.push(s);
+        }
     }
 
     /// Run to the end and produce the outputs.
@@ -603,12 +625,15 @@ impl Simulation {
                 }
             }
         }
-        let mut observers = std::mem::take(&mut self.watch.observers);
-        for o in &mut observers {
-            o.on_step(self, &self.watch.events);
+        let Watch {
+            observers, events, ..
+        } = &mut self.watch;
+        let origin_m = self.cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m);
+        let view = step_view(&self.clock, origin_m, &self.traffic, events);
+        for o in observers.iter_mut() {
+            o.on_step(&view);
         }
-        self.watch.observers = observers;
-        self.watch.events.clear();
+        events.clear();
     }
 
     /// At the end of an aggregation interval: the detectors' broadcasts to the organizer
@@ -656,4 +681,21 @@ impl Simulation {
         self.traffic.free.clear();
         self.scratch.changed_this_step.fill(u64::MAX);
     }
+}
+
+/// The state after the last step as an observer sees it, with `events` as its events.
+fn step_view<'a>(
+    clock: &Clock,
+    origin_m: f64,
+    traffic: &'a Traffic,
+    events: &'a [Event],
+) -> StepView<'a> {
+    StepView::new(
+        clock.step,
+        crate::record::step_time(clock.step, clock.dt),
+        origin_m,
+        &traffic.lanes,
+        &traffic.vehicles,
+        events,
+    )
 }

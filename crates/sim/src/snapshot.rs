@@ -3,7 +3,7 @@
 //! whole arrays per step (the Python package, docs/python.md); they never change the
 //! simulation.
 
-use crate::summary::DetectorRecord;
+use crate::detector::DetectorRecord;
 use crate::vehicle::{ModeLabel, NEVER};
 use crate::Simulation;
 use platoonsim_model::cav::CavMode;
@@ -100,7 +100,7 @@ impl Simulation {
         let origin = self.origin_m();
         for l in 0..self.traffic.lanes.len() {
             let (mut ahead, mut ahead_pos, mut head) = (NEVER, 0u32, NEVER);
-            for v in self.lane_vehicles(l) {
+            for v in self.lane_vehicles(l).map(crate::view::VehicleView::record) {
                 let member = v.cacc.pred != NEVER && v.cacc.pred == ahead;
                 let pos = if member { ahead_pos + 1 } else { 1 };
                 if !member {

@@ -10,11 +10,15 @@ use crate::metrics::Metrics;
 use crate::network::{Geometry, NO_LANE};
 use crate::organize::Organizer;
 use crate::safety::Safety;
-use crate::sense::Sensed;
-use crate::sim::Decision;
 use crate::vehicle::Vehicle;
 use platoonsim_model::bounded;
 use platoonsim_model::lanechange::Side;
+
+mod decision;
+mod sensed;
+
+pub(crate) use decision::Decision;
+pub(crate) use sensed::{Neighbours, Sensed, NONE};
 
 /// Simulated time, counted in steps.
 #[derive(Clone, Debug)]
@@ -45,6 +49,15 @@ pub(crate) struct Traffic {
 }
 
 impl Traffic {
+    /// Slot of the vehicle with this id, if it is on the road.
+    pub fn slot_of(&self, id: u64) -> Option<u32> {
+        self.lanes
+            .iter()
+            .flatten()
+            .copied()
+            .find(|&s| self.vehicles[s as usize].id == id)
+    }
+
     /// Allocate a slot for a new vehicle.
     pub fn alloc(&mut self, v: Vehicle) -> u32 {
         let speed = v.v;

@@ -1,6 +1,10 @@
 //! Run outputs: the summary and the detector records (plain data; the CLI writes files).
 
 use crate::record::{TrajectoryPoint, Trip};
+// Defined where they are made (the detectors, the collision events); listed here too as what
+// a run produces.
+pub use crate::detector::DetectorRecord;
+pub use crate::events::{CollisionEvent, CollisionKind};
 use serde::Serialize;
 
 /// One run's summary (`summary.json`). Rates per lane use the road's lane count.
@@ -170,69 +174,6 @@ pub struct BrakingPeaks {
     pub lower_edges_mps2: Vec<f64>,
     pub cav: Vec<u64>,
     pub human: Vec<u64>,
-}
-
-/// One detector, lane and aggregation interval (`detectors.csv`). `lane` is the lane number
-/// from the right starting at 1, or "all" for the cross-section.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct DetectorRecord {
-    pub detector: String,
-    /// "mainline", "off-ramp" or "on-ramp".
-    pub kind: String,
-    /// Output coordinate (engine x + the network origin).
-    pub position_m: f64,
-    pub lane: String,
-    pub interval_start_s: f64,
-    pub interval_s: f64,
-    pub count: u64,
-    /// Of which CAVs.
-    pub cav_count: u64,
-    pub flow_vph: f64,
-    /// Time-mean speed of the vehicles that crossed (km/h); empty (NaN-free: `None`) if none.
-    pub speed_kmh: Option<f64>,
-    /// Share of the interval the detector was occupied, in [0, 1].
-    pub occupancy: f64,
-}
-
-/// How a collision happened.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum CollisionKind {
-    /// A follower's front passed its leader's rear in the same lane.
-    RearEnd,
-    /// A vehicle's front passed the end of its lane (an acceleration lane or a dropped lane).
-    LaneEnd,
-}
-
-impl CollisionKind {
-    pub fn as_str(self) -> &'static str {
-        match self {
-            CollisionKind::RearEnd => "rear-end",
-            CollisionKind::LaneEnd => "lane-end",
-        }
-    }
-}
-
-/// One collision (`collisions.csv`): when and where it started, and who was involved.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct CollisionEvent {
-    /// Simulated time at the end of the step in which it happened (s).
-    pub t_s: f64,
-    pub kind: CollisionKind,
-    /// Lane counted from the right, 1 = rightmost (the numbering of `detectors.csv`).
-    pub lane: u32,
-    /// Front position of the colliding vehicle (output coordinate, m).
-    pub x_m: f64,
-    /// The colliding (following) vehicle: id, "human" or "cav", speed (m/s).
-    pub vehicle: u64,
-    pub vehicle_kind: &'static str,
-    pub v_mps: f64,
-    /// The vehicle it ran into (none for a lane end).
-    pub other: Option<u64>,
-    pub other_kind: Option<&'static str>,
-    pub other_v_mps: Option<f64>,
-    /// How far the fronts/rear overlap (or the front is past the lane end), m.
-    pub overlap_m: f64,
 }
 
 /// Everything a run produces.

@@ -19,10 +19,10 @@ fn empty_road(rule: GapRule) -> Simulation {
     Simulation::new(cfg).unwrap()
 }
 
-fn find(sim: &Simulation, id: u64) -> &crate::Vehicle {
+fn find(sim: &Simulation, id: u64) -> crate::VehicleView<'_> {
     (0..3)
         .flat_map(|l| sim.lane_vehicles(l))
-        .find(|v| v.id == id)
+        .find(|v| v.id() == id)
         .expect("on the road")
 }
 
@@ -44,26 +44,30 @@ fn the_safe_rule_refuses_a_cut_in_that_the_published_rule_accepts() {
     for kind in [Kind::Human, Kind::Cav] {
         let (mut published, c, _) = cut_in(GapRule::Published, kind, 30.0);
         published.step().unwrap();
-        assert_eq!(find(&published, c).lane, 1, "{kind:?}: published: at once");
+        assert_eq!(
+            find(&published, c).lane(),
+            1,
+            "{kind:?}: published: at once"
+        );
         let (mut safe, c, f) = cut_in(GapRule::Safe, kind, 30.0);
         safe.step().unwrap();
-        assert_eq!(find(&safe, c).lane, 0, "{kind:?}: safe: refused");
+        assert_eq!(find(&safe, c).lane(), 0, "{kind:?}: safe: refused");
         // It waits without braking and changes once the follower has gone by.
         let mut changed = None;
         for k in 0..200 {
             safe.step().unwrap();
             assert!(
-                find(&safe, c).a >= 0.0,
+                find(&safe, c).a() >= 0.0,
                 "{kind:?}: the changer waits without braking"
             );
-            if find(&safe, c).lane == 1 {
+            if find(&safe, c).lane() == 1 {
                 changed = Some(k);
                 break;
             }
         }
         assert!(changed.is_some(), "{kind:?}: the change is made");
         assert!(
-            find(&safe, f).x > find(&safe, c).x,
+            find(&safe, f).x() > find(&safe, c).x(),
             "{kind:?}: behind the follower"
         );
     }
@@ -76,11 +80,11 @@ fn follower_braking(sim: &mut Simulation, c: u64, f: u64, steps: usize) -> (f64,
     let mut at = None;
     for k in 0..steps {
         sim.step().unwrap();
-        if at.is_none() && find(sim, c).lane == 1 {
+        if at.is_none() && find(sim, c).lane() == 1 {
             at = Some(k);
         }
         if at.is_some() {
-            min_a = min_a.min(find(sim, f).a);
+            min_a = min_a.min(find(sim, f).a());
         }
     }
     assert_eq!(sim.collisions(), 0);

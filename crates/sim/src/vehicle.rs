@@ -82,7 +82,7 @@ pub const NO_EXIT: u32 = u32::MAX;
 /// `rear()`), then the bookkeeping, cold, in the padding of the last line.
 #[derive(Clone, Debug)]
 #[repr(C, align(64))]
-pub struct Vehicle {
+pub(crate) struct Vehicle {
     /// Front bumper position (m, engine coordinate).
     pub x: f64,
     /// Speed (m/s).
@@ -114,7 +114,7 @@ pub struct Vehicle {
 /// sense phase every step, so kept in this hot line rather than with the bookkeeping).
 #[derive(Clone, Copy, Debug)]
 #[repr(C)]
-pub struct CaccState {
+pub(crate) struct CaccState {
     /// Id of the predecessor whose CACC string this CAV has joined (`NEVER`: it leads its own
     /// string). Membership is sticky: see `sense.rs`.
     pub pred: u64,
@@ -185,7 +185,7 @@ impl AutoFlags {
 /// Lane-change history.
 #[derive(Clone, Copy, Debug)]
 #[repr(C)]
-pub struct LaneChangeState {
+pub(crate) struct LaneChangeState {
     /// Which relaxation is running (spec 4.6).
     pub relax: Relaxation,
     /// Step of the last lane change (`NEVER`: none yet).
@@ -201,7 +201,7 @@ pub struct LaneChangeState {
 /// A driver's drawn parameters (spec 2, 4) and own random stream.
 #[derive(Clone, Debug)]
 #[repr(C)]
-pub struct Driver {
+pub(crate) struct Driver {
     pub human: HumanParams,
     pub lc: LaneChangeParams,
     /// Own random stream (lane choice, yielding draws).
@@ -211,7 +211,7 @@ pub struct Driver {
 /// Where a vehicle came from and where it leaves.
 #[derive(Clone, Copy, Debug)]
 #[repr(C)]
-pub struct Route {
+pub(crate) struct Route {
     /// Index of the off-ramp it leaves by (`NO_EXIT`: the mainline end).
     pub exit: u32,
     /// Entrance it came in by: 0 the mainline, i + 1 on-ramp i.
@@ -224,7 +224,7 @@ pub struct Route {
 /// What the run keeps about a vehicle for its outputs; the driving model never reads it.
 #[derive(Clone, Copy, Debug)]
 #[repr(C)]
-pub struct Stats {
+pub(crate) struct Stats {
     /// Step at which it entered the road.
     pub entered_step: u64,
     /// The last step in which it was in a conflict (TTC below the threshold, `safety.rs`), and
@@ -272,7 +272,7 @@ impl Vehicle {
 }
 
 /// The driving mode as the trajectory records give it: the [`Mode`] variant, and whether a
-/// CAV's automation is engaged ([`Vehicle::automated`]; never for a human driver).
+/// CAV's automation is engaged ([`crate::VehicleView::automated`]; never for a human driver).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ModeLabel {
     Cf,

@@ -5,7 +5,7 @@
 
 use crate::decide::View;
 use crate::decide::{opposite, pair_uniform};
-use crate::sense::{Neighbours, NONE};
+use crate::state::{Neighbours, NONE};
 use crate::vehicle::{Mode, Vehicle};
 use platoonsim_model::lanechange::{self as lcm, Side};
 use platoonsim_model::Leader;

@@ -30,13 +30,13 @@ fn followers(sim: &Simulation) -> Vec<(u64, bool, f64, f64)> {
         let vs: Vec<_> = sim.lane_vehicles(lane).collect();
         for w in vs.windows(2) {
             let (l, f) = (w[0], w[1]);
-            if l.is_cav() && f.is_cav() && l.rear() - f.x < 100.0 && f.automated() && f.x > 1000.0 {
-                out.push((
-                    f.id,
-                    f.cacc.auto.degraded(),
-                    f.cacc.time_gap_s,
-                    f.cacc.gap_s,
-                ));
+            if l.is_cav()
+                && f.is_cav()
+                && l.rear() - f.x() < 100.0
+                && f.automated()
+                && f.x() > 1000.0
+            {
+                out.push((f.id(), f.cacc_fallback(), f.time_gap_s(), f.cacc_gap_s()));
             }
         }
     }
@@ -109,8 +109,8 @@ fn a_lagged_platoon_brakes_behind_a_hard_braking_leader_without_collision() {
     let leaders: Vec<u64> = (0..3)
         .filter_map(|l| {
             sim.lane_vehicles(l)
-                .min_by(|a, b| (a.x - 2000.0).abs().total_cmp(&(b.x - 2000.0).abs()))
-                .map(|v| v.id)
+                .min_by(|a, b| (a.x() - 2000.0).abs().total_cmp(&(b.x() - 2000.0).abs()))
+                .map(|v| v.id())
         })
         .collect();
     for &id in &leaders {
@@ -128,8 +128,8 @@ fn a_lagged_platoon_brakes_behind_a_hard_braking_leader_without_collision() {
         sim.step().unwrap();
         for l in 0..3 {
             for v in sim.lane_vehicles(l) {
-                if !leaders.contains(&v.id) {
-                    hardest = hardest.min(v.a);
+                if !leaders.contains(&v.id()) {
+                    hardest = hardest.min(v.a());
                 }
             }
         }

@@ -3,12 +3,12 @@
 //! the driver dropped back (BLC-Slow, spec 4.3) behind the faster target-lane traffic, which
 //! only made the gap worse: down to the creep speed, 2.2 m/s, and 10 s in its lane.
 
-use platoonsim_sim::{Command, Config, Kind, Side, Simulation, Vehicle};
+use platoonsim_sim::{Command, Config, Kind, Side, Simulation, VehicleView};
 
-fn find(sim: &Simulation, id: u64) -> &Vehicle {
+fn find(sim: &Simulation, id: u64) -> VehicleView<'_> {
     (0..3)
         .flat_map(|l| sim.lane_vehicles(l))
-        .find(|v| v.id == id)
+        .find(|v| v.id() == id)
         .expect("on the road")
 }
 
@@ -23,23 +23,23 @@ fn set_speed_then_change(demand: f64, speed: f64) -> (Option<u32>, f64) {
     }
     let id = sim
         .lane_vehicles(0)
-        .find(|v| v.kind == Kind::Cav && v.automated() && v.x > 1000.0 && v.x < 3000.0)
-        .map(|v| v.id)
+        .find(|v| v.kind() == Kind::Cav && v.automated() && v.x() > 1000.0 && v.x() < 3000.0)
+        .map(|v| v.id())
         .expect("a CAV in the right lane");
     sim.command(id, Command::DesiredSpeed { speed_mps: speed })
         .unwrap();
     for _ in 0..300 {
         sim.step().unwrap();
     }
-    assert!((find(&sim, id).v - speed).abs() < 0.5, "at its set speed");
+    assert!((find(&sim, id).v() - speed).abs() < 0.5, "at its set speed");
     sim.command(id, Command::ChangeLane { side: Side::Left })
         .unwrap();
     let mut min_a = f64::INFINITY;
     for k in 1..=300 {
         sim.step().unwrap();
         let v = find(&sim, id);
-        min_a = min_a.min(v.a);
-        if v.lane == 1 {
+        min_a = min_a.min(v.a());
+        if v.lane() == 1 {
             return (Some(k), min_a);
         }
     }

@@ -7,7 +7,7 @@
 
 use platoonsim_sim::vehicle::Mode;
 use platoonsim_sim::{
-    Advice, Config, Event, Kind, LaneChangeReason, Observer, Organizer, Simulation, Vehicle,
+    Advice, Config, Event, Kind, LaneChangeReason, Observer, Organizer, Simulation, VehicleView,
 };
 use std::sync::{Arc, Mutex};
 
@@ -23,8 +23,8 @@ fn road(coop: bool) -> Config {
 struct Changes(Arc<Mutex<Vec<(u64, LaneChangeReason, bool)>>>);
 
 impl Observer for Changes {
-    fn on_step(&mut self, _sim: &Simulation, events: &[Event]) {
-        for e in events {
+    fn on_step(&mut self, step: &platoonsim_sim::StepView<'_>) {
+        for e in step.events() {
             if let Event::LaneChange {
                 id,
                 reason,
@@ -48,7 +48,7 @@ fn string(sim: &mut Simulation, x: f64, kinds: &[Kind]) -> Vec<u64> {
         .collect()
 }
 
-fn v(sim: &Simulation, id: u64) -> &Vehicle {
+fn v(sim: &Simulation, id: u64) -> VehicleView<'_> {
     sim.vehicle(id).expect("on the road")
 }
 
@@ -93,27 +93,27 @@ fn a_cav_follower_opens_a_gap_gently_and_the_joiner_changes_under_automation() {
         // L, faster, drives away at its own desired speed).
         if changed_at.is_some_and(|c| k == c + 20) {
             let (rv, fv) = (v(&sim, r), v(&sim, f));
-            assert_eq!(rv.lane, 2);
-            assert_eq!(rv.cacc.pred, l, "the joiner follows L in its string");
-            assert_eq!(fv.cacc.pred, r, "the string forms behind the joiner");
+            assert_eq!(rv.lane(), 2);
+            assert_eq!(rv.joined(), Some(l), "the joiner follows L in its string");
+            assert_eq!(fv.joined(), Some(r), "the string forms behind the joiner");
             in_string = true;
         }
         let rv = v(&sim, r);
         assert!(
             rv.automated(),
             "the requester never hands over: {:?}",
-            rv.mode
+            rv.mode()
         );
-        assert_eq!(rv.lcs.relax, platoonsim_sim::vehicle::Relaxation::NONE);
+        assert!(!rv.relaxing());
         let fv = v(&sim, f);
         assert!(
             fv.automated(),
             "the follower opens the gap under automation"
         );
-        if matches!(fv.mode, Mode::Ycf { to, coop: true, auto: true } if to == r) {
+        if matches!(fv.mode(), Mode::Ycf { to, coop: true, auto: true } if to == r) {
             asked = true;
         }
-        hardest_f = hardest_f.min(fv.a);
+        hardest_f = hardest_f.min(fv.a());
     }
     assert!(asked, "the CAV follower answered the request");
     let changes = log.lock().unwrap().clone();
@@ -127,7 +127,7 @@ fn a_cav_follower_opens_a_gap_gently_and_the_joiner_changes_under_automation() {
         "the follower opened the gap at {hardest_f} m/s²"
     );
     assert!(in_string);
-    assert_eq!(v(&sim, r).lcs.coop_count, 1);
+    assert_eq!(v(&sim, r).cooperative_lane_changes(), 1);
     assert_eq!(sim.collisions(), 0);
     let out = sim.finish(0.0);
     assert_eq!(out.summary.cooperative_lane_changes, 1);
@@ -141,7 +141,7 @@ fn without_the_option_the_joiner_changes_by_hand_or_not_at_all() {
     for _ in 0..300 {
         sim.step().unwrap();
         assert!(
-            !matches!(v(&sim, ids[1]).mode, Mode::Ycf { coop: true, .. }),
+            !matches!(v(&sim, ids[1]).mode(), Mode::Ycf { coop: true, .. }),
             "nobody opens a cooperative gap"
         );
     }
@@ -161,11 +161,11 @@ fn a_human_follower_is_never_asked() {
     for _ in 0..300 {
         sim.step().unwrap();
         assert!(
-            !matches!(v(&sim, h).mode, Mode::Ycf { coop: true, .. }),
+            !matches!(v(&sim, h).mode(), Mode::Ycf { coop: true, .. }),
             "the human driver opened a cooperative gap"
         );
         // No request is out: without a CAV follower the counter stays 0.
-        if let Mode::Blc { ask, .. } = v(&sim, r).mode {
+        if let Mode::Blc { ask, .. } = v(&sim, r).mode() {
             assert_eq!(ask, 0, "a request to a human driver");
         }
     }
@@ -187,10 +187,15 @@ impl Organizer for Swap {
     fn name(&self) -> &str {
         "swap"
     }
-    fn advise(&self, v: &Vehicle, _t_s: f64, _road: &platoonsim_sim::network::Geometry) -> Advice {
-        let lane = if v.id == self.a {
+    fn advise(
+        &self,
+        v: VehicleView<'_>,
+        _t_s: f64,
+        _road: &platoonsim_sim::network::Geometry,
+    ) -> Advice {
+        let lane = if v.id() == self.a {
             1
-        } else if v.id == self.b {
+        } else if v.id() == self.b {
             0
         } else {
             return Advice::Free;
@@ -224,10 +229,10 @@ fn two_cavs_that_want_each_others_lane_do_not_wait_for_each_other() {
         for (k, id) in [a, b].into_iter().enumerate() {
             let Some(x) = sim.vehicle(id) else { continue };
             assert!(
-                !matches!(x.mode, Mode::Ycf { .. }),
+                !matches!(x.mode(), Mode::Ycf { .. }),
                 "a requester answered a request"
             );
-            if let Mode::Blc { ask, .. } = x.mode {
+            if let Mode::Blc { ask, .. } = x.mode() {
                 timed_out[k] |= ask > timeout;
             }
         }

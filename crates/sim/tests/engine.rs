@@ -83,16 +83,16 @@ fn every_step_keeps_lanes_sorted_with_positive_gaps_and_finite_states() {
         for lane in 0..3 {
             let mut ahead: Option<(f64, f64)> = None;
             for v in sim.lane_vehicles(lane) {
-                assert!(v.x.is_finite() && v.v.is_finite() && v.a.is_finite());
-                assert!(v.v >= 0.0, "negative speed {}", v.v);
+                assert!(v.x().is_finite() && v.v().is_finite() && v.a().is_finite());
+                assert!(v.v() >= 0.0, "negative speed {}", v.v());
                 if let Some((x, len)) = ahead {
                     assert!(
-                        x - len - v.x >= 0.0,
+                        x - len - v.x() >= 0.0,
                         "overlap behind x = {x} at t = {}",
                         sim.time_s()
                     );
                 }
-                ahead = Some((v.x, v.driver.human.length_m));
+                ahead = Some((v.x(), v.length_m()));
             }
         }
     }

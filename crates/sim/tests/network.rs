@@ -148,13 +148,13 @@ fn ramp_vehicles_merge_and_the_acceleration_lane_empties() {
         // Acceleration lane of A: lane index 1 on [800, 1050).
         let n = sim
             .lane_vehicles(1)
-            .filter(|v| v.x >= 800.0 && v.x < 1050.0)
+            .filter(|v| v.x() >= 800.0 && v.x() < 1050.0)
             .count();
         max_on_accel = max_on_accel.max(n);
         // Nobody is ever past the end of A's acceleration lane and short of the added lane.
         assert!(sim
             .lane_vehicles(1)
-            .all(|v| !(v.x >= 1050.0 && v.x < 2000.0)));
+            .all(|v| !(v.x() >= 1050.0 && v.x() < 2000.0)));
     }
     assert!(max_on_accel >= 1, "ramp A never used");
     assert!(
@@ -344,8 +344,8 @@ fn standing_in_open_lane(cfg: Config) -> u64 {
         for lane in 2..5 {
             let mut ahead: Option<f64> = None;
             for v in sim.lane_vehicles(lane) {
-                let open = ahead.is_none_or(|rear| rear - v.x > 100.0);
-                if v.v < 0.1 && open && matches!(v.mode, Mode::Blc { .. }) {
+                let open = ahead.is_none_or(|rear| rear - v.x() > 100.0);
+                if v.v() < 0.1 && open && matches!(v.mode(), Mode::Blc { .. }) {
                     found = true;
                 }
                 ahead = Some(v.rear());

@@ -351,8 +351,8 @@ fn trajectories_sample_the_road_at_the_period_inside_the_windows() {
     }
     let mut on_road: Vec<(u64, u32, f64, f64)> = (0..3)
         .flat_map(|l| sim.lane_vehicles(l).collect::<Vec<_>>())
-        .filter(|v| v.x + origin >= x0 && v.x + origin <= x1)
-        .map(|v| (v.id, v.lane, v.x + origin, v.v))
+        .filter(|v| v.x() + origin >= x0 && v.x() + origin <= x1)
+        .map(|v| (v.id(), v.lane(), v.x() + origin, v.v()))
         .collect();
     on_road.sort_by_key(|r| r.0);
     let sampled: Vec<(u64, u32, f64, f64)> = rows

@@ -4,8 +4,8 @@
 
 use super::{Desire, View};
 use crate::events::LaneChangeReason;
-use crate::sense::{Neighbours, NONE};
-use crate::sim::Decision;
+use crate::state::Decision;
+use crate::state::{Neighbours, NONE};
 use crate::vehicle::{Mode, Vehicle};
 use platoonsim_model::cooperative as coop;
 use platoonsim_model::lanechange::Side;

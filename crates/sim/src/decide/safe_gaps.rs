@@ -5,8 +5,8 @@
 
 use super::v_des_of;
 use crate::config::Config;
-use crate::sense::Sensed;
 use crate::state::RoadState;
+use crate::state::Sensed;
 use crate::vehicle::Vehicle;
 use platoonsim_model::safegap::{self, AutomatedFollower, GapRule, SafeDecel};
 use platoonsim_model::Leader;

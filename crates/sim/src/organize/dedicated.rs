@@ -12,7 +12,8 @@ use super::pd::PdLane;
 use super::{organized_lane_at, Advice, Organizer, StrategyEntry};
 use crate::config::{Config, PdConfig};
 use crate::network::Geometry;
-use crate::vehicle::{Kind, Vehicle};
+use crate::vehicle::Kind;
+use crate::view::VehicleView;
 
 pub(super) const ENTRY: StrategyEntry = StrategyEntry {
     name: "dedicated",
@@ -43,17 +44,17 @@ impl Organizer for DedicatedLane {
         true
     }
 
-    fn advise(&self, v: &Vehicle, t_s: f64, road: &Geometry) -> Advice {
-        if v.kind == Kind::Cav {
+    fn advise(&self, v: VehicleView<'_>, t_s: f64, road: &Geometry) -> Advice {
+        if v.kind() == Kind::Cav {
             return PdLane::join(&self.pd, v, t_s, road);
         }
         let pd = &self.pd;
-        if v.x >= pd.zone_end_m || t_s < pd.start_s || t_s >= pd.end_s {
+        if v.x() >= pd.zone_end_m || t_s < pd.start_s || t_s >= pd.end_s {
             return Advice::Free;
         }
         // The lane as it will be at the zone start (a driver upstream keeps out of the lane
         // that the zone reserves), or here inside the zone.
-        let at = v.x.max(pd.zone_start_m);
+        let at = v.x().max(pd.zone_start_m);
         match organized_lane_at(pd.lane, road, at, 0) {
             Some(lane) => Advice::Avoid {
                 lane,

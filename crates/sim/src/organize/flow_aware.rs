@@ -15,7 +15,7 @@ use super::{Advice, Organizer, StrategyEntry};
 use crate::config::{Config, FlowAwareConfig, PdConfig};
 use crate::detector::Broadcast;
 use crate::network::Geometry;
-use crate::vehicle::Vehicle;
+use crate::view::VehicleView;
 
 /// Cell length for the Flow-Aware condition cache (m).
 pub const FA_CELL_M: f64 = 50.0;
@@ -60,8 +60,8 @@ impl Organizer for FlowAware {
         self.cells = cells(&self.thresholds, self.road_length_m, casts);
     }
 
-    fn advise(&self, v: &Vehicle, t_s: f64, road: &Geometry) -> Advice {
-        let c = (v.x / FA_CELL_M) as usize;
+    fn advise(&self, v: VehicleView<'_>, t_s: f64, road: &Geometry) -> Advice {
+        let c = (v.x() / FA_CELL_M) as usize;
         if !self.cells.get(c).copied().unwrap_or(false) {
             return Advice::Free;
         }

@@ -1,10 +1,10 @@
 //! Platoon organization as a seam: an [`Organizer`] advises vehicles which lane to be in, and
 //! the driver model (decide.rs) turns the advice into lane-change desires (spec 4.7).
 //!
-//! A strategy is one file that implements [`Organizer`] and one line in [`STRATEGIES`], the
-//! name table that the scenario files, the command line and the experiments share. A library
-//! user can also hand an organizer of their own to [`crate::Simulation::set_organizer`]
-//! (docs/organizers.md has a worked example).
+//! A strategy is one file that implements [`Organizer`] and two lines here: its `mod`
+//! declaration and its entry in [`STRATEGIES`], the name table that the scenario files, the
+//! command line and the experiments share. A library user can also hand an organizer of their
+//! own to [`crate::Simulation::set_organizer`] (docs/organizers.md has a worked example).
 //!
 //! | strategy | advice |
 //! |---|---|
@@ -21,7 +21,7 @@ mod pd;
 use crate::config::{Config, PdConfig};
 use crate::detector::Broadcast;
 use crate::network::Geometry;
-use crate::vehicle::Vehicle;
+use crate::view::VehicleView;
 use std::fmt;
 use std::str::FromStr;
 
@@ -69,7 +69,7 @@ pub trait Organizer: Send + fmt::Debug {
     /// scenario's detectors.
     fn on_broadcasts(&mut self, _road: &Geometry, _broadcasts: &[(f64, Broadcast)]) {}
     /// The advice for vehicle `v` at simulated time `t_s` (the step start).
-    fn advise(&self, v: &Vehicle, t_s: f64, road: &Geometry) -> Advice;
+    fn advise(&self, v: VehicleView<'_>, t_s: f64, road: &Geometry) -> Advice;
 }
 
 /// One registered strategy.

@@ -4,7 +4,7 @@
 use super::{Advice, Organizer, StrategyEntry};
 use crate::config::Config;
 use crate::network::Geometry;
-use crate::vehicle::Vehicle;
+use crate::view::VehicleView;
 
 pub(super) const ENTRY: StrategyEntry = StrategyEntry {
     name: "none",
@@ -29,7 +29,7 @@ impl Organizer for NoOrganizer {
     fn advises_cavs(&self) -> bool {
         false
     }
-    fn advise(&self, _: &Vehicle, _: f64, _: &Geometry) -> Advice {
+    fn advise(&self, _: VehicleView<'_>, _: f64, _: &Geometry) -> Advice {
         Advice::Free
     }
 }

@@ -11,7 +11,7 @@
 use super::{in_zone, Advice, Organizer, StrategyEntry};
 use crate::config::{Config, PdConfig};
 use crate::network::Geometry;
-use crate::vehicle::Vehicle;
+use crate::view::VehicleView;
 use serde::Serialize;
 
 pub(super) const ENTRY: StrategyEntry = StrategyEntry {
@@ -74,12 +74,12 @@ pub struct PdLane {
 impl PdLane {
     /// Join advice inside the zone and the window (also `dedicated`'s advice to CAVs).
     #[inline]
-    pub(super) fn join(pd: &PdConfig, v: &Vehicle, t_s: f64, road: &Geometry) -> Advice {
-        if !in_zone(pd, v.x, t_s) {
+    pub(super) fn join(pd: &PdConfig, v: VehicleView<'_>, t_s: f64, road: &Geometry) -> Advice {
+        if !in_zone(pd, v.x(), t_s) {
             return Advice::Free;
         }
         // Where no lane is open the vehicle stays where it is (no desire).
-        let lane = organized_lane_at(pd.lane, road, v.x, v.lane).unwrap_or(v.lane);
+        let lane = organized_lane_at(pd.lane, road, v.x(), v.lane()).unwrap_or(v.lane());
         Advice::Join {
             lane,
             strength: 1.0,
@@ -91,7 +91,7 @@ impl Organizer for PdLane {
     fn name(&self) -> &str {
         ENTRY.name
     }
-    fn advise(&self, v: &Vehicle, t_s: f64, road: &Geometry) -> Advice {
+    fn advise(&self, v: VehicleView<'_>, t_s: f64, road: &Geometry) -> Advice {
         PdLane::join(&self.pd, v, t_s, road)
     }
 }

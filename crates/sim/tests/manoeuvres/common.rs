@@ -14,8 +14,8 @@ pub struct Seen {
     pub lane: u32,
     pub length: f64,
     pub jam_gap: f64,
-    /// The CAV string predecessor's id (`u64::MAX`: none).
-    pub pred: u64,
+    /// The CAV string predecessor's id, if the CAV is in a string.
+    pub pred: Option<u64>,
     /// The CAV's own CACC time gap t_C (s).
     pub t_c: f64,
 }
@@ -23,14 +23,14 @@ pub struct Seen {
 /// Vehicle `id` as the tests see it, if it is on the road.
 pub fn seen(sim: &Simulation, id: u64) -> Option<Seen> {
     sim.vehicle(id).map(|v| Seen {
-        x: v.x,
-        v: v.v,
-        a: v.a,
-        lane: v.lane,
-        length: v.driver.human.length_m,
-        jam_gap: v.driver.human.jam_gap_m,
-        pred: v.cacc.pred,
-        t_c: v.cacc.gap_s,
+        x: v.x(),
+        v: v.v(),
+        a: v.a(),
+        lane: v.lane(),
+        length: v.length_m(),
+        jam_gap: v.driver_params().jam_gap_m,
+        pred: v.joined(),
+        t_c: v.cacc_gap_s(),
     })
 }
 

@@ -116,7 +116,7 @@ fn a_cacc_string_attenuates_its_leaders_braking() {
         .collect();
     run(&mut sim, 60.0, |_| {});
     for w in ids.windows(2) {
-        assert_eq!(at(&sim, w[1]).pred, w[0], "the five form one string");
+        assert_eq!(at(&sim, w[1]).pred, Some(w[0]), "the five form one string");
     }
     let brake = Command::Accelerate {
         accel_mps2: -3.0,

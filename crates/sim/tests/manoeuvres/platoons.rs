@@ -15,7 +15,7 @@ fn a_cav_behind_a_cav_closes_to_its_cacc_time_gap() {
     let f = at(&sim, follow);
     // It joined the leader's string and follows at its own CACC gap t_C (the time gap of the
     // gap it keeps, bumper to bumper, at the common speed).
-    assert_eq!(f.pred, lead, "the follower is in the leader's string");
+    assert_eq!(f.pred, Some(lead), "the follower is in the leader's string");
     let t = gap(&sim, lead, follow) / f.v;
     assert!(
         (t - f.t_c).abs() < 0.1,
@@ -60,9 +60,9 @@ fn a_string_at_its_size_limit_leaves_the_next_cav_at_the_inter_platoon_gap() {
     }
     let t = time_gap(&sim, ids[2], ids[3]);
     assert!((t - 1.5).abs() < 0.1, "the fourth follows at {t:.3} s");
-    assert_ne!(
+    assert_eq!(
         at(&sim, ids[3]).pred,
-        ids[2],
+        None,
         "the fourth joined a full string"
     );
     assert_eq!(sim.collisions(), 0);
