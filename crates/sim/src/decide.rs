@@ -619,3 +619,23 @@ pub(crate) fn pair_uniform(seed: u64, a: u64, b: u64) -> f64 {
     z ^= z >> 31;
     (z >> 11) as f64 / (1u64 << 53) as f64
 }
+
+#[cfg(test)]
+mod tests {
+    use super::pair_uniform;
+
+    #[test]
+    fn a_pairs_uniform_is_in_the_unit_interval_and_fixed_by_seed_and_order() {
+        let draws: Vec<f64> = (0..20_000u64).map(|k| pair_uniform(7, k, k + 1)).collect();
+        assert!(draws.iter().all(|u| (0.0..1.0).contains(u)));
+        let mean = draws.iter().sum::<f64>() / draws.len() as f64;
+        assert!((mean - 0.5).abs() < 0.01, "mean {mean}");
+        let below = draws.iter().filter(|&&u| u < 0.25).count() as f64 / draws.len() as f64;
+        assert!((below - 0.25).abs() < 0.01, "share below 0.25: {below}");
+        // The same pair and seed: the same draw (a yield decision is the pair's, step after
+        // step); the other order or another seed: another draw.
+        assert_eq!(pair_uniform(7, 3, 4), pair_uniform(7, 3, 4));
+        assert_ne!(pair_uniform(7, 3, 4), pair_uniform(7, 4, 3));
+        assert_ne!(pair_uniform(7, 3, 4), pair_uniform(8, 3, 4));
+    }
+}

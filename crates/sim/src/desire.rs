@@ -417,3 +417,46 @@ fn settle(
         organize,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::settle;
+    use crate::insert::place_for_test;
+    use crate::vehicle::Kind;
+    use crate::{Config, Simulation};
+    use platoonsim_model::lanechange::Side;
+
+    /// A driver with the mean lane-change parameters (threshold 0.25, minimum interval 5 s,
+    /// return factor 3) whose last change was to `last`.
+    fn driver(last: Option<Side>) -> crate::vehicle::Vehicle {
+        let mut sim = Simulation::new(Config::homogeneous(0.0, 0.0, 60.0, 0.0, 1)).unwrap();
+        let id = place_for_test(&mut sim, Kind::Human, 1, 1000.0, 25.0);
+        let s = sim.traffic.slot_of(id).unwrap();
+        let mut v = sim.traffic.vehicles[s as usize].clone();
+        v.lcs.last_side = last;
+        v
+    }
+
+    #[test]
+    fn a_desire_leads_to_an_attempt_only_above_the_drivers_threshold() {
+        let v = driver(None);
+        assert_eq!(v.driver.lc.threshold, 0.25);
+        assert!(settle(&v, None, Side::Left, 0.25, false, false).is_none());
+        let d = settle(&v, None, Side::Left, 0.26, true, false).expect("above the threshold");
+        assert_eq!(
+            (d.side, d.gamma, d.mandatory, d.organize),
+            (Side::Left, 0.26, true, false)
+        );
+    }
+
+    #[test]
+    fn a_desire_back_toward_the_lane_just_left_waits_three_minimum_intervals() {
+        // Last change to the left; a desire below 1 back to the right is dropped for
+        // 3 × 5 s = 15 s, a desire of 1 (mandatory in full) and one further left are not.
+        let v = driver(Some(Side::Left));
+        assert!(settle(&v, Some(14.9), Side::Right, 0.9, false, false).is_none());
+        assert!(settle(&v, Some(15.0), Side::Right, 0.9, false, false).is_some());
+        assert!(settle(&v, Some(1.0), Side::Right, 1.0, true, false).is_some());
+        assert!(settle(&v, Some(1.0), Side::Left, 0.9, false, false).is_some());
+    }
+}

@@ -75,3 +75,26 @@ fn toward(v: &Vehicle, side: Side, target: u64) -> bool {
         Side::Right => u64::from(v.lane) == target + 1,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::toward;
+    use crate::insert::place_for_test;
+    use crate::vehicle::Kind;
+    use crate::{Config, Simulation};
+    use platoonsim_model::lanechange::Side;
+
+    #[test]
+    fn a_commanded_change_is_toward_its_target_lane_only_from_the_lane_beside_it() {
+        let mut cfg = Config::homogeneous(0.0, 0.0, 60.0, 0.0, 1);
+        cfg.road.lanes = 4;
+        let mut sim = Simulation::new(cfg).unwrap();
+        let id = place_for_test(&mut sim, Kind::Human, 1, 1000.0, 25.0);
+        let v = &sim.traffic.vehicles[sim.traffic.slot_of(id).unwrap() as usize];
+        assert!(toward(v, Side::Left, 2));
+        assert!(toward(v, Side::Right, 0));
+        assert!(!toward(v, Side::Left, 3), "two lanes away");
+        assert!(!toward(v, Side::Right, 2), "the wrong side");
+        assert!(!toward(v, Side::Left, 1), "its own lane");
+    }
+}

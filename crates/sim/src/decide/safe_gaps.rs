@@ -70,3 +70,19 @@ pub(crate) fn follower_accel_after(
         dt,
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::safe_decel;
+    use crate::Config;
+    use platoonsim_model::safegap::GapRule;
+
+    #[test]
+    fn the_published_rule_has_no_safe_decelerations() {
+        let mut cfg = Config::homogeneous(0.0, 0.0, 60.0, 0.0, 1);
+        let d = safe_decel(&cfg).expect("the safe rule is the default");
+        assert_eq!((d.normal_mps2, d.mandatory_mps2), (3.0, 4.0));
+        cfg.lane_change.gap_rule = GapRule::Published;
+        assert!(safe_decel(&cfg).is_none());
+    }
+}
