@@ -45,13 +45,13 @@ fn scratch(name: &str) -> PathBuf {
 
 /// The runs one experiment asks for with these settings: one line per unique run,
 /// `key seed detectors`, sorted.
-fn plan(name: ExperimentName, s: &Settings) -> Vec<String> {
+fn plan(name: ExperimentName, s: &Settings, mode: &str) -> Vec<String> {
     let seen: Mutex<Vec<(String, u64)>> = Mutex::new(Vec::new());
     let exec = |c: &Config| -> Result<Output, SimError> {
         seen.lock().unwrap().push((config_key(c), c.seed));
         Ok(fake(c))
     };
-    let dir = scratch(name.as_str());
+    let dir = scratch(&format!("{name}-{mode}"));
     let s = Settings {
         out: dir.clone(),
         jobs: Some(1),
@@ -118,7 +118,7 @@ fn reproduce(quick: bool) -> Vec<(ExperimentName, Settings)> {
 fn digests(quick: bool) -> Vec<String> {
     let mut out = Vec::new();
     for (name, s) in reproduce(quick) {
-        let lines = plan(name, &s);
+        let lines = plan(name, &s, if quick { "quick" } else { "full" });
         let text = lines.join("\n");
         if let Ok(d) = std::env::var("PLATOONSIM_PLAN_DIR") {
             let file = format!(
@@ -163,9 +163,9 @@ fn full_reproduction_plan() {
             "sensitivity 120 5cbea58485e593be",
             "flow-aware 30 25e175a335d98657",
             "sr99 140 d64fbbbb3961fdbf",
-            "sr99-demand 120 55334760b7075a2d",
+            "sr99-demand 660 79db514cd35b6a50",
             "behaviour 240 64fab4fb56e4640d",
-            "energy 314 1df9e1ac2f8012e8",
+            "energy 320 c68ed4954d2bfb1c",
         ]
     );
 }
@@ -176,7 +176,7 @@ fn calibrate_flow_aware_plan() {
         seeds: 3,
         ..Settings::default()
     };
-    let lines = plan(ExperimentName::CalibrateFlowAware, &s);
+    let lines = plan(ExperimentName::CalibrateFlowAware, &s, "default");
     let d = format!(
         "{} {:016x}",
         lines.len(),
