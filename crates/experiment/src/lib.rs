@@ -39,7 +39,8 @@ pub mod table;
 
 pub use design::{Cell, Labels, RunSpec};
 pub use experiments::{
-    run_experiment, Check, ExperimentName, ExperimentOutput, Settings, CAPACITY_FILL_S,
+    run_experiment, Check, Experiment, ExperimentName, ExperimentOutput, Part, Settings,
+    CAPACITY_FILL_S, EXPERIMENTS,
 };
 pub use runner::{Outcome, Runner};
 pub use stats::Stats;

@@ -9,7 +9,7 @@
 //! never copied: its figures come from other runs.
 
 use crate::atomic::write_atomic;
-use crate::experiments::{ExperimentName, ExperimentOutput, Figure};
+use crate::experiments::{ExperimentOutput, Figure, Part};
 use crate::safety;
 use crate::table::md_table;
 use crate::{Error, VERSION};
@@ -63,7 +63,7 @@ pub fn demote(md: &str) -> String {
 
 /// Whether an output belongs to the SR-99 section.
 fn is_network(o: &ExperimentOutput) -> bool {
-    ExperimentName::NETWORK.contains(&o.name)
+    o.name.part == Part::Network
 }
 
 /// A check's verdict, visible at a glance: a symbol and the words (the HTML page colours it).
@@ -236,7 +236,7 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
     md.push('\n');
 
     let mut n = 0;
-    let beyond = |o: &&ExperimentOutput| ExperimentName::BEYOND.contains(&o.name);
+    let beyond = |o: &&ExperimentOutput| o.name.part == Part::Beyond;
     for o in input
         .outputs
         .iter()

@@ -9,7 +9,7 @@
 //! the demand-scale search) take deterministic decisions; the plan is then pinned as a
 //! function of those results. Set `PLATOONSIM_PLAN_DIR` to write each plan as text.
 
-use platoonsim_experiment::experiments::run_experiment_with;
+use platoonsim_experiment::experiments::{self, run_experiment_with};
 use platoonsim_experiment::hash::{config_key, fnv1a64};
 use platoonsim_experiment::{ExperimentName, Settings};
 use platoonsim_sim::{Config, Output, SimError};
@@ -79,40 +79,13 @@ fn plan(name: ExperimentName, s: &Settings, mode: &str) -> Vec<String> {
     lines
 }
 
-/// `reproduce`'s settings of each experiment (`crates/cli/src/commands/reproduce.rs`).
+/// `reproduce`'s experiments and settings.
 fn reproduce(quick: bool) -> Vec<(ExperimentName, Settings)> {
     let base = Settings {
         seeds: if quick { 3 } else { 10 },
         ..Settings::default()
     };
-    let mut sr99 = Settings {
-        seeds: if quick { 1 } else { 10 },
-        ..base.clone()
-    };
-    let mut demand = sr99.clone();
-    if quick {
-        sr99.network_penetrations = vec![0.0, 0.4];
-        demand.network_penetrations = vec![0.0, 0.4];
-        demand.scale_grid = Vec::new();
-    }
-    let mut energy = Settings {
-        network_seeds: Some(sr99.seeds),
-        network_penetrations: sr99.network_penetrations.clone(),
-        ..base.clone()
-    };
-    if quick {
-        energy.energy_demands = vec![1500.0, 2500.0];
-        energy.network_penetrations = Vec::new();
-    }
-    vec![
-        (ExperimentName::Capacity, base.clone()),
-        (ExperimentName::Sensitivity, base.clone()),
-        (ExperimentName::FlowAware, base.clone()),
-        (ExperimentName::Sr99, sr99),
-        (ExperimentName::Sr99Demand, demand),
-        (ExperimentName::Behaviour, energy.clone()),
-        (ExperimentName::Energy, energy),
-    ]
+    experiments::reproduction(&base, quick, None, None)
 }
 
 fn digests(quick: bool) -> Vec<String> {
@@ -176,7 +149,7 @@ fn calibrate_flow_aware_plan() {
         seeds: 3,
         ..Settings::default()
     };
-    let lines = plan(ExperimentName::CalibrateFlowAware, &s, "default");
+    let lines = plan(experiments::get("calibrate-flow-aware"), &s, "default");
     let d = format!(
         "{} {:016x}",
         lines.len(),
