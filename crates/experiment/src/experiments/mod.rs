@@ -27,6 +27,8 @@ use crate::runner::{self, Executor, Outcome, Runner};
 use crate::safety;
 use crate::table::{self, SummaryRow};
 use crate::{Error, VERSION};
+pub(crate) use platoonsim_runs::table::metric_label;
+pub use platoonsim_runs::Figure;
 use platoonsim_scenario::StrategyKind;
 use platoonsim_sim::Config;
 use serde::Serialize;
@@ -292,13 +294,6 @@ impl Default for Settings {
 pub struct Check {
     pub statement: String,
     pub passed: bool,
-}
-
-/// A figure of an experiment: `<dir>/<stem>.png` and `.svg`.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Figure {
-    pub title: String,
-    pub stem: String,
 }
 
 /// Everything an experiment produced.
@@ -618,23 +613,6 @@ pub(crate) fn run_cells(
 /// Index of the cell with these labels.
 pub(crate) fn find(cells: &[Cell], wanted: &[(&str, &str)]) -> Option<usize> {
     cells.iter().position(|c| c.labels.matches(wanted))
-}
-
-/// Human-readable metric names.
-pub(crate) fn metric_label(metric: &str) -> &str {
-    match metric {
-        "lane_changes_per_vehicle" => "lane changes per vehicle",
-        "lane_changes_per_cav" => "lane changes per CAV",
-        "lane_changes_per_human" => "lane changes per human-driven vehicle",
-        "avg_platoon_length" => "average platoon length L̄",
-        "platooning_probability" => "platooning probability P_P",
-        "discharge_flow_vphpl" => "discharge flow (veh/h/lane)",
-        "max_sustained_flow_vphpl" => "capacity = highest 5-min discharge (veh/h/lane)",
-        "discharge_change_pct" => "discharge change vs baseline (%)",
-        "platoon_length_gain" => "L̄ gain vs baseline",
-        "platoon_length_ratio" => "L̄ relative to the baseline (ratio)",
-        other => other,
-    }
 }
 
 /// A bullet list of checks.
