@@ -3,10 +3,7 @@
 //! a 20-min warm-up. Per seed pair with the baseline: the discharge change
 //! (`discharge_change_pct`) and the L̄ gain (`platoon_length_gain`).
 
-use super::{
-    cell, checks_md, find, point, run_cells, Check, Done, Experiment, Part, Report, Results,
-    Settings,
-};
+use super::{checks_md, find, run_cells, Check, Done, Experiment, Part, Report, Results, Settings};
 use crate::design::num;
 use crate::runner::{Outcome, Runner};
 use crate::table::{self, md_table, pm, SummaryRow};
@@ -33,7 +30,7 @@ pub(super) const EXPERIMENT: Experiment = Experiment {
     own_period: false,
     safety_group: Some(&[]),
     reuse_from: &[],
-    total_runs: |s| s.seeds as usize * STRATEGIES.len(),
+    total_runs: |s| s.seeds as usize * super::grid::cell_count("flow-aware", SWEEP),
     run,
     report,
     quick: super::unchanged,
@@ -48,11 +45,11 @@ fn report(r: &Results<'_>) -> Result<Report, Error> {
     })
 }
 
+/// The grid: `sweeps/flow-aware.toml`.
+pub const SWEEP: &str = include_str!("../../../../sweeps/flow-aware.toml");
+
 pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {
-    let mut cells = Vec::new();
-    for k in STRATEGIES {
-        cells.push(cell(&[], point(s, PENETRATION, DEMAND, k))?);
-    }
+    let cells = super::grid::cells("flow-aware", SWEEP, s)?;
     let mut outcomes = run_cells(runner, &cells, seeds, 0)?;
     for i in 1..cells.len() {
         table::add_paired(

@@ -16,6 +16,7 @@ mod capacity;
 pub mod energy;
 mod figures;
 mod flow_aware;
+mod grid;
 mod sensitivity;
 pub mod sr99;
 pub mod sr99_demand;

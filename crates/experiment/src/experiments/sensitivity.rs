@@ -7,8 +7,8 @@
 //! same set-up, with its ΔQ against the same baseline.
 
 use super::{
-    cell, checks_md, find, metric_label, point, run_cells, Check, Done, Experiment, Part, Report,
-    Results, Settings,
+    checks_md, find, metric_label, run_cells, Check, Done, Experiment, Part, Report, Results,
+    Settings,
 };
 use crate::design::num;
 use crate::runner::{Outcome, Runner};
@@ -34,7 +34,7 @@ pub(super) const EXPERIMENT: Experiment = Experiment {
     own_period: false,
     safety_group: Some(&["demand_vphpl"]),
     reuse_from: &[],
-    total_runs: |s| s.seeds as usize * STRATEGIES.len() * DEMANDS.len(),
+    total_runs: |s| s.seeds as usize * super::grid::cell_count("sensitivity", SWEEP),
     run,
     report,
     quick: super::unchanged,
@@ -51,13 +51,11 @@ fn report(r: &Results<'_>) -> Result<Report, Error> {
     })
 }
 
+/// The grid: `sweeps/sensitivity.toml`.
+pub const SWEEP: &str = include_str!("../../../../sweeps/sensitivity.toml");
+
 pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {
-    let mut cells = Vec::new();
-    for &d in &DEMANDS {
-        for k in STRATEGIES {
-            cells.push(cell(&[], point(s, PENETRATION, d, k))?);
-        }
-    }
+    let cells = super::grid::cells("sensitivity", SWEEP, s)?;
     let mut outcomes = run_cells(runner, &cells, seeds, 0)?;
     let n = STRATEGIES.len();
     for i in (0..cells.len()).step_by(n) {
