@@ -513,7 +513,7 @@ mod tests {
             let e = parse(&format!("{head}{bad}\n")).unwrap_err();
             assert_eq!(e.key, key, "{bad}: {e}");
         }
-        assert_eq!(parse(&format!("{head}")).unwrap().labels, []);
+        assert_eq!(parse(head).unwrap().labels, []);
     }
 
     #[test]
