@@ -44,6 +44,12 @@ pub struct ExperimentArgs {
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub seeds: Option<u32>,
 
+    /// Settings of `reproduce --quick` for this experiment: 3 seeds per cell (1 on SR-99)
+    /// unless --seeds, and its quick changes (sr99, sr99-demand: 0 and 40 % CAV, no search;
+    /// energy: 1500 and 2500 veh/h/lane, no SR-99 part).
+    #[arg(long)]
+    pub quick: bool,
+
     #[command(flatten)]
     pub grid: GridArgs,
 

@@ -3,7 +3,8 @@
 use crate::args::{ExperimentArgs, GridArgs, NetworkArgs};
 use crate::progress;
 use anyhow::{bail, Context, Result};
-use platoonsim_experiment::{run_experiment, ExperimentName, ExperimentOutput, Settings};
+use platoonsim_experiment::experiments::{QUICK_NETWORK_SEEDS, QUICK_SEEDS};
+use platoonsim_experiment::{run_experiment, ExperimentName, ExperimentOutput, Part, Settings};
 use platoonsim_scenario::{demand_scales, thresholds};
 use std::path::{Path, PathBuf};
 
@@ -26,7 +27,12 @@ pub fn experiment(args: &ExperimentArgs, quiet: bool) -> Result<()> {
     let (duration, warmup) =
         crate::messages::check_experiment_duration(name, args.duration, args.warmup)
             .map_err(anyhow::Error::msg)?;
-    let mut s = settings(&args.grid, args.seeds.unwrap_or(name.default_seeds), quiet);
+    let default_seeds = match (args.quick, name.part) {
+        (false, _) => name.default_seeds,
+        (true, Part::Network) => QUICK_NETWORK_SEEDS,
+        (true, _) => QUICK_SEEDS,
+    };
+    let mut s = settings(&args.grid, args.seeds.unwrap_or(default_seeds), quiet);
     s.duration_s = duration;
     s.warmup_s = warmup;
     s.flow_thresholds = args.flow_thresholds.clone();
@@ -34,6 +40,9 @@ pub fn experiment(args: &ExperimentArgs, quiet: bool) -> Result<()> {
     s.tolerance_pct = args.tolerance;
     s.format = args.format.table();
     network(&mut s, &args.network, name)?;
+    if args.quick {
+        (name.quick)(&mut s);
+    }
     let _lock = crate::out_lock::lock(&s.out.join(name.as_str()), crate::out_lock::Share::Alone)?;
     let out = run_experiment(name, &s).with_context(|| format!("experiment {name} failed"))?;
     crate::stdout::print(&describe(&out))?;

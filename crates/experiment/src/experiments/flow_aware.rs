@@ -30,7 +30,7 @@ pub(super) const EXPERIMENT: Experiment = Experiment {
     own_period: false,
     safety_group: Some(&[]),
     reuse_from: &[],
-    total_runs: |s| s.seeds as usize * super::grid::cell_count("flow-aware", SWEEP),
+    total_runs: |s| s.seeds as usize * super::grid::cell_count(EXPERIMENT.name, SWEEP),
     run,
     report,
     quick: super::unchanged,
@@ -49,7 +49,7 @@ fn report(r: &Results<'_>) -> Result<Report, Error> {
 pub const SWEEP: &str = include_str!("../../../../sweeps/flow-aware.toml");
 
 pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {
-    let cells = super::grid::cells("flow-aware", SWEEP, s)?;
+    let cells = super::grid::cells(EXPERIMENT.name, SWEEP, s)?;
     let mut outcomes = run_cells(runner, &cells, seeds, 0)?;
     for i in 1..cells.len() {
         table::add_paired(

@@ -34,7 +34,7 @@ pub(super) const EXPERIMENT: Experiment = Experiment {
     own_period: false,
     safety_group: Some(&["demand_vphpl"]),
     reuse_from: &[],
-    total_runs: |s| s.seeds as usize * super::grid::cell_count("sensitivity", SWEEP),
+    total_runs: |s| s.seeds as usize * super::grid::cell_count(EXPERIMENT.name, SWEEP),
     run,
     report,
     quick: super::unchanged,
@@ -55,7 +55,7 @@ fn report(r: &Results<'_>) -> Result<Report, Error> {
 pub const SWEEP: &str = include_str!("../../../../sweeps/sensitivity.toml");
 
 pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {
-    let cells = super::grid::cells("sensitivity", SWEEP, s)?;
+    let cells = super::grid::cells(EXPERIMENT.name, SWEEP, s)?;
     let mut outcomes = run_cells(runner, &cells, seeds, 0)?;
     let n = STRATEGIES.len();
     for i in (0..cells.len()).step_by(n) {
