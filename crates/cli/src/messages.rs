@@ -61,7 +61,7 @@ pub fn check_experiment_duration(
 ) -> Result<(f64, f64), String> {
     let given = (duration.is_some(), warmup.is_some());
     let (duration, warmup) = (duration.unwrap_or(3600.0), warmup.unwrap_or(1200.0));
-    if matches!(name, ExperimentName::Sr99 | ExperimentName::Sr99Demand) {
+    if name.own_period {
         if given.0 || given.1 {
             let flag = if given.0 { "--duration" } else { "--warmup" };
             return Err(format!(
@@ -87,7 +87,7 @@ pub fn check_experiment_duration(
         ));
     }
     let fill = platoonsim_experiment::CAPACITY_FILL_S;
-    if name == ExperimentName::Capacity && duration <= fill {
+    if name.name == "capacity" && duration <= fill {
         return Err(format!(
             "invalid --duration {duration}: capacity's baseline stage measures after a fixed \
              {fill} s warm-up (the road fills), so --duration must be longer than {fill} s"

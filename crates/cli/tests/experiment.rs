@@ -91,6 +91,34 @@ fn experiment_writes_its_files_and_a_rerun_reuses_every_run() {
     assert_eq!(prov["reused"], 6);
 }
 
+/// `experiment NAME --quick` takes reproduce --quick's settings: 3 seeds per cell here.
+#[test]
+fn experiment_quick_takes_the_quick_reproductions_settings() {
+    let out = scratch("quick");
+    let o = platoonsim(&[
+        "experiment",
+        "flow-aware",
+        "--quick",
+        "--duration",
+        "400",
+        "--warmup",
+        "100",
+        "--out",
+        s(&out),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        stdout(&o).contains("9 runs (9 computed, 0 reused)"),
+        "{}",
+        stdout(&o)
+    );
+    let prov: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("flow-aware").join("run.json")).unwrap())
+            .unwrap();
+    assert_eq!(prov["seeds"], serde_json::json!([1, 2, 3]));
+}
+
 #[test]
 fn sr99_experiments_run_from_the_command_line() {
     let out = scratch("sr99");

@@ -8,16 +8,7 @@
 //! (they are rounded from the paper's own unrounded results, so they may differ from the
 //! printed values' ratio in the last digit).
 
-/// One value of the paper.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PaperValue {
-    pub experiment: &'static str,
-    /// Labels the cell must have.
-    pub cell: CellSel,
-    pub metric: &'static str,
-    pub value: f64,
-    pub source: &'static str,
-}
+pub use platoonsim_runs::table::{CellSel, PaperValue};
 
 const FIG4_TEXT: &str = "Preliminary Study, text on Fig. 4 (approximate, read from prose)";
 const TABLE3: &str = "Table 3";
@@ -33,8 +24,6 @@ macro_rules! v {
         }
     };
 }
-
-type CellSel = &'static [(&'static str, &'static str)];
 
 /// One row of Table 3: the baseline and PO cells, then LC/veh B, PO; L̄ B, PO; P_P B, PO;
 /// Q_B, Q_PO; ΔQ (%).

@@ -4,9 +4,9 @@
 
 use platoonsim_experiment::design::{keep_detectors, runs, seeds};
 use platoonsim_experiment::detectors::Scope;
-use platoonsim_experiment::experiments::run_experiment_with;
+use platoonsim_experiment::experiments::{self, run_experiment_with};
 use platoonsim_experiment::runner::{bar, simulate};
-use platoonsim_experiment::{Cell, ExperimentName, Labels, Runner, Settings};
+use platoonsim_experiment::{Cell, Labels, Runner, Settings};
 use platoonsim_scenario::{demand_scale_set, load_with, Overrides, StrategyKind};
 use platoonsim_sim::{Config, Output, SimError};
 use std::fs;
@@ -130,8 +130,8 @@ fn settings(out: &Path, seeds: u32) -> Settings {
 fn sr99_writes_table4_and_the_three_figures() {
     let out = scratch("sr99");
     let s = settings(&out, 2);
-    assert_eq!(ExperimentName::Sr99.total_runs(&s), 2 * 4);
-    let res = run_experiment_with(ExperimentName::Sr99, &s, &simulate).unwrap();
+    assert_eq!(experiments::get("sr99").total_runs(&s), 2 * 4);
+    let res = run_experiment_with(experiments::get("sr99"), &s, &simulate).unwrap();
     assert_eq!(res.outcomes.len(), 8);
     let dir = out.join("sr99");
     for f in [
@@ -191,7 +191,7 @@ fn sr99_writes_table4_and_the_three_figures() {
     assert!(!res.checks.is_empty());
 
     // A rerun reuses every run, detector files included.
-    let again = run_experiment_with(ExperimentName::Sr99, &s, &simulate).unwrap();
+    let again = run_experiment_with(experiments::get("sr99"), &s, &simulate).unwrap();
     assert_eq!((again.computed, again.reused), (0, 8));
     assert_eq!(fs::read_to_string(dir.join("runs.csv")).unwrap(), runs);
 
@@ -200,7 +200,7 @@ fn sr99_writes_table4_and_the_three_figures() {
         scale_grid: vec![],
         ..s
     };
-    let demand = run_experiment_with(ExperimentName::Sr99Demand, &check, &simulate).unwrap();
+    let demand = run_experiment_with(experiments::get("sr99-demand"), &check, &simulate).unwrap();
     assert_eq!((demand.computed, demand.reused), (0, 4));
     assert_eq!(names(&out.join("sr99-demand/runs"), ".detectors.csv"), 4);
 }
@@ -219,8 +219,8 @@ fn sr99_demand_searches_the_grid_and_writes_the_table() {
         write_table: Some(table.clone()),
         ..settings(&out, 1)
     };
-    assert_eq!(ExperimentName::Sr99Demand.total_runs(&s), 4);
-    let res = run_experiment_with(ExperimentName::Sr99Demand, &s, &simulate).unwrap();
+    assert_eq!(experiments::get("sr99-demand").total_runs(&s), 4);
+    let res = run_experiment_with(experiments::get("sr99-demand"), &s, &simulate).unwrap();
     // Found at the first scale: the grid stops there.
     assert_eq!(res.outcomes.len(), 2);
     let dir = out.join("sr99-demand");
@@ -252,7 +252,7 @@ fn sr99_demand_searches_the_grid_and_writes_the_table() {
         scale_grid: vec![1.0, 1.4],
         ..strict
     };
-    let res = run_experiment_with(ExperimentName::Sr99Demand, &strict, &simulate).unwrap();
+    let res = run_experiment_with(experiments::get("sr99-demand"), &strict, &simulate).unwrap();
     assert_eq!(res.outcomes.len(), 2);
     let md = fs::read_to_string(dir.join("summary.md")).unwrap();
     assert!(md.contains("not reached (≤ 1.4)"), "{md}");
@@ -264,7 +264,7 @@ fn sr99_demand_searches_the_grid_and_writes_the_table() {
         scale_grid: vec![],
         ..strict
     };
-    let res = run_experiment_with(ExperimentName::Sr99Demand, &check, &simulate).unwrap();
+    let res = run_experiment_with(experiments::get("sr99-demand"), &check, &simulate).unwrap();
     assert_eq!(res.outcomes.len(), 1);
     let md = fs::read_to_string(dir.join("summary.md")).unwrap();
     assert!(md.contains("**No search**"), "{md}");

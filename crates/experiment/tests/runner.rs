@@ -3,9 +3,9 @@
 //! shape of the output files.
 
 use platoonsim_experiment::design::{runs, seeds};
-use platoonsim_experiment::experiments::run_experiment_with;
+use platoonsim_experiment::experiments::{self, run_experiment_with};
 use platoonsim_experiment::runner::{bar, simulate};
-use platoonsim_experiment::{Cell, ExperimentName, Labels, Runner, Settings};
+use platoonsim_experiment::{Cell, Labels, Runner, Settings};
 use platoonsim_sim::{Config, Output, SimError};
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -184,8 +184,10 @@ fn results_do_not_depend_on_the_thread_count() {
     let a = scratch("threads-1");
     let b = scratch("threads-2");
     let exec = &simulate;
-    let one = run_experiment_with(ExperimentName::FlowAware, &settings(&a, 1, 2), exec).unwrap();
-    let two = run_experiment_with(ExperimentName::FlowAware, &settings(&b, 2, 2), exec).unwrap();
+    let one =
+        run_experiment_with(experiments::get("flow-aware"), &settings(&a, 1, 2), exec).unwrap();
+    let two =
+        run_experiment_with(experiments::get("flow-aware"), &settings(&b, 2, 2), exec).unwrap();
     assert_eq!(one.computed, 6);
     assert_eq!(two.computed, 6);
     for f in ["runs.csv", "summary.csv"] {
@@ -194,7 +196,8 @@ fn results_do_not_depend_on_the_thread_count() {
         assert_eq!(x, y, "{f} differs between 1 and 2 threads");
     }
     // A rerun reuses everything and gives the same files.
-    let again = run_experiment_with(ExperimentName::FlowAware, &settings(&a, 2, 2), exec).unwrap();
+    let again =
+        run_experiment_with(experiments::get("flow-aware"), &settings(&a, 2, 2), exec).unwrap();
     assert_eq!((again.computed, again.reused), (0, 6));
     let x = fs::read(b.join("flow-aware/runs.csv")).unwrap();
     assert_eq!(fs::read(a.join("flow-aware/runs.csv")).unwrap(), x);
@@ -204,7 +207,7 @@ fn results_do_not_depend_on_the_thread_count() {
 fn sensitivity_files_have_the_expected_shape() {
     let out = scratch("shape");
     let res = run_experiment_with(
-        ExperimentName::Sensitivity,
+        experiments::get("sensitivity"),
         &settings(&out, 2, 2),
         &simulate,
     )
@@ -344,8 +347,11 @@ fn calibration_writes_the_tradeoff_and_the_thresholds() {
         write_table: Some(table.clone()),
         ..settings(&out, 2, 1)
     };
-    assert_eq!(ExperimentName::CalibrateFlowAware.total_runs(&s), 3 * 4 * 3);
-    let res = run_experiment_with(ExperimentName::CalibrateFlowAware, &s, &simulate).unwrap();
+    assert_eq!(
+        experiments::get("calibrate-flow-aware").total_runs(&s),
+        3 * 4 * 3
+    );
+    let res = run_experiment_with(experiments::get("calibrate-flow-aware"), &s, &simulate).unwrap();
     assert_eq!(res.outcomes.len(), 36);
     let dir = out.join("calibrate-flow-aware");
     for f in [
@@ -390,7 +396,7 @@ fn capacity_baseline_mean_discharge_leaves_out_the_filling_road() {
         duration_s: 900.0,
         ..settings(&out, 2, 1)
     };
-    let res = run_experiment_with(ExperimentName::Capacity, &s, &simulate).unwrap();
+    let res = run_experiment_with(experiments::get("capacity"), &s, &simulate).unwrap();
     // 5 baseline cells, 4 PD and 4 dedicated cells, 1 seed.
     assert_eq!(res.outcomes.len(), 13);
     for o in res.outcomes.iter().filter(|o| o.cell < 5) {

@@ -3,11 +3,11 @@
 //! with collisions mark their cells in summary.csv, summary.md and the report, and a run file
 //! of an older engine without the new fields still reads.
 
-use platoonsim_experiment::experiments::run_experiment_with;
+use platoonsim_experiment::experiments::{self, run_experiment_with};
 use platoonsim_experiment::record::{self, Fields};
 use platoonsim_experiment::report::{self, ReportInput};
 use platoonsim_experiment::runner::simulate;
-use platoonsim_experiment::{safety, table, Cell, ExperimentName, Labels, Outcome, Settings};
+use platoonsim_experiment::{safety, table, Cell, Labels, Outcome, Settings};
 use platoonsim_sim::{Config, Output, SimError};
 use std::fs;
 use std::path::PathBuf;
@@ -222,7 +222,7 @@ fn an_experiment_marks_the_cells_that_collided() {
         warmup_s: 300.0,
         ..Settings::default()
     };
-    let res = run_experiment_with(ExperimentName::FlowAware, &s, &with_a_collision).unwrap();
+    let res = run_experiment_with(experiments::get("flow-aware"), &s, &with_a_collision).unwrap();
     let dir = out.join("flow-aware");
     let md = fs::read_to_string(dir.join("summary.md")).unwrap();
     let title = "# Flow-Aware strategy on the homogeneous road\n\n";

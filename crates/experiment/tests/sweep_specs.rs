@@ -6,7 +6,7 @@
 //! in `run.duration_s`, `run.warmup_s` and the seed count.
 
 use platoonsim_experiment::sweep::{self, spec::Spec};
-use platoonsim_experiment::{run_experiment, ExperimentName, Settings};
+use platoonsim_experiment::{experiments, run_experiment, ExperimentName, Settings};
 use std::path::{Path, PathBuf};
 use toml::Value;
 
@@ -112,7 +112,7 @@ fn same_runs(name: ExperimentName, file: &str, derived: &[(&str, &str)]) {
 #[test]
 fn sensitivity_spec_gives_the_experiments_runs() {
     same_runs(
-        ExperimentName::Sensitivity,
+        experiments::get("sensitivity"),
         "sensitivity.toml",
         &[("discharge_change_pct", "discharge_flow_vphpl_pct")],
     );
@@ -121,7 +121,7 @@ fn sensitivity_spec_gives_the_experiments_runs() {
 #[test]
 fn flow_aware_spec_gives_the_experiments_runs() {
     same_runs(
-        ExperimentName::FlowAware,
+        experiments::get("flow-aware"),
         "flow-aware.toml",
         &[
             ("discharge_change_pct", "discharge_flow_vphpl_pct"),

@@ -65,6 +65,10 @@ pub struct Spec {
     pub compare: Option<(usize, usize)>,
     /// The metrics shown in `summary.md` and drawn; empty = the default list.
     pub metrics: Vec<String>,
+    /// `[labels]`: how an experiment's tables name the cells, (label, key of `[set]` or
+    /// `[axes]`) in file order; the experiments read it, `platoonsim sweep` labels cells by
+    /// their axis keys.
+    pub labels: Vec<(String, String)>,
     /// The file's text, kept in the provenance.
     pub text: String,
 }
@@ -127,7 +131,7 @@ impl Spec {
         let doc: Table = text
             .parse()
             .map_err(|e: toml::de::Error| err("(syntax)", e.to_string().trim_end().to_string()))?;
-        const KEYS: [&str; 8] = [
+        const KEYS: [&str; 9] = [
             "name",
             "description",
             "scenario",
@@ -136,6 +140,7 @@ impl Spec {
             "set",
             "axes",
             "compare",
+            "labels",
         ];
         for k in doc.keys() {
             if !KEYS.contains(&k.as_str()) {
@@ -305,6 +310,42 @@ impl Spec {
                 ))
             }
         };
+        let labels = match doc.get("labels") {
+            None => Vec::new(),
+            Some(Value::Table(t)) => {
+                let mut out = Vec::new();
+                for (name, v) in t {
+                    let key = match v {
+                        Value::String(k)
+                            if set.iter().any(|(s, _)| s == k)
+                                || axes.iter().any(|a| &a.key == k) =>
+                        {
+                            k.clone()
+                        }
+                        _ => {
+                            return Err(err(
+                                &format!("labels.{name}"),
+                                format!("{v}: expected a key of [set] or [axes], as a string"),
+                            ))
+                        }
+                    };
+                    if !valid_name(name) {
+                        return Err(err(
+                            &format!("labels.{name}"),
+                            "a label name is letters, digits, '_', '-' or '.'".into(),
+                        ));
+                    }
+                    out.push((name.clone(), key));
+                }
+                out
+            }
+            Some(v) => {
+                return Err(err(
+                    "labels",
+                    format!("{v}: expected a table of label names and keys"),
+                ))
+            }
+        };
         Ok(Spec {
             name,
             origin: origin.to_string(),
@@ -315,6 +356,7 @@ impl Spec {
             axes,
             compare,
             metrics,
+            labels,
             text: text.to_string(),
         })
     }
@@ -446,6 +488,32 @@ mod tests {
             set_arg("strategy.kind", &s.axes[1].levels[2]),
             "strategy.kind=\"flow-aware\""
         );
+    }
+
+    #[test]
+    fn labels_name_keys_of_set_or_axes_in_file_order() {
+        let head = "scenario = \"homogeneous\"\nseeds = 1\n[set]\n\"run.penetration\" = 0.5\n\
+                    [axes]\n\"strategy.kind\" = [\"none\", \"pd\"]\n[labels]\n";
+        let s = parse(&format!(
+            "{head}strategy = \"strategy.kind\"\npenetration = \"run.penetration\"\n"
+        ))
+        .unwrap();
+        assert_eq!(
+            s.labels,
+            [
+                ("strategy".to_string(), "strategy.kind".to_string()),
+                ("penetration".to_string(), "run.penetration".to_string())
+            ]
+        );
+        for (bad, key) in [
+            ("demand = \"demand.vph_per_lane\"", "labels.demand"),
+            ("demand = 2", "labels.demand"),
+            ("\"a b\" = \"strategy.kind\"", "labels.a b"),
+        ] {
+            let e = parse(&format!("{head}{bad}\n")).unwrap_err();
+            assert_eq!(e.key, key, "{bad}: {e}");
+        }
+        assert_eq!(parse(head).unwrap().labels, []);
     }
 
     #[test]

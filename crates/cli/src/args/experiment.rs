@@ -1,53 +1,19 @@
 //! Command-line arguments of the experiment commands (`experiment`, `reproduce`). The doc
 //! comments are the `--help` text.
 
-use clap::{Args, ValueEnum};
-use platoonsim_experiment::ExperimentName;
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use clap::Args;
+use platoonsim_experiment::{experiments, ExperimentName, EXPERIMENTS};
 use std::path::PathBuf;
 
-/// An experiment of the paper.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum ExperimentArg {
-    /// Fig. 4: baseline capacity (demand above capacity) and PD bottleneck capacity at 0-100 % CAV.
-    Capacity,
-    /// Table 3: baseline vs PD lane at 50 % CAV and 1000-2500 veh/h/lane.
-    Sensitivity,
-    /// Baseline vs Flow-Aware vs PD at 50 % CAV and 2500 veh/h/lane.
-    FlowAware,
-    /// Grid search of the Flow-Aware thresholds (rho_q, rho_v) at 25/50/75 % CAV and
-    /// 1000-2500 veh/h/lane: the largest platoon-length gain whose discharge loss stays within
-    /// --tolerance at every demand; writes tradeoff.csv and thresholds.toml.
-    CalibrateFlowAware,
-    /// Table 4 and Figs. 6-8 on the SR-99 corridor (4 h from 05:00): baseline, PD and
-    /// Flow-Aware PD at 20-80 % CAV, the baseline at 0 and 100 %, each penetration at its
-    /// demand scale (the embedded table unless --demand-scale-table or --demand-scale).
-    Sr99,
-    /// The SR-99 demand-scale search: per penetration, the smallest scale of --scales at which
-    /// the baseline shows both recurrent bottlenecks (see --bottleneck-speed); writes
-    /// demand_scales.toml (and the embedded table with --write-table).
-    Sr99Demand,
-    /// Beyond the paper: fuel per 100 km of CAVs, humans and all with baseline, PD,
-    /// Flow-Aware PD and the dedicated lane, on the homogeneous road at the Table 3 demands
-    /// (50 % CAV) and on SR-99 at --penetrations strictly between 0 and 1 (docs/energy.md).
-    Energy,
-    /// Beyond the paper: the paper's Table 3 set-up under the published gap rule, the safe
-    /// one (the default) and with cooperative lane changes of automated CAVs (issue 29).
-    Behaviour,
-}
-
-impl From<ExperimentArg> for ExperimentName {
-    fn from(e: ExperimentArg) -> Self {
-        match e {
-            ExperimentArg::Capacity => ExperimentName::Capacity,
-            ExperimentArg::Sensitivity => ExperimentName::Sensitivity,
-            ExperimentArg::FlowAware => ExperimentName::FlowAware,
-            ExperimentArg::CalibrateFlowAware => ExperimentName::CalibrateFlowAware,
-            ExperimentArg::Sr99 => ExperimentName::Sr99,
-            ExperimentArg::Sr99Demand => ExperimentName::Sr99Demand,
-            ExperimentArg::Energy => ExperimentName::Energy,
-            ExperimentArg::Behaviour => ExperimentName::Behaviour,
-        }
-    }
+/// The experiments' names (with their help) from the experiment table.
+fn experiment_names() -> impl TypedValueParser<Value = ExperimentName> {
+    PossibleValuesParser::new(
+        EXPERIMENTS
+            .iter()
+            .map(|e| PossibleValue::new(e.name).help(e.help)),
+    )
+    .map(|name| experiments::get(&name))
 }
 
 /// Flags shared by `experiment` and `reproduce`.
@@ -70,13 +36,19 @@ pub struct GridArgs {
 #[derive(Debug, Args)]
 pub struct ExperimentArgs {
     /// Which experiment.
-    #[arg(value_enum, value_name = "NAME")]
-    pub name: ExperimentArg,
+    #[arg(value_name = "NAME", value_parser = experiment_names())]
+    pub name: ExperimentName,
 
     /// Seeds per cell (seeds 1..=N); the mean and a 95 % confidence interval are reported.
     /// Default: 10, or 3 for calibrate-flow-aware and sr99-demand.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub seeds: Option<u32>,
+
+    /// Settings of `reproduce --quick` for this experiment: 3 seeds per cell (1 on SR-99)
+    /// unless --seeds, and its quick changes (sr99, sr99-demand: 0 and 40 % CAV, no search;
+    /// energy: 1500 and 2500 veh/h/lane, no SR-99 part).
+    #[arg(long)]
+    pub quick: bool,
 
     #[command(flatten)]
     pub grid: GridArgs,

@@ -441,7 +441,6 @@ pub enum ShowFormat {
 mod tests {
     use super::*;
     use clap::CommandFactory;
-    use platoonsim_experiment::ExperimentName;
 
     #[test]
     fn clap_definition_is_consistent() {
@@ -578,7 +577,10 @@ mod tests {
         let Command::Experiment(e) = cli.command else {
             panic!()
         };
-        assert_eq!(ExperimentName::from(e.name), ExperimentName::FlowAware);
+        assert_eq!(
+            e.name,
+            platoonsim_experiment::experiments::get("flow-aware")
+        );
         assert_eq!((e.seeds, e.grid.jobs, e.grid.fresh), (None, None, false));
         assert_eq!(e.flow_thresholds.len(), 5);
         assert_eq!(e.tolerance, 0.5);
@@ -599,8 +601,8 @@ mod tests {
             panic!()
         };
         assert_eq!(
-            ExperimentName::from(e.name),
-            ExperimentName::CalibrateFlowAware
+            e.name,
+            platoonsim_experiment::experiments::get("calibrate-flow-aware")
         );
         assert_eq!(e.flow_thresholds, [1500.0, 2000.0]);
         assert_eq!(e.speed_thresholds, [0.0]);
@@ -609,11 +611,7 @@ mod tests {
         // Not given: the defaults (3600 s, 1200 s) are applied by check_experiment_duration.
         assert_eq!((e.duration, e.warmup), (None, None));
         assert_eq!(
-            crate::messages::check_experiment_duration(
-                ExperimentName::from(e.name),
-                e.duration,
-                e.warmup
-            ),
+            crate::messages::check_experiment_duration(e.name, e.duration, e.warmup),
             Ok((3600.0, 1200.0))
         );
 
@@ -654,7 +652,10 @@ mod tests {
         let Command::Experiment(e) = cli.command else {
             panic!()
         };
-        assert_eq!(ExperimentName::from(e.name), ExperimentName::Sr99Demand);
+        assert_eq!(
+            e.name,
+            platoonsim_experiment::experiments::get("sr99-demand")
+        );
         assert_eq!(e.network.penetrations, [0.0, 0.4]);
         assert_eq!(e.network.scales, [1.0, 1.1]);
         assert_eq!(e.network.bottleneck_speed, 50.0);

@@ -1,11 +1,11 @@
 //! `platoonsim calibrate SCENARIO --field FILE... --params PARAMS.toml`: fit chosen scenario
-//! keys to field data (see `platoonsim_experiment::calibrate` and docs/calibrate.md).
+//! keys to field data (see `platoonsim_calibrate::calibrate` and docs/calibrate.md).
 
 use super::compare::field_data;
 use crate::progress;
 use anyhow::{Context, Result};
 use clap::Args;
-use platoonsim_experiment::calibrate::{self, params::Params, Field};
+use platoonsim_calibrate::calibrate::{self, params::Params, Field};
 use std::path::PathBuf;
 use std::time::Duration;
 

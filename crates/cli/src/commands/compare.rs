@@ -1,9 +1,9 @@
 //! `platoonsim compare`: runs against field data (docs/compare.md). This module reads the
-//! field files and the placement; `platoonsim_experiment::compare` measures and writes.
+//! field files and the placement; `platoonsim_calibrate::compare` measures and writes.
 
 use crate::args::{CompareArgs, FieldFlags};
 use anyhow::{bail, Context, Result};
-use platoonsim_experiment::compare::{self, files, runs, Options};
+use platoonsim_calibrate::compare::{self, files, runs, Options};
 use platoonsim_field::{combine, load, pems, place, Obs, Placed};
 
 /// Names shown in a message before "…".

@@ -3,7 +3,8 @@
 use crate::args::{ExperimentArgs, GridArgs, NetworkArgs};
 use crate::progress;
 use anyhow::{bail, Context, Result};
-use platoonsim_experiment::{run_experiment, ExperimentName, ExperimentOutput, Settings};
+use platoonsim_experiment::experiments::{QUICK_NETWORK_SEEDS, QUICK_SEEDS};
+use platoonsim_experiment::{run_experiment, ExperimentName, ExperimentOutput, Part, Settings};
 use platoonsim_scenario::{demand_scales, thresholds};
 use std::path::{Path, PathBuf};
 
@@ -22,13 +23,14 @@ pub fn settings(grid: &GridArgs, seeds: u32, quiet: bool) -> Settings {
 }
 
 pub fn experiment(args: &ExperimentArgs, quiet: bool) -> Result<()> {
-    let name = ExperimentName::from(args.name);
+    let name = args.name;
     let (duration, warmup) =
         crate::messages::check_experiment_duration(name, args.duration, args.warmup)
             .map_err(anyhow::Error::msg)?;
-    let default_seeds = match name {
-        ExperimentName::CalibrateFlowAware | ExperimentName::Sr99Demand => 3,
-        _ => 10,
+    let default_seeds = match (args.quick, name.part) {
+        (false, _) => name.default_seeds,
+        (true, Part::Network) => QUICK_NETWORK_SEEDS,
+        (true, _) => QUICK_SEEDS,
     };
     let mut s = settings(&args.grid, args.seeds.unwrap_or(default_seeds), quiet);
     s.duration_s = duration;
@@ -38,11 +40,14 @@ pub fn experiment(args: &ExperimentArgs, quiet: bool) -> Result<()> {
     s.tolerance_pct = args.tolerance;
     s.format = args.format.table();
     network(&mut s, &args.network, name)?;
+    if args.quick {
+        (name.quick)(&mut s);
+    }
     let _lock = crate::out_lock::lock(&s.out.join(name.as_str()), crate::out_lock::Share::Alone)?;
     let out = run_experiment(name, &s).with_context(|| format!("experiment {name} failed"))?;
     crate::stdout::print(&describe(&out))?;
     if let Some(p) = &s.write_table {
-        let what = if name == ExperimentName::CalibrateFlowAware {
+        let what = if name.name == "calibrate-flow-aware" {
             "the chosen Flow-Aware thresholds"
         } else {
             "the demand scales found"
@@ -81,9 +86,9 @@ pub fn network(s: &mut Settings, n: &NetworkArgs, name: ExperimentName) -> Resul
     s.bottleneck_minutes = n.bottleneck_minutes;
     s.network_duration_s = n.network_duration;
     if let Some(w) = &n.write_table {
-        let embedded = match name {
-            ExperimentName::Sr99Demand if !n.no_search => demand_scales::TABLE_PATH,
-            ExperimentName::CalibrateFlowAware => thresholds::TABLE_PATH,
+        let embedded = match name.name {
+            "sr99-demand" if !n.no_search => demand_scales::TABLE_PATH,
+            "calibrate-flow-aware" => thresholds::TABLE_PATH,
             _ => bail!(
                 "--write-table applies to calibrate-flow-aware and to sr99-demand with a search \
                  (not with --no-search)"

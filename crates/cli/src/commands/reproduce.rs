@@ -4,57 +4,10 @@
 use crate::args::ReproduceArgs;
 use crate::commands::experiment::{describe, settings};
 use anyhow::{Context, Result};
+use platoonsim_experiment::experiments::{reproduction, QUICK_SEEDS};
 use platoonsim_experiment::report::{self, Provenance, ReportInput};
-use platoonsim_experiment::{run_experiment, ExperimentName, Settings};
+use platoonsim_experiment::{run_experiment, Part, Settings};
 use std::time::Instant;
-
-/// Seeds per cell on the homogeneous road with --quick.
-pub const QUICK_SEEDS: u32 = 3;
-/// Seeds per cell on SR-99 with --quick.
-pub const QUICK_NETWORK_SEEDS: u32 = 1;
-/// The `sr99` penetrations with --quick: the figures' 40 % (baseline, PD, Flow-Aware) and
-/// the 0 % baseline.
-pub const QUICK_SR99_PENETRATIONS: [f64; 2] = [0.0, 0.4];
-
-/// The homogeneous-road demands of `energy` with --quick (the full run: Table 3's four).
-pub const QUICK_ENERGY_DEMANDS: [f64; 2] = [1500.0, 2500.0];
-
-/// The `energy` settings: the homogeneous road's seeds and duration, SR-99's seeds and
-/// penetrations (quick: the homogeneous road only, at two demands; a 4-hour SR-99 run with
-/// energy takes 1-3 min of one core).
-fn energy_settings(args: &ReproduceArgs, base: &Settings, sr99: &Settings) -> Settings {
-    let mut s = Settings {
-        network_seeds: Some(sr99.seeds),
-        network_penetrations: sr99.network_penetrations.clone(),
-        network_duration_s: sr99.network_duration_s,
-        ..base.clone()
-    };
-    if args.quick {
-        s.energy_demands = QUICK_ENERGY_DEMANDS.to_vec();
-        s.network_penetrations = Vec::new();
-    }
-    s
-}
-
-/// The SR-99 settings: `sr99` and `sr99-demand` (quick: 0 % and 40 % only, and no demand
-/// search, only the criterion at the table's scales, on the runs `sr99` made: no extra run).
-fn network_settings(args: &ReproduceArgs, base: &Settings) -> (Settings, Settings) {
-    let seeds = args
-        .seeds
-        .unwrap_or(if args.quick { QUICK_NETWORK_SEEDS } else { 10 });
-    let mut sr99 = Settings {
-        seeds,
-        network_duration_s: args.network_duration,
-        ..base.clone()
-    };
-    let mut demand = sr99.clone();
-    if args.quick {
-        sr99.network_penetrations = QUICK_SR99_PENETRATIONS.to_vec();
-        demand.network_penetrations = QUICK_SR99_PENETRATIONS.to_vec();
-        demand.scale_grid = Vec::new();
-    }
-    (sr99, demand)
-}
 
 /// What the SR-99 section says about the choices of this invocation.
 fn network_note(args: &ReproduceArgs, sr99: &Settings) -> String {
@@ -128,25 +81,17 @@ pub fn reproduce(args: &ReproduceArgs, quiet: bool) -> Result<()> {
     s.duration_s = args.duration;
     s.warmup_s = args.warmup;
     let mut outputs = Vec::new();
-    for name in ExperimentName::ALL {
-        let out = run_experiment(name, &s).with_context(|| format!("experiment {name} failed"))?;
-        crate::stdout::print(&describe(&out))?;
-        outputs.push(out);
-    }
-    let (sr99, demand) = network_settings(args, &s);
-    for (name, settings) in ExperimentName::NETWORK.into_iter().zip([&sr99, &demand]) {
+    let mut network: Option<Settings> = None;
+    for (name, settings) in reproduction(&s, args.quick, args.seeds, args.network_duration) {
+        if name.part == Part::Network {
+            network.get_or_insert_with(|| settings.clone());
+        }
         let out =
-            run_experiment(name, settings).with_context(|| format!("experiment {name} failed"))?;
+            run_experiment(name, &settings).with_context(|| format!("experiment {name} failed"))?;
         crate::stdout::print(&describe(&out))?;
         outputs.push(out);
     }
-    let energy = energy_settings(args, &s, &sr99);
-    for name in ExperimentName::BEYOND {
-        let out =
-            run_experiment(name, &energy).with_context(|| format!("experiment {name} failed"))?;
-        crate::stdout::print(&describe(&out))?;
-        outputs.push(out);
-    }
+    let sr99 = network.context("reproduce has no SR-99 experiment")?;
     let mut command = String::from("platoonsim reproduce");
     if args.quick {
         command.push_str(" --quick");

@@ -2,7 +2,7 @@
 //! parameter values (shared by `tests/calibrate.rs` and `tests/hyperqueue.rs`).
 
 use super::{platoonsim, s, stderr};
-use platoonsim_experiment::field_obs::{mean_over_runs, to_obs};
+use platoonsim_calibrate::field_obs::{mean_over_runs, to_obs};
 use std::path::{Path, PathBuf};
 
 pub fn dir() -> PathBuf {

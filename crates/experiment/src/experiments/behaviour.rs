@@ -12,7 +12,10 @@
 //! (`platoon_length_ratio`). The braking measures per 100 veh-km (spec 9.4) show what each
 //! variant does to safety.
 
-use super::{cell, checks_md, find, point, run_cells, Check, Done, Settings};
+use super::{
+    cell, checks_md, find, point, run_cells, Check, Done, Experiment, Part, Report, Results,
+    Settings,
+};
 use crate::design::num;
 use crate::runner::{Outcome, Runner};
 use crate::table::{self, decimals, fixed, md_table, pm, signed, SummaryRow};
@@ -57,6 +60,31 @@ fn cells(s: &Settings) -> Result<Vec<Cell>, Error> {
         }
     }
     Ok(cells)
+}
+
+pub(super) const EXPERIMENT: Experiment = Experiment {
+    name: "behaviour",
+    title: "Driver behaviour: the published and the safe gap rule, cooperative lane changes (beyond the paper)",
+    help: "Beyond the paper: the paper's Table 3 set-up under the published gap rule, the safe \
+           one (the default) and with cooperative lane changes of automated CAVs (issue 29).",
+    part: Part::Beyond,
+    default_seeds: 10,
+    own_period: false,
+    safety_group: Some(&["demand_vphpl", "variant"]),
+    reuse_from: &[],
+    total_runs: |s| s.seeds as usize * CELLS,
+    run,
+    report,
+    quick: super::unchanged,
+};
+
+fn report(r: &Results<'_>) -> Result<Report, Error> {
+    let (body, checks) = markdown(r.settings, r.cells, r.outcomes, r.rows);
+    Ok(Report {
+        body,
+        checks,
+        ..Report::default()
+    })
 }
 
 pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {

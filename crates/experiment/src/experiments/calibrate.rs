@@ -9,7 +9,10 @@
 //! higher ρ_v). Files besides the usual ones: `tradeoff.csv` (one row per penetration and
 //! pair), `thresholds.toml` (the chosen pairs) and `tradeoff.png`/`.svg`.
 
-use super::{cell, checks_md, find, point, run_cells, sensitivity, Check, Done, Figure, Settings};
+use super::{
+    cell, checks_md, find, point, run_cells, sensitivity, Check, Done, Experiment, Figure, Part,
+    Report, Results, Settings,
+};
 use crate::design::num;
 use crate::runner::{Outcome, Runner};
 use crate::table::{self, csv_num, fixed, md_table, signed, SummaryRow};
@@ -29,6 +32,42 @@ pub const TOLERANCE_PCT: f64 = 0.5;
 
 pub(super) fn cells_per_penetration(s: &Settings) -> usize {
     sensitivity::DEMANDS.len() * (1 + s.flow_thresholds.len() * s.speed_thresholds.len())
+}
+
+pub(super) const EXPERIMENT: Experiment = Experiment {
+    name: "calibrate-flow-aware",
+    title: "Calibration of the Flow-Aware thresholds",
+    help: "Grid search of the Flow-Aware thresholds (rho_q, rho_v) at 25/50/75 % CAV and \
+           1000-2500 veh/h/lane: the largest platoon-length gain whose discharge loss stays \
+           within --tolerance at every demand; writes tradeoff.csv and thresholds.toml.",
+    part: Part::None,
+    default_seeds: 3,
+    own_period: false,
+    safety_group: None,
+    reuse_from: &[],
+    total_runs: |s| s.seeds as usize * PENETRATIONS.len() * cells_per_penetration(s),
+    run,
+    report,
+    quick: super::unchanged,
+};
+
+fn report(r: &Results<'_>) -> Result<Report, Error> {
+    let (body, checks) = markdown(r.settings, r.cells, r.outcomes, r.rows);
+    let figures = figure(r.settings, r.dir, r.cells, r.rows)?;
+    let mut written = Vec::new();
+    for (file, bytes) in files(r.settings, r.cells, r.rows)? {
+        // `thresholds.toml` also goes where the Flow-Aware defaults are read from, if asked.
+        if let (Some(table), "thresholds.toml") = (&r.settings.write_table, file.as_str()) {
+            written.push((table.clone(), bytes.clone()));
+        }
+        written.push((r.dir.join(file), bytes));
+    }
+    Ok(Report {
+        body,
+        checks,
+        figures,
+        files: written,
+    })
 }
 
 pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {

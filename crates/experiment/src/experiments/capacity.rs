@@ -15,7 +15,10 @@
 //! flow fluctuates, and a PD queue discharges much less evenly than the entrance queue of
 //! stage 1, so the two measures can order a PD cell and a baseline differently.
 
-use super::{cell, checks_md, find, point, run_cells, Check, Done, Settings};
+use super::{
+    cell, checks_md, find, point, run_cells, Check, Done, Experiment, Part, Report, Results,
+    Settings,
+};
 use crate::design::num;
 use crate::runner::{Outcome, Runner};
 use crate::table::{self, fixed, md_table, paper_comparison, pm, signed, SummaryRow};
@@ -28,6 +31,32 @@ const DISCHARGE: &str = "discharge_flow_vphpl";
 /// Stage 1 measures from the end of the first aggregation interval: the road is empty at the
 /// start, and the first vehicles reach the discharge detector (6.1 km) after about 220 s.
 pub const FILL_S: f64 = 300.0;
+
+pub(super) const EXPERIMENT: Experiment = Experiment {
+    name: "capacity",
+    title: "Capacity with and without the PD lane (paper Fig. 4)",
+    help: "Fig. 4: baseline capacity (demand above capacity) and PD bottleneck capacity at 0-100 % CAV.",
+    part: Part::Road,
+    default_seeds: 10,
+    own_period: false,
+    safety_group: Some(&["penetration"]),
+    reuse_from: &[],
+    total_runs: |s| s.seeds as usize * (3 * PENETRATIONS.len() - 2),
+    run,
+    report,
+    quick: super::unchanged,
+};
+
+fn report(r: &Results<'_>) -> Result<Report, Error> {
+    let (body, checks) = markdown(r.settings, r.cells, r.outcomes, r.rows);
+    let figures = super::figures::capacity(r.dir, r.cells, r.rows)?;
+    Ok(Report {
+        body,
+        checks,
+        figures,
+        ..Report::default()
+    })
+}
 
 pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {
     let mut stage1 = Vec::new();

@@ -7,7 +7,7 @@
 //! the CAVs, the humans and all. The paper's question: when does organization save energy for
 //! the CAVs while it costs the system more?
 
-use super::{find, point, run_cells, Check, Done, Settings};
+use super::{find, point, run_cells, Check, Done, Experiment, Part, Report, Results, Settings};
 use crate::design::{self, num, Cell, Labels};
 use crate::runner::{Outcome, Runner};
 use crate::table::{self, fixed, md_table, pm, signed, SummaryRow};
@@ -100,6 +100,44 @@ pub fn cells(s: &Settings) -> Result<(Vec<Cell>, usize), Error> {
         }
     }
     Ok((out, road))
+}
+
+pub(super) const EXPERIMENT: Experiment = Experiment {
+    name: "energy",
+    title: "Energy with platoon organization: fuel per vehicle-km (beyond the paper)",
+    help: "Beyond the paper: fuel per 100 km of CAVs, humans and all with baseline, PD, \
+           Flow-Aware PD and the dedicated lane, on the homogeneous road at the Table 3 demands \
+           (50 % CAV) and on SR-99 at --penetrations strictly between 0 and 1 (docs/energy.md).",
+    part: Part::Beyond,
+    default_seeds: 10,
+    own_period: false,
+    safety_group: Some(&["road", "penetration", "demand"]),
+    reuse_from: &[],
+    total_runs: |s| {
+        let (road, network) = cell_count(s);
+        road * s.seeds as usize + network * s.network_seeds.unwrap_or(s.seeds) as usize
+    },
+    run,
+    report,
+    // The homogeneous road only, at two demands (a 4-hour SR-99 run with energy takes 1-3
+    // min of one core).
+    quick: |s| {
+        s.energy_demands = QUICK_DEMANDS.to_vec();
+        s.network_penetrations = Vec::new();
+    },
+};
+
+/// The homogeneous-road demands of `reproduce --quick` (the full run: Table 3's four).
+pub const QUICK_DEMANDS: [f64; 2] = [1500.0, 2500.0];
+
+fn report(r: &Results<'_>) -> Result<Report, Error> {
+    let (body, checks) = markdown(r.settings, r.cells, r.outcomes, r.rows);
+    Ok(Report {
+        body,
+        checks,
+        figures: figure(r.dir, r.cells, r.rows)?,
+        ..Report::default()
+    })
 }
 
 pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {

@@ -3,7 +3,7 @@
 //! a 20-min warm-up. Per seed pair with the baseline: the discharge change
 //! (`discharge_change_pct`) and the L̄ gain (`platoon_length_gain`).
 
-use super::{cell, checks_md, find, point, run_cells, Check, Done, Settings};
+use super::{checks_md, find, run_cells, Check, Done, Experiment, Part, Report, Results, Settings};
 use crate::design::num;
 use crate::runner::{Outcome, Runner};
 use crate::table::{self, md_table, pm, SummaryRow};
@@ -21,11 +21,35 @@ const STRATEGIES: [StrategyKind; 3] = [
     StrategyKind::PD,
 ];
 
+pub(super) const EXPERIMENT: Experiment = Experiment {
+    name: "flow-aware",
+    title: "Flow-Aware strategy on the homogeneous road",
+    help: "Baseline vs Flow-Aware vs PD at 50 % CAV and 2500 veh/h/lane.",
+    part: Part::Road,
+    default_seeds: 10,
+    own_period: false,
+    safety_group: Some(&[]),
+    reuse_from: &[],
+    total_runs: |s| s.seeds as usize * super::grid::cell_count(EXPERIMENT.name, SWEEP),
+    run,
+    report,
+    quick: super::unchanged,
+};
+
+fn report(r: &Results<'_>) -> Result<Report, Error> {
+    let (body, checks) = markdown(r.settings, r.cells, r.outcomes, r.rows);
+    Ok(Report {
+        body,
+        checks,
+        ..Report::default()
+    })
+}
+
+/// The grid: `sweeps/flow-aware.toml`.
+pub const SWEEP: &str = include_str!("../../../../sweeps/flow-aware.toml");
+
 pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {
-    let mut cells = Vec::new();
-    for k in STRATEGIES {
-        cells.push(cell(&[], point(s, PENETRATION, DEMAND, k))?);
-    }
+    let cells = super::grid::cells(EXPERIMENT.name, SWEEP, s)?;
     let mut outcomes = run_cells(runner, &cells, seeds, 0)?;
     for i in 1..cells.len() {
         table::add_paired(

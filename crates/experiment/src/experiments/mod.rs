@@ -16,6 +16,7 @@ mod capacity;
 pub mod energy;
 mod figures;
 mod flow_aware;
+mod grid;
 mod sensitivity;
 pub mod sr99;
 pub mod sr99_demand;
@@ -27,6 +28,8 @@ use crate::runner::{self, Executor, Outcome, Runner};
 use crate::safety;
 use crate::table::{self, SummaryRow};
 use crate::{Error, VERSION};
+pub(crate) use platoonsim_runs::table::metric_label;
+pub use platoonsim_runs::Figure;
 use platoonsim_scenario::StrategyKind;
 use platoonsim_sim::Config;
 use serde::Serialize;
@@ -37,103 +40,166 @@ pub use capacity::FILL_S as CAPACITY_FILL_S;
 pub use capacity::PENETRATIONS as CAPACITY_PENETRATIONS;
 pub use sensitivity::DEMANDS as SENSITIVITY_DEMANDS;
 
-/// The experiments that exist.
+/// Which part of `reproduce` runs an experiment, in this order (and in the table's order
+/// within a part); `None`: not part of the reproduction.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ExperimentName {
-    Capacity,
-    Sensitivity,
-    FlowAware,
-    CalibrateFlowAware,
-    Sr99,
-    Sr99Demand,
-    /// Beyond the paper: fuel with and without organization (issue 23).
-    Energy,
-    /// Beyond the paper: Table 3 under the published and the safe gap rule and with
-    /// cooperative lane changes (issue 29).
-    Behaviour,
+pub enum Part {
+    /// The homogeneous road, the paper's experiments.
+    Road,
+    /// The SR-99 corridor, with its own seeds (`--quick`: fewer penetrations, no search).
+    Network,
+    /// Beyond the paper, last.
+    Beyond,
+    None,
 }
 
-impl ExperimentName {
-    /// The homogeneous-road experiments that `reproduce` runs (the calibration is not one of
-    /// the paper's).
-    pub const ALL: [ExperimentName; 3] = [
-        ExperimentName::Capacity,
-        ExperimentName::Sensitivity,
-        ExperimentName::FlowAware,
-    ];
+/// What an experiment's report sees: its settings, output directory, cells, runs (with
+/// the derived metrics), statistics and what its procedure kept besides.
+pub struct Results<'a> {
+    pub settings: &'a Settings,
+    pub dir: &'a Path,
+    pub cells: &'a [Cell],
+    pub outcomes: &'a [Outcome],
+    pub rows: &'a [SummaryRow],
+    pub(crate) extra: &'a Extra,
+}
 
-    /// The SR-99 experiments that `reproduce` runs after them.
-    pub const NETWORK: [ExperimentName; 2] = [ExperimentName::Sr99, ExperimentName::Sr99Demand];
+/// What a report function makes: the body of `summary.md` (tables, comparison with the
+/// paper), the checks against the paper, the figures it drew and further files to write.
+#[derive(Default)]
+pub struct Report {
+    pub body: String,
+    pub checks: Vec<Check>,
+    pub figures: Vec<Figure>,
+    pub files: Vec<(PathBuf, Vec<u8>)>,
+}
 
-    /// The experiments beyond the paper that `reproduce` runs last.
-    pub const BEYOND: [ExperimentName; 2] = [ExperimentName::Behaviour, ExperimentName::Energy];
-
+/// One experiment: a row of [`EXPERIMENTS`]. Its procedure makes the cells and runs them
+/// through the runner (a fixed grid, or adaptive stages whose cells depend on earlier
+/// results); its report turns the results into tables, checks and figures.
+pub struct Experiment {
     /// The name on the command line and of the output directory.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            ExperimentName::Capacity => "capacity",
-            ExperimentName::Sensitivity => "sensitivity",
-            ExperimentName::FlowAware => "flow-aware",
-            ExperimentName::CalibrateFlowAware => "calibrate-flow-aware",
-            ExperimentName::Sr99 => "sr99",
-            ExperimentName::Sr99Demand => "sr99-demand",
-            ExperimentName::Energy => "energy",
-            ExperimentName::Behaviour => "behaviour",
-        }
-    }
-
+    pub name: &'static str,
     /// A title for reports.
-    pub fn title(self) -> &'static str {
-        match self {
-            ExperimentName::Capacity => "Capacity with and without the PD lane (paper Fig. 4)",
-            ExperimentName::Sensitivity => {
-                "Platoon organization at various demands (paper Table 3)"
-            }
-            ExperimentName::FlowAware => "Flow-Aware strategy on the homogeneous road",
-            ExperimentName::CalibrateFlowAware => "Calibration of the Flow-Aware thresholds",
-            ExperimentName::Sr99 => {
-                "SR-99 corridor: baseline, PD lane and Flow-Aware PD lane (paper Table 4, Figs. 6-8)"
-            }
-            ExperimentName::Sr99Demand => {
-                "SR-99 demand scale by penetration: the search for the recurrent bottlenecks"
-            }
-            ExperimentName::Energy => {
-                "Energy with platoon organization: fuel per vehicle-km (beyond the paper)"
-            }
-            ExperimentName::Behaviour => {
-                "Driver behaviour: the published and the safe gap rule, cooperative lane changes (beyond the paper)"
-            }
-        }
+    pub title: &'static str,
+    /// One paragraph for `--help`.
+    pub help: &'static str,
+    pub part: Part,
+    /// Seeds per cell unless asked otherwise.
+    pub default_seeds: u32,
+    /// Simulates a scenario's own period: refuses `--duration` and `--warmup`.
+    pub own_period: bool,
+    /// The labels that make the cells of one point (differing only in strategy) adjacent in
+    /// the safety table; `None`: no safety table (a grid of hundreds of cells) and no
+    /// braking figure.
+    pub safety_group: Option<&'static [&'static str]>,
+    /// Other experiments whose run files are reused (they share runs).
+    pub reuse_from: &'static [&'static str],
+    /// How many runs it makes with these settings (at most, for a search).
+    pub total_runs: fn(&Settings) -> usize,
+    /// The procedure: the cells, their runs and the derived metrics.
+    pub(crate) run: fn(&Settings, &Runner<'_>, &[u64]) -> Result<Done, Error>,
+    pub report: fn(&Results<'_>) -> Result<Report, Error>,
+    /// `reproduce --quick`'s changes to the settings (beyond its seeds).
+    pub quick: fn(&mut Settings),
+}
+
+impl Experiment {
+    /// The experiment of this name.
+    pub fn named(name: &str) -> Option<ExperimentName> {
+        EXPERIMENTS.iter().copied().find(|e| e.name == name)
     }
 
-    /// How many runs it makes with these settings.
-    pub fn total_runs(self, s: &Settings) -> usize {
-        if self == ExperimentName::Energy {
-            let (road, network) = energy::cell_count(s);
-            return road * s.seeds as usize + network * s.network_seeds.unwrap_or(s.seeds) as usize;
-        }
-        s.seeds as usize
-            * match self {
-                ExperimentName::Capacity => 3 * capacity::PENETRATIONS.len() - 2,
-                ExperimentName::Sensitivity => {
-                    sensitivity::STRATEGIES.len() * sensitivity::DEMANDS.len()
-                }
-                ExperimentName::FlowAware => 3,
-                ExperimentName::CalibrateFlowAware => {
-                    calibrate::PENETRATIONS.len() * calibrate::cells_per_penetration(s)
-                }
-                ExperimentName::Sr99 => sr99::cell_count(s),
-                ExperimentName::Sr99Demand => sr99_demand::max_cells(s),
-                ExperimentName::Energy => 0,
-                ExperimentName::Behaviour => behaviour::CELLS,
-            }
+    pub fn as_str(&self) -> &'static str {
+        self.name
+    }
+
+    pub fn title(&self) -> &'static str {
+        self.title
+    }
+
+    pub fn total_runs(&self, s: &Settings) -> usize {
+        (self.total_runs)(s)
     }
 }
 
-impl std::fmt::Display for ExperimentName {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.as_str())
+impl PartialEq for Experiment {
+    fn eq(&self, other: &Experiment) -> bool {
+        self.name == other.name
     }
+}
+
+impl std::fmt::Debug for Experiment {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name)
+    }
+}
+
+impl std::fmt::Display for Experiment {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name)
+    }
+}
+
+/// An experiment, as the table's row.
+pub type ExperimentName = &'static Experiment;
+
+/// Every experiment, in the order of `reproduce` (within its parts) and of `--help`.
+pub const EXPERIMENTS: [&Experiment; 8] = [
+    &capacity::EXPERIMENT,
+    &sensitivity::EXPERIMENT,
+    &flow_aware::EXPERIMENT,
+    &calibrate::EXPERIMENT,
+    &sr99::EXPERIMENT,
+    &sr99_demand::EXPERIMENT,
+    &behaviour::EXPERIMENT,
+    &energy::EXPERIMENT,
+];
+
+/// The experiment of this name; panics on a name not in [`EXPERIMENTS`] (for fixed names in
+/// code and tests; input goes through [`Experiment::named`]).
+pub fn get(name: &str) -> ExperimentName {
+    Experiment::named(name).unwrap_or_else(|| panic!("no experiment {name}"))
+}
+
+/// Keeps nothing to change for `--quick`.
+pub(crate) fn unchanged(_: &mut Settings) {}
+
+/// Seeds per cell of `reproduce` on the homogeneous road with `--quick`.
+pub const QUICK_SEEDS: u32 = 3;
+/// Seeds per cell of `reproduce` on SR-99 with `--quick`.
+pub const QUICK_NETWORK_SEEDS: u32 = 1;
+
+/// The experiments of `reproduce` with their settings: `base` (its seeds, duration, output,
+/// …) for the homogeneous road; on SR-99 `network_seeds` (or 10; 1 with `quick`) and
+/// `network_duration_s`, which the parts after it share for their SR-99 cells; then each
+/// row's quick changes.
+pub fn reproduction(
+    base: &Settings,
+    quick: bool,
+    network_seeds: Option<u32>,
+    network_duration_s: Option<f64>,
+) -> Vec<(ExperimentName, Settings)> {
+    let network_seeds = network_seeds.unwrap_or(if quick { QUICK_NETWORK_SEEDS } else { 10 });
+    let mut out = Vec::new();
+    for part in [Part::Road, Part::Network, Part::Beyond] {
+        for e in EXPERIMENTS.iter().copied().filter(|e| e.part == part) {
+            let mut s = base.clone();
+            if part != Part::Road {
+                s.network_seeds = Some(network_seeds);
+                s.network_duration_s = network_duration_s;
+            }
+            if part == Part::Network {
+                s.seeds = network_seeds;
+                s.network_seeds = None;
+            }
+            if quick {
+                (e.quick)(&mut s);
+            }
+            out.push((e, s));
+        }
+    }
+    out
 }
 
 /// How to run an experiment.
@@ -229,13 +295,6 @@ impl Default for Settings {
 pub struct Check {
     pub statement: String,
     pub passed: bool,
-}
-
-/// A figure of an experiment: `<dir>/<stem>.png` and `.svg`.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Figure {
-    pub title: String,
-    pub stem: String,
 }
 
 /// Everything an experiment produced.
@@ -340,23 +399,12 @@ pub fn run_experiment_with(
             name.total_runs(settings),
         )));
     }
-    // The SR-99 experiments share runs: sr99's baselines are sr99-demand's cells at the
-    // table's scales.
-    runner.reuse_from = match name {
-        ExperimentName::Sr99 => vec![settings.out.join("sr99-demand").join("runs")],
-        ExperimentName::Sr99Demand => vec![settings.out.join("sr99").join("runs")],
-        _ => Vec::new(),
-    };
-    let done = match name {
-        ExperimentName::Capacity => capacity::run(settings, &runner, &seeds),
-        ExperimentName::Sensitivity => sensitivity::run(settings, &runner, &seeds),
-        ExperimentName::FlowAware => flow_aware::run(settings, &runner, &seeds),
-        ExperimentName::CalibrateFlowAware => calibrate::run(settings, &runner, &seeds),
-        ExperimentName::Sr99 => sr99::run(settings, &runner, &seeds),
-        ExperimentName::Sr99Demand => sr99_demand::run(settings, &runner, &seeds),
-        ExperimentName::Energy => energy::run(settings, &runner, &seeds),
-        ExperimentName::Behaviour => behaviour::run(settings, &runner, &seeds),
-    };
+    runner.reuse_from = name
+        .reuse_from
+        .iter()
+        .map(|other| settings.out.join(other).join("runs"))
+        .collect();
+    let done = (name.run)(settings, &runner, &seeds);
     bar.finish_and_clear();
     let Done {
         cells,
@@ -364,45 +412,21 @@ pub fn run_experiment_with(
         extra,
     } = done?;
     let rows = table::summarize(name.as_str(), &cells, &outcomes);
-    let (body, checks) = match name {
-        ExperimentName::Capacity => capacity::markdown(settings, &cells, &outcomes, &rows),
-        ExperimentName::Sensitivity => sensitivity::markdown(settings, &cells, &outcomes, &rows),
-        ExperimentName::FlowAware => flow_aware::markdown(settings, &cells, &outcomes, &rows),
-        ExperimentName::CalibrateFlowAware => {
-            calibrate::markdown(settings, &cells, &outcomes, &rows)
-        }
-        ExperimentName::Sr99 => sr99::markdown(settings, &cells, &rows),
-        ExperimentName::Sr99Demand => sr99_demand::markdown(settings, &cells, &rows, &extra),
-        ExperimentName::Energy => energy::markdown(settings, &cells, &outcomes, &rows),
-        ExperimentName::Behaviour => behaviour::markdown(settings, &cells, &outcomes, &rows),
-    };
-    let (body, checks) = with_safety(name, &cells, &outcomes, body, checks);
-    let mut figures = match name {
-        ExperimentName::Capacity => figures::capacity(&dir, &cells, &rows)?,
-        ExperimentName::Sensitivity => figures::sensitivity(&dir, &cells, &rows)?,
-        ExperimentName::FlowAware => Vec::new(),
-        ExperimentName::CalibrateFlowAware => calibrate::figure(settings, &dir, &cells, &rows)?,
-        ExperimentName::Sr99 => sr99_figures::all(&dir, &cells, &rows, &extra)?,
-        ExperimentName::Sr99Demand => sr99_demand::figures(&dir, &extra)?,
-        ExperimentName::Energy => energy::figure(&dir, &cells, &rows)?,
-        ExperimentName::Behaviour => Vec::new(),
-    };
-    if name != ExperimentName::CalibrateFlowAware {
+    let report = (name.report)(&Results {
+        settings,
+        dir: &dir,
+        cells: &cells,
+        outcomes: &outcomes,
+        rows: &rows,
+        extra: &extra,
+    })?;
+    let (body, checks) = with_safety(name, &cells, &outcomes, report.body, report.checks);
+    let mut figures = report.figures;
+    if name.safety_group.is_some() {
         figures.extend(safety::braking_figure(&dir, &cells, &outcomes)?);
     }
-    if name == ExperimentName::CalibrateFlowAware {
-        for (file, bytes) in calibrate::files(settings, &cells, &rows)? {
-            // `thresholds.toml` also goes where the Flow-Aware defaults are read from, if asked.
-            if let (Some(table), "thresholds.toml") = (&settings.write_table, file.as_str()) {
-                write_file(table, &bytes)?;
-            }
-            write_file(&dir.join(file), &bytes)?;
-        }
-    }
-    if name == ExperimentName::Sr99Demand {
-        for (path, bytes) in sr99_demand::files(settings, &dir, &extra) {
-            write_file(&path, &bytes)?;
-        }
+    for (path, bytes) in &report.files {
+        write_file(path, bytes)?;
     }
 
     let mut out = ExperimentOutput {
@@ -446,16 +470,7 @@ pub(crate) fn with_safety(
     mut checks: Vec<Check>,
 ) -> (String, Vec<Check>) {
     // Cells of one point (differing only in strategy) on adjacent rows.
-    let group: Option<&[&str]> = match name {
-        ExperimentName::Capacity => Some(&["penetration"]),
-        ExperimentName::Sensitivity => Some(&["demand_vphpl"]),
-        ExperimentName::FlowAware => Some(&[]),
-        ExperimentName::Sr99 => Some(&["penetration"]),
-        ExperimentName::Sr99Demand => Some(&["penetration", "demand_scale"]),
-        ExperimentName::Energy => Some(&["road", "penetration", "demand"]),
-        ExperimentName::Behaviour => Some(&["demand_vphpl", "variant"]),
-        ExperimentName::CalibrateFlowAware => None,
-    };
+    let group = name.safety_group;
     let mut md = safety::warning_md(cells, outcomes);
     md.push_str(&body);
     if let Some(group) = group {
@@ -599,23 +614,6 @@ pub(crate) fn run_cells(
 /// Index of the cell with these labels.
 pub(crate) fn find(cells: &[Cell], wanted: &[(&str, &str)]) -> Option<usize> {
     cells.iter().position(|c| c.labels.matches(wanted))
-}
-
-/// Human-readable metric names.
-pub(crate) fn metric_label(metric: &str) -> &str {
-    match metric {
-        "lane_changes_per_vehicle" => "lane changes per vehicle",
-        "lane_changes_per_cav" => "lane changes per CAV",
-        "lane_changes_per_human" => "lane changes per human-driven vehicle",
-        "avg_platoon_length" => "average platoon length L̄",
-        "platooning_probability" => "platooning probability P_P",
-        "discharge_flow_vphpl" => "discharge flow (veh/h/lane)",
-        "max_sustained_flow_vphpl" => "capacity = highest 5-min discharge (veh/h/lane)",
-        "discharge_change_pct" => "discharge change vs baseline (%)",
-        "platoon_length_gain" => "L̄ gain vs baseline",
-        "platoon_length_ratio" => "L̄ relative to the baseline (ratio)",
-        other => other,
-    }
 }
 
 /// A bullet list of checks.

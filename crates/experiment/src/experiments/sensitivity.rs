@@ -6,7 +6,10 @@
 //! Beside the paper's two strategies, the dedicated lane (ours; docs/organizers.md) in the
 //! same set-up, with its ΔQ against the same baseline.
 
-use super::{cell, checks_md, find, metric_label, point, run_cells, Check, Done, Settings};
+use super::{
+    checks_md, find, metric_label, run_cells, Check, Done, Experiment, Part, Report, Results,
+    Settings,
+};
 use crate::design::num;
 use crate::runner::{Outcome, Runner};
 use crate::table::{self, decimals, fixed, md_table, paper_comparison, pm, signed, SummaryRow};
@@ -22,13 +25,37 @@ pub const STRATEGIES: [StrategyKind; 3] = [
     StrategyKind::DEDICATED,
 ];
 
+pub(super) const EXPERIMENT: Experiment = Experiment {
+    name: "sensitivity",
+    title: "Platoon organization at various demands (paper Table 3)",
+    help: "Table 3: baseline vs PD lane at 50 % CAV and 1000-2500 veh/h/lane.",
+    part: Part::Road,
+    default_seeds: 10,
+    own_period: false,
+    safety_group: Some(&["demand_vphpl"]),
+    reuse_from: &[],
+    total_runs: |s| s.seeds as usize * super::grid::cell_count(EXPERIMENT.name, SWEEP),
+    run,
+    report,
+    quick: super::unchanged,
+};
+
+fn report(r: &Results<'_>) -> Result<Report, Error> {
+    let (body, checks) = markdown(r.settings, r.cells, r.outcomes, r.rows);
+    let figures = super::figures::sensitivity(r.dir, r.cells, r.rows)?;
+    Ok(Report {
+        body,
+        checks,
+        figures,
+        ..Report::default()
+    })
+}
+
+/// The grid: `sweeps/sensitivity.toml`.
+pub const SWEEP: &str = include_str!("../../../../sweeps/sensitivity.toml");
+
 pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {
-    let mut cells = Vec::new();
-    for &d in &DEMANDS {
-        for k in STRATEGIES {
-            cells.push(cell(&[], point(s, PENETRATION, d, k))?);
-        }
-    }
+    let cells = super::grid::cells(EXPERIMENT.name, SWEEP, s)?;
     let mut outcomes = run_cells(runner, &cells, seeds, 0)?;
     let n = STRATEGIES.len();
     for i in (0..cells.len()).step_by(n) {

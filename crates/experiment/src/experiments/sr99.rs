@@ -9,7 +9,7 @@
 //! contours (paper Fig. 6) and the lane-by-lane CAV flow ratio and speed upstream of Florin
 //! Rd (Fig. 7); see `sr99_figures.rs`.
 
-use super::{checks_md, find, Check, Done, Extra, Settings};
+use super::{checks_md, find, Check, Done, Experiment, Extra, Part, Report, Results, Settings};
 use crate::corridor::{self, Criterion};
 use crate::design::{self, num, Cell, Labels};
 use crate::detectors::Scope;
@@ -197,6 +197,43 @@ pub fn base_multiplier(c: &Cell) -> Option<f64> {
 
 fn is_figure_cell(c: &Cell) -> bool {
     c.labels.get("penetration") == Some(num(FIGURE_PENETRATION).as_str())
+}
+
+pub(super) const EXPERIMENT: Experiment = Experiment {
+    name: "sr99",
+    title: "SR-99 corridor: baseline, PD lane and Flow-Aware PD lane (paper Table 4, Figs. 6-8)",
+    help: "Table 4 and Figs. 6-8 on the SR-99 corridor (4 h from 05:00): baseline, PD and \
+           Flow-Aware PD at 20-80 % CAV, the baseline at 0 and 100 %, each penetration at its \
+           demand scale (the embedded table unless --demand-scale-table or --demand-scale).",
+    part: Part::Network,
+    default_seeds: 10,
+    own_period: true,
+    safety_group: Some(&["penetration"]),
+    // sr99's baselines are sr99-demand's cells at the table's scales.
+    reuse_from: &["sr99-demand"],
+    total_runs: |s| s.seeds as usize * cell_count(s),
+    run,
+    report,
+    quick: quick_penetrations,
+};
+
+/// `--quick`: the figures' 40 % (baseline, PD, Flow-Aware) and the 0 % baseline.
+pub(super) fn quick_penetrations(s: &mut Settings) {
+    s.network_penetrations = QUICK_PENETRATIONS.to_vec();
+}
+
+/// The penetrations of `reproduce --quick`.
+pub const QUICK_PENETRATIONS: [f64; 2] = [0.0, FIGURE_PENETRATION];
+
+fn report(r: &Results<'_>) -> Result<Report, Error> {
+    let (body, checks) = markdown(r.settings, r.cells, r.rows);
+    let figures = super::sr99_figures::all(r.dir, r.cells, r.rows, r.extra)?;
+    Ok(Report {
+        body,
+        checks,
+        figures,
+        ..Report::default()
+    })
 }
 
 pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {

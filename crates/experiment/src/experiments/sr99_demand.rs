@@ -21,7 +21,7 @@
 //! `demand_contours.png`/`.svg` (the baseline's contour at the scale found, first seed).
 
 use super::sr99::{self, Scales};
-use super::{checks_md, Check, Done, Extra, Figure, Settings};
+use super::{checks_md, Check, Done, Experiment, Extra, Figure, Part, Report, Results, Settings};
 use crate::corridor;
 use crate::design::{self, num};
 use crate::detectors::Scope;
@@ -104,6 +104,37 @@ pub(super) fn max_cells(s: &Settings) -> usize {
 
 fn majority(active: usize, n: usize) -> bool {
     2 * active > n
+}
+
+pub(super) const EXPERIMENT: Experiment = Experiment {
+    name: "sr99-demand",
+    title: "SR-99 demand scale by penetration: the search for the recurrent bottlenecks",
+    help: "The SR-99 demand-scale search: per penetration, the smallest scale of --scales at \
+           which the baseline shows both recurrent bottlenecks (see --bottleneck-speed); writes \
+           demand_scales.toml (and the embedded table with --write-table).",
+    part: Part::Network,
+    default_seeds: 3,
+    own_period: true,
+    safety_group: Some(&["penetration", "demand_scale"]),
+    reuse_from: &["sr99"],
+    total_runs: |s| s.seeds as usize * max_cells(s),
+    run,
+    report,
+    // No search: the criterion at the table's scales, on the runs `sr99` made.
+    quick: |s| {
+        super::sr99::quick_penetrations(s);
+        s.scale_grid = Vec::new();
+    },
+};
+
+fn report(r: &Results<'_>) -> Result<Report, Error> {
+    let (body, checks) = markdown(r.settings, r.cells, r.rows, r.extra);
+    Ok(Report {
+        body,
+        checks,
+        figures: figures(r.dir, r.extra)?,
+        files: files(r.settings, r.dir, r.extra),
+    })
 }
 
 pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {

@@ -25,8 +25,8 @@ pub use platoonsim_scenario::sweep_spec as spec;
 
 use crate::atomic::write_atomic;
 use crate::design::{self, Cell, Labels};
-use crate::experiments::Figure;
 use crate::runner::{self, Executor, Outcome, Runner};
+use crate::Figure;
 use crate::{Error, VERSION};
 use platoonsim_sim::Config;
 use serde::Serialize;

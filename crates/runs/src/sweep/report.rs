@@ -5,10 +5,11 @@
 use super::collect::{reference_text, Row};
 use super::spec::{label, number, Spec};
 use crate::design::Cell;
-use crate::experiments::{metric_label, Figure};
 use crate::runner::Outcome;
+use crate::table::metric_label;
 use crate::table::{decimals, md_table, pm};
 use crate::Error;
+use crate::Figure;
 use platoonsim_plot::{bar_chart, line_chart, Bars, Chart, Series, Style};
 use std::path::Path;
 

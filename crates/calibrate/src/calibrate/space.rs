@@ -52,6 +52,7 @@ impl Space {
             axes: Vec::new(),
             compare: None,
             metrics: Vec::new(),
+            labels: Vec::new(),
             text: p.text.clone(),
         };
         let cells = crate::sweep::plan::cells(&spec)?;

@@ -3,7 +3,7 @@
 //! | file | what |
 //! |---|---|
 //! | `compare.md` | the report ([`platoonsim_field::report`]) |
-//! | `compare.html` | the same, self-contained (figure inlined; [`crate::report::html`]) |
+//! | `compare.html` | the same, self-contained (figure inlined; [`platoonsim_runs::page::html`]) |
 //! | `fit.json` | the measures, machine readable ([`FitFile`]) |
 //! | `contours.png`, `contours.svg` | simulated \| field \| difference speed contours |
 
@@ -89,7 +89,7 @@ pub fn write(
         figure: figure.as_deref(),
         notes: &inputs.notes,
     });
-    let page = crate::report::html(&md, dir, "platoonsim compare");
+    let page = platoonsim_runs::page::html(&md, dir, "platoonsim compare");
     let json = serde_json::to_string_pretty(&FitFile {
         version: crate::VERSION,
         runs: &inputs.runs,

@@ -9,11 +9,11 @@
 //! collided, and `summary.csv` counts the failed runs of each cell.
 
 use crate::design::{Cell, Labels};
-use crate::experiments::Figure;
 use crate::runner::Outcome;
 use crate::stats::Stats;
 use crate::table::{self, md_table, pm};
 use crate::Error;
+use crate::Figure;
 use platoonsim_model::safety::PEAK_BIN_EDGES_MPS2;
 use std::path::Path;
 
