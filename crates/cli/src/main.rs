@@ -3,7 +3,8 @@
 //! causes, by `main`.
 //!
 //! Exit codes: 0 success; 1 an error (printed as `error: …`); 2 a usage error (from clap);
-//! [`EXIT_COLLISIONS`] a `run` whose simulation had collisions (unless `--allow-collisions`);
+//! [`EXIT_COLLISIONS`] a `run` whose simulation had collisions (unless `--allow-collisions`)
+//! or a `sweep` with a run that had;
 //! [`EXIT_BROKEN_PIPE`] standard output was closed by its reader (`| head`), quietly.
 // The doc comments of the clap structs are the command-line help, written for the terminal:
 // `<N>`, `[[0.6,1.0]]` and the like are meant literally there, not as HTML or links.

@@ -297,7 +297,7 @@ fn reproduce_writes_the_report() {
     ] {
         assert!(md.contains(part), "{part} missing from REPORT.md");
     }
-    // Only this run's figures: the lab notebook in docs/ is linked, not printed.
+    // Only this run's figures: the reproduction notes in docs/ are linked, not printed.
     for notebook in [
         "Notes on differences",
         "Notes on the SR-99 results",

@@ -4,9 +4,10 @@
 //! It holds this run's results only: a header (date, version, commit, seeds, host, wall time),
 //! a table of contents, the checks at a glance (✓ holds / ✗ does not hold), then one numbered
 //! section per homogeneous-road experiment and one for the SR-99 experiments, each with our
-//! numbers beside the paper's and the difference. The project's lab notebook (measurements of
-//! earlier runs, why the figures differ from the paper's) stays in `docs/` and is linked,
-//! never copied: its figures come from other runs.
+//! numbers beside the paper's and the difference. The project's reproduction notes (where the
+//! reproduction stands, why the figures differ from the paper's, with the measurements of
+//! earlier runs) stay in `docs/` and are linked, never copied: their figures come from other
+//! runs.
 
 use crate::atomic::write_atomic;
 use crate::experiments::{ExperimentOutput, Figure, Part};
@@ -43,7 +44,7 @@ pub struct ReportInput<'a> {
     pub wall_seconds: f64,
 }
 
-/// The lab notebook of the homogeneous road and of SR-99 (paths in the repository).
+/// The reproduction notes of the homogeneous road and of SR-99 (paths in the repository).
 pub const NOTEBOOK: &str = "docs/reproduction-notes.md";
 pub const NOTEBOOK_SR99: &str = "docs/reproduction-notes-sr99.md";
 
@@ -179,9 +180,9 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
          confidence interval (Student t), beside the paper's value (single values without \
          intervals) and the difference. A check reads ✓ **holds** or ✗ **does not hold**. Why \
          our figures differ from the paper's, with the measurements behind each explanation, is \
-         in the project's lab notebook, `{NOTEBOOK}` (homogeneous road) and `{NOTEBOOK_SR99}` \
-         (SR-99 corridor), dated entries grouped by topic; its figures come from earlier runs \
-         and are not repeated here. Each experiment's files (every run, the statistics, \
+         in the project's reproduction notes, `{NOTEBOOK}` (homogeneous road) and \
+         `{NOTEBOOK_SR99}` (SR-99 corridor), by topic; their figures come from earlier runs and \
+         are not repeated here. Each experiment's files (every run, the statistics, \
          provenance) are in its directory beside this report.\n\n"
     ));
 
@@ -214,7 +215,7 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
         md.push_str(&format!("## {n}. {}\n\n", o.name.title()));
         md.push_str(&format!(
             "Why these figures differ from the paper's: `{NOTEBOOK}` in the repository \
-             (measurements session by session, newest first).\n\n"
+             (where each figure stands against the paper's, and why).\n\n"
         ));
         md.push_str(&section(o, 1));
     }
