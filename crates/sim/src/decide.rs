@@ -6,6 +6,7 @@
 use crate::events::LaneChangeReason;
 
 use crate::config::Config;
+use crate::here::SideWalls;
 use crate::insert::Entrance;
 use crate::organize::Organizer;
 use crate::state::Decision;
@@ -106,11 +107,14 @@ pub(crate) fn decide(
         organizer: control.organizer.as_ref(),
         advise: control.advise,
     };
-    // The lanes are walked by iterator (no bounds checks on the lane lists).
+    // The lanes are walked by iterator (no bounds checks on the lane lists); the walls of
+    // the lanes beside each list are walked along with it (`SideWalls`).
     let decisions = &mut scratch.decisions;
-    for lane in &traffic.lanes {
+    let n_lanes = traffic.lanes.len();
+    for (l, lane) in traffic.lanes.iter().enumerate() {
+        let mut walls = SideWalls::new(&road.here_tables, l, n_lanes);
         for &s in lane {
-            decisions[s as usize] = view.decide_one(s);
+            decisions[s as usize] = view.decide_one(s, &mut walls);
         }
     }
     if !control.commands.is_empty() {
@@ -210,14 +214,14 @@ impl View<'_> {
         }
     }
 
-    fn decide_one(&self, s: u32) -> Decision {
+    fn decide_one(&self, s: u32, walls: &mut SideWalls) -> Decision {
         let v = &self.traffic.vehicles[s as usize];
         let nb = &self.sensed[s as usize].nb;
         let v_des = self.v_des_in(s, v, v.lane as usize);
         let (leader, wall) = self.leader_or_wall(s, v, nb.leader);
 
         // 1. Lane-change desire (takes priority over yielding).
-        if let Some(d) = self.desire(s, v, nb) {
+        if let Some(d) = self.desire(s, v, nb, walls) {
             // Cooperative lane changes (spec 9.2): an automated CAV with a mandatory or
             // organizing desire asks its target-lane CAV follower; without one, or while the
             // request rests, the published behaviour below (the request counter rides along

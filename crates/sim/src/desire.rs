@@ -4,6 +4,7 @@
 
 use crate::decide::View;
 use crate::decide::{v_des_of, Desire};
+use crate::here::SideWalls;
 use crate::network::NO_LANE;
 use crate::organize::Advice;
 use crate::state::Neighbours;
@@ -16,7 +17,13 @@ use platoonsim_model::lanechange::{self as lcm, Side};
 impl View<'_> {
     /// Spec 4.2: the lane-change desire, if it exceeds the driver's threshold.
     #[inline]
-    pub(crate) fn desire(&self, s: u32, v: &Vehicle, nb: &Neighbours) -> Option<Desire> {
+    pub(crate) fn desire(
+        &self,
+        s: u32,
+        v: &Vehicle,
+        nb: &Neighbours,
+        walls: &mut SideWalls,
+    ) -> Option<Desire> {
         let lcd = &self.cfg.lane_change;
         if v.x < lcd.forbid_zone_m {
             return None;
@@ -39,14 +46,14 @@ impl View<'_> {
             Kind::Cav => self.advise[1],
         };
         if advised {
-            return self.advised_desire(s, v, nb, since);
+            return self.advised_desire(s, v, nb, since, walls);
         }
         let mandatory = if self.road.geom.plain {
             None
         } else {
             self.mandatory(s, v, None)
         };
-        let [left, right] = self.discretionary(s, v, nb, self.is_follower(s, v));
+        let [left, right] = self.discretionary(s, v, nb, self.is_follower(s, v), walls);
         let (side, gamma) = driver::combine(mandatory, left, right, v.driver.lc.mandatory_weight)?;
         settle(v, since, side, gamma, mandatory.is_some(), false)
     }
@@ -62,6 +69,7 @@ impl View<'_> {
         v: &Vehicle,
         nb: &Neighbours,
         since: Option<f64>,
+        walls: &mut SideWalls,
     ) -> Option<Desire> {
         let advice = self.organizer.advise(
             VehicleView::new(v),
@@ -87,7 +95,7 @@ impl View<'_> {
             // γ_d = 0 in the organized lane (spec 4.7).
             (driver::toward(v.lane, lane)?, strength)
         } else {
-            let [mut left, mut right] = self.discretionary(s, v, nb, self.is_follower(s, v));
+            let [mut left, mut right] = self.discretionary(s, v, nb, self.is_follower(s, v), walls);
             if let Some((lane, from_m)) = avoid {
                 let closed = |target: u32| {
                     target == lane
@@ -206,6 +214,7 @@ impl View<'_> {
         v: &Vehicle,
         nb: &Neighbours,
         follower: bool,
+        walls: &mut SideWalls,
     ) -> [Option<f64>; 2] {
         let lcd = &self.cfg.lane_change;
         // A platoon follower has no speed-gain motivation (w_CAV follower), but ahead of a busy
@@ -291,8 +300,13 @@ impl View<'_> {
         ] {
             // `Geometry::can_enter` of the lane on that side (none right of lane 0); not into a
             // lane that ends where the driver would already have to leave it (a lane drop
-            // ahead: its mandatory desire there is positive), issue 18.
-            if !open || w <= 0.0 || (!self.road.geom.plain && self.ends_too_soon(v, target)) {
+            // ahead: its mandatory desire there is positive), issue 18. The target lane's wall
+            // comes from the walk along this lane list (`SideWalls`; `v.x` is finite, phase 7).
+            if !open
+                || w <= 0.0
+                || (!self.road.geom.plain
+                    && self.ends_too_soon(v, walls.wall_ahead(&self.road.geom, target, v.x)))
+            {
                 continue;
             }
 
@@ -305,12 +319,10 @@ impl View<'_> {
     /// Does lane `target` end so soon ahead of `v` that a driver who moved into it would at
     /// once want to leave it again (mandatory desire γ_m > 0 for its wall, one change)? A
     /// discretionary change into such a lane ends at the wall (issue 18: 3 → 2 lane drops).
-    #[inline(never)]
-    fn ends_too_soon(&self, v: &Vehicle, target: usize) -> bool {
-        self.road
-            .geom
-            .wall_ahead(target as u32, v.x)
-            .is_some_and(|w| lcm::mandatory_desire(&v.driver.lc, w - v.x, v.v, 1) > 0.0)
+    /// `wall`: `Geometry::wall_ahead` of that lane at `v.x`.
+    #[inline]
+    fn ends_too_soon(&self, v: &Vehicle, wall: Option<f64>) -> bool {
+        wall.is_some_and(|w| lcm::mandatory_desire(&v.driver.lc, w - v.x, v.v, 1) > 0.0)
     }
 
     /// Spec 4.2 "Anticipatory": in the two rightmost through lanes within the anticipation

@@ -137,3 +137,42 @@ impl HereWalk<'_> {
         self.here
     }
 }
+
+/// The walls of the two lanes beside one lane list (`Geometry::wall_ahead` of lane ± 1), for
+/// the lookups of the decide phase along that list: one walk per side lane instead of a
+/// segment search per query. The queries come front to back with the list, so the walks
+/// mostly stay in their piece or step down one.
+pub struct SideWalls<'a> {
+    lane: usize,
+    left: Option<HereWalk<'a>>,
+    right: Option<HereWalk<'a>>,
+}
+
+impl<'a> SideWalls<'a> {
+    /// For the list of `lane` (of `n_lanes`).
+    pub fn new(tables: &'a HereTables, lane: usize, n_lanes: usize) -> SideWalls<'a> {
+        SideWalls {
+            lane,
+            left: (lane + 1 < n_lanes).then(|| tables.walk(lane + 1)),
+            right: (lane > 0).then(|| tables.walk(lane - 1)),
+        }
+    }
+
+    /// `geom.wall_ahead(target, x)` on a road that is not plain, for a finite `x`. A target
+    /// that is not beside this list's lane (a vehicle off its list) takes the geometry's own
+    /// lookup.
+    #[inline]
+    pub fn wall_ahead(&mut self, geom: &Geometry, target: usize, x: f64) -> Option<f64> {
+        let walk = if target == self.lane + 1 {
+            self.left.as_mut()
+        } else if target == self.lane.wrapping_sub(1) {
+            self.right.as_mut()
+        } else {
+            None
+        };
+        match walk {
+            Some(w) => w.at(x).wall,
+            None => geom.wall_ahead(target as u32, x),
+        }
+    }
+}

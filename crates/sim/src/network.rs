@@ -488,7 +488,7 @@ mod tests {
 
     #[test]
     fn here_tables_agree_with_the_geometry_lookups() {
-        use crate::here::{here_at, HereTables};
+        use crate::here::{here_at, HereTables, SideWalls};
         let g = build(&net(), 5, 3000.0).unwrap();
         let t = HereTables::new(&g);
         let xs: Vec<f64> = (-8..=(3010 * 4)).map(|i| f64::from(i) / 4.0).collect();
@@ -518,6 +518,19 @@ mod tests {
                 let y = xs[(i * 7919) % xs.len()];
                 assert_eq!(mixed.at(x), here_at(&g, lane, x), "lane {lane}, x = {x}");
                 assert_eq!(mixed.at(y), here_at(&g, lane, y), "lane {lane}, x = {y}");
+            }
+        }
+        // The walls beside each lane list, walked down the list as the decide phase does, and
+        // for a lane that is not beside it.
+        for lane in 0..g.lanes.len() {
+            let mut walls = SideWalls::new(&t, lane, g.lanes.len());
+            for &x in xs.iter().rev() {
+                for target in [lane + 1, lane.wrapping_sub(1), lane + 2] {
+                    if target < g.lanes.len() {
+                        let w = walls.wall_ahead(&g, target, x);
+                        assert_eq!(w, g.wall_ahead(target as u32, x), "{lane} → {target}, {x}");
+                    }
+                }
             }
         }
         // In the acceleration lane of ramps a and b: a wall at 750; a change left, none right.
