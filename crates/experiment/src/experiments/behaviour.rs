@@ -19,6 +19,7 @@ use super::{
 use crate::design::num;
 use crate::runner::{Outcome, Runner};
 use crate::table::{self, decimals, fixed, md_table, pm, signed, SummaryRow};
+use crate::Metric;
 use crate::{Cell, Error};
 use platoonsim_scenario::StrategyKind;
 
@@ -97,7 +98,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
                 &mut outcomes,
                 b,
                 b + k,
-                "discharge_flow_vphpl",
+                Metric::DISCHARGE_FLOW,
                 "discharge_change_pct",
                 true,
             );
@@ -105,7 +106,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
                 &mut outcomes,
                 b,
                 b + k,
-                "avg_platoon_length",
+                Metric::AVG_PLATOON_LENGTH,
                 "platoon_length_ratio",
             );
         }

@@ -9,6 +9,7 @@
 
 use super::{find, point, run_cells, Check, Done, Experiment, Part, Report, Results, Settings};
 use crate::design::{self, num, Cell, Labels};
+use crate::metric::{EnergyField, Metric};
 use crate::runner::{Outcome, Runner};
 use crate::table::{self, fixed, md_table, pm, signed, SummaryRow};
 use crate::Error;
@@ -27,10 +28,22 @@ pub const STRATEGIES: [StrategyKind; 4] = [
 pub const ENERGY_ON: &str = "energy.enabled=true";
 
 /// Fuel per 100 km by group: (metric, paired change, group name).
-pub const FUEL: [(&str, &str, &str); 3] = [
-    ("fuel_l_per_100km_cav", "cav_fuel_change_pct", "CAVs"),
-    ("fuel_l_per_100km_human", "human_fuel_change_pct", "humans"),
-    ("fuel_l_per_100km", "fuel_change_pct", "all"),
+pub const FUEL: [(Metric, &str, &str); 3] = [
+    (
+        Metric::Energy(EnergyField::FuelPer100kmCav),
+        "cav_fuel_change_pct",
+        "CAVs",
+    ),
+    (
+        Metric::Energy(EnergyField::FuelPer100kmHuman),
+        "human_fuel_change_pct",
+        "humans",
+    ),
+    (
+        Metric::Energy(EnergyField::FuelPer100km),
+        "fuel_change_pct",
+        "all",
+    ),
 ];
 
 /// The SR-99 penetrations of the settings strictly between 0 and 1.
@@ -274,7 +287,7 @@ pub(super) fn markdown(
     for (i, j, k) in strategy_cells(cells) {
         let mut r = vec![point_name(&cells[i]), strategy_name(k).into()];
         for (metric, _, _) in FUEL {
-            r.push(value(rows, i, metric, 3));
+            r.push(value(rows, i, &metric.name(), 3));
         }
         for (_, ch, _) in FUEL {
             r.push(if j == 0 {

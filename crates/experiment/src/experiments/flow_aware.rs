@@ -7,6 +7,7 @@ use super::{checks_md, find, run_cells, Check, Done, Experiment, Part, Report, R
 use crate::design::num;
 use crate::runner::{Outcome, Runner};
 use crate::table::{self, md_table, pm, SummaryRow};
+use crate::Metric;
 use crate::{Cell, Error};
 use platoonsim_scenario::StrategyKind;
 
@@ -56,7 +57,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
             &mut outcomes,
             0,
             i,
-            "discharge_flow_vphpl",
+            Metric::DISCHARGE_FLOW,
             "discharge_change_pct",
             true,
         );
@@ -64,7 +65,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
             &mut outcomes,
             0,
             i,
-            "avg_platoon_length",
+            Metric::AVG_PLATOON_LENGTH,
             "platoon_length_gain",
             false,
         );

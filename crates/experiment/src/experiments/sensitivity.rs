@@ -13,6 +13,7 @@ use super::{
 use crate::design::num;
 use crate::runner::{Outcome, Runner};
 use crate::table::{self, decimals, fixed, md_table, paper_comparison, pm, signed, SummaryRow};
+use crate::Metric;
 use crate::{Cell, Error};
 use platoonsim_scenario::StrategyKind;
 
@@ -64,7 +65,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
                 &mut outcomes,
                 i,
                 i + k,
-                "discharge_flow_vphpl",
+                Metric::DISCHARGE_FLOW,
                 "discharge_change_pct",
                 true,
             );
@@ -72,7 +73,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
                 &mut outcomes,
                 i,
                 i + k,
-                "avg_platoon_length",
+                Metric::AVG_PLATOON_LENGTH,
                 "platoon_length_ratio",
             );
         }

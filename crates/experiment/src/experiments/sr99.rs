@@ -13,6 +13,7 @@ use super::{checks_md, find, Check, Done, Experiment, Extra, Part, Report, Resul
 use crate::corridor::{self, Criterion};
 use crate::design::{self, num, Cell, Labels};
 use crate::detectors::Scope;
+use crate::metric::{Field, Metric};
 use crate::paper;
 use crate::runner::Runner;
 use crate::table::{self, fixed, md_table, pm, signed, SummaryRow};
@@ -36,11 +37,20 @@ pub const STRATEGIES: [StrategyKind; 3] = [
 /// Changes vs the baseline at the same penetration: (name, metric it is computed from). The
 /// last is L̄ under the strict link statistic (spec 6.15: a link only while the follower keeps
 /// a time gap ≤ 2 s), which the paper does not report.
-pub const CHANGES: [(&str, &str); 4] = [
-    ("discharge_change_pct", "network_discharge_vph"),
-    ("lane_changes_change_pct", "lane_changes_per_vehicle"),
-    ("platoon_length_change_pct", "avg_platoon_length"),
-    ("platoon_length_tg2_change_pct", "avg_platoon_length_tg2"),
+pub const CHANGES: [(&str, Metric); 4] = [
+    (
+        "discharge_change_pct",
+        Metric::Field(Field::NetworkDischarge),
+    ),
+    (
+        "lane_changes_change_pct",
+        Metric::Field(Field::LaneChangesPerVehicle),
+    ),
+    ("platoon_length_change_pct", Metric::AVG_PLATOON_LENGTH),
+    (
+        "platoon_length_tg2_change_pct",
+        Metric::Field(Field::AvgPlatoonLengthTg2),
+    ),
 ];
 
 /// What `sr99` keeps besides the runs' metrics.
