@@ -228,6 +228,11 @@ impl Metric {
     pub const MAX_SUSTAINED_FLOW: Metric = Metric::Field(Field::MaxSustainedFlow);
     pub const COLLISIONS: Metric = Metric::Field(Field::Collisions);
     pub const AVG_PLATOON_LENGTH: Metric = Metric::Field(Field::AvgPlatoonLength);
+    pub const PLATOONING_PROBABILITY: Metric = Metric::Field(Field::PlatooningProbability);
+    pub const LANE_CHANGES_PER_VEHICLE: Metric = Metric::Field(Field::LaneChangesPerVehicle);
+    pub const LANE_CHANGES_PER_CAV: Metric = Metric::Field(Field::LaneChangesPerCav);
+    pub const LANE_CHANGES_PER_HUMAN: Metric = Metric::Field(Field::LaneChangesPerHuman);
+    pub const NETWORK_DISCHARGE: Metric = Metric::Field(Field::NetworkDischarge);
 
     /// Its name in `summary.json` and the tables.
     pub fn name(self) -> Cow<'static, str> {

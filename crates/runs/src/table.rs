@@ -35,6 +35,35 @@ impl Column for Metric {
     }
 }
 
+/// A column named in report code: a summary [`Metric`], or a column an experiment derives
+/// (by the name it gives it, e.g. `discharge_change_pct` of [`add_paired`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Col {
+    Metric(Metric),
+    Derived(&'static str),
+}
+
+impl Col {
+    pub fn name(self) -> Cow<'static, str> {
+        match self {
+            Col::Metric(m) => m.name(),
+            Col::Derived(n) => Cow::Borrowed(n),
+        }
+    }
+}
+
+impl From<Metric> for Col {
+    fn from(m: Metric) -> Col {
+        Col::Metric(m)
+    }
+}
+
+impl Column for Col {
+    fn column(&self) -> Cow<'_, str> {
+        self.name()
+    }
+}
+
 impl Column for str {
     fn column(&self) -> Cow<'_, str> {
         Cow::Borrowed(self)
@@ -532,9 +561,9 @@ mod tests {
 
         // Reference values as the paper's Table 3 gives them at 1000 veh/h/lane.
         let paper = [
-            ("none", "discharge_flow_vphpl", 1006.3),
-            ("none", "avg_platoon_length", 2.6),
-            ("pd", "discharge_change_pct", 0.04),
+            ("none", Col::Metric(Metric::DISCHARGE_FLOW), 1006.3),
+            ("none", Col::Metric(Metric::AVG_PLATOON_LENGTH), 2.6),
+            ("pd", Col::Derived("discharge_change_pct"), 0.04),
         ]
         .map(|(strategy, metric, value)| PaperValue {
             experiment: "sensitivity",
@@ -549,7 +578,7 @@ mod tests {
         let rows = summarize(&cells, &outs, |labels, metric| {
             paper
                 .iter()
-                .find(|p| p.metric == metric && labels.matches(p.cell))
+                .find(|p| p.metric.name() == metric && labels.matches(p.cell))
                 .copied()
         });
         // Cell 0: two metrics; cell 1: three.
@@ -598,13 +627,14 @@ mod tests {
 }
 
 /// A reference value of a study (e.g. a published table's), with where it comes from: of an
-/// experiment, a cell (a subset of the cell's labels) and a metric (a run field name).
+/// experiment, a cell (a subset of the cell's labels) and a column (a metric of the runs or
+/// one the experiment derives).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PaperValue {
     pub experiment: &'static str,
     /// Labels the cell must have.
     pub cell: CellSel,
-    pub metric: &'static str,
+    pub metric: Col,
     pub value: f64,
     pub source: &'static str,
 }

@@ -28,7 +28,7 @@ use platoonsim_scenario::StrategyKind;
 
 pub const PENETRATIONS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
 const CAPACITY: Metric = Metric::MAX_SUSTAINED_FLOW;
-const DISCHARGE: &str = "discharge_flow_vphpl";
+const DISCHARGE: Metric = Metric::DISCHARGE_FLOW;
 /// Stage 1 measures from the end of the first aggregation interval: the road is empty at the
 /// start, and the first vehicles reach the discharge detector (6.1 km) after about 220 s.
 pub const FILL_S: f64 = 300.0;
@@ -142,7 +142,7 @@ pub(super) fn markdown(
     };
     let mean_of = |cell: usize| {
         rows.iter()
-            .find(|r| r.cell == cell && r.metric == DISCHARGE)
+            .find(|r| r.cell == cell && r.metric == DISCHARGE.name())
     };
     let base0 = find(cells, &[("stage", "baseline"), ("penetration", "0")]);
     let cap0 = base0.and_then(row_of).map(|r| r.stats);

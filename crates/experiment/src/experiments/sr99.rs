@@ -16,6 +16,7 @@ use crate::detectors::Scope;
 use crate::metric::{Field, Metric};
 use crate::paper;
 use crate::runner::Runner;
+use crate::table::Col;
 use crate::table::{self, fixed, md_table, pm, signed, SummaryRow};
 use crate::Error;
 use platoonsim_scenario::{demand_scale_set, demand_scales, load_with, Overrides, StrategyKind};
@@ -314,10 +315,11 @@ fn row<'a>(
     rows: &'a [SummaryRow],
     p: &str,
     k: &str,
-    metric: &str,
+    metric: Col,
 ) -> Option<&'a SummaryRow> {
     let c = find(cells, &[("penetration", p), ("strategy", k)])?;
-    rows.iter().find(|r| r.cell == c && r.metric == metric)
+    rows.iter()
+        .find(|r| r.cell == c && r.metric == metric.name())
 }
 
 /// Ours with its 95 % interval (half-width), the paper's value, and ours − paper in % of the
@@ -394,17 +396,23 @@ pub(super) fn markdown(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> (St
                 strategy_name(ks).to_string(),
             ];
             r.extend(triple(
-                row(cells, rows, &ps, ks, "network_discharge_vph"),
+                row(cells, rows, &ps, ks, Metric::NETWORK_DISCHARGE.into()),
                 1,
                 false,
             ));
             r.extend(triple(
-                row(cells, rows, &ps, ks, "lane_changes_per_vehicle"),
+                row(
+                    cells,
+                    rows,
+                    &ps,
+                    ks,
+                    Metric::LANE_CHANGES_PER_VEHICLE.into(),
+                ),
                 2,
                 false,
             ));
             r.extend(triple(
-                row(cells, rows, &ps, ks, "avg_platoon_length"),
+                row(cells, rows, &ps, ks, Metric::AVG_PLATOON_LENGTH.into()),
                 2,
                 p == 0.0,
             ));
@@ -447,7 +455,7 @@ pub(super) fn markdown(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> (St
         for k in ["pd", "flow-aware"] {
             let mut r = vec![format!("{} %", num(100.0 * p)), strategy_name(k).into()];
             for (name, _) in CHANGES {
-                let x = row(cells, rows, &ps, k, name);
+                let x = row(cells, rows, &ps, k, Col::Derived(name));
                 r.push(x.map_or("–".into(), |x| signed_pm(x, 1)));
                 r.push(
                     x.and_then(|x| x.paper)
@@ -555,37 +563,43 @@ fn plain(cells: &[Cell], rows: &[SummaryRow], pens: &[f64]) -> String {
     let mut md = String::from("\nIn words:\n\n");
     for &p in pens {
         let ps = num(p);
-        let r = |k: &str, m: &str| row(cells, rows, &ps, k, m);
-        let mean = |k: &str, m: &str| r(k, m).map_or(f64::NAN, |x| x.stats.mean);
-        let paper = |k: &str, m: &str| r(k, m).and_then(|x| x.paper).map_or(f64::NAN, |v| v.value);
+        let r = |k: &str, m: Col| row(cells, rows, &ps, k, m);
+        let mean = |k: &str, m: Col| r(k, m).map_or(f64::NAN, |x| x.stats.mean);
+        let paper = |k: &str, m: Col| r(k, m).and_then(|x| x.paper).map_or(f64::NAN, |v| v.value);
         let mut line = format!(
             "- **{} % CAV**: baseline network discharge {} veh/h, {}; lane changes per vehicle \
              {}, {}",
             num(100.0 * p),
-            fixed(mean("none", "network_discharge_vph"), 0),
-            versus(r("none", "network_discharge_vph"), 1),
-            fixed(mean("none", "lane_changes_per_vehicle"), 2),
-            versus(r("none", "lane_changes_per_vehicle"), 2),
+            fixed(mean("none", Metric::NETWORK_DISCHARGE.into()), 0),
+            versus(r("none", Metric::NETWORK_DISCHARGE.into()), 1),
+            fixed(mean("none", Metric::LANE_CHANGES_PER_VEHICLE.into()), 2),
+            versus(r("none", Metric::LANE_CHANGES_PER_VEHICLE.into()), 2),
         );
         if p > 0.0 {
             line.push_str(&format!(
                 "; L̄ {}, {}",
-                fixed(mean("none", "avg_platoon_length"), 2),
-                versus(r("none", "avg_platoon_length"), 2)
+                fixed(mean("none", Metric::AVG_PLATOON_LENGTH.into()), 2),
+                versus(r("none", Metric::AVG_PLATOON_LENGTH.into()), 2)
             ));
         }
         if strategies_at(p).len() > 1 {
             line.push_str(&format!(
                 ". Against the baseline, PD changes the discharge by {} % (paper {} %) and \
                  Flow-Aware PD by {} % (paper {} %); L̄ by {} % and {} % (paper {} % and {} %)",
-                signed(mean("pd", "discharge_change_pct"), 1),
-                signed(paper("pd", "discharge_change_pct"), 1),
-                signed(mean("flow-aware", "discharge_change_pct"), 1),
-                signed(paper("flow-aware", "discharge_change_pct"), 1),
-                signed(mean("pd", "platoon_length_change_pct"), 1),
-                signed(mean("flow-aware", "platoon_length_change_pct"), 1),
-                signed(paper("pd", "platoon_length_change_pct"), 1),
-                signed(paper("flow-aware", "platoon_length_change_pct"), 1),
+                signed(mean("pd", Col::Derived("discharge_change_pct")), 1),
+                signed(paper("pd", Col::Derived("discharge_change_pct")), 1),
+                signed(mean("flow-aware", Col::Derived("discharge_change_pct")), 1),
+                signed(paper("flow-aware", Col::Derived("discharge_change_pct")), 1),
+                signed(mean("pd", Col::Derived("platoon_length_change_pct")), 1),
+                signed(
+                    mean("flow-aware", Col::Derived("platoon_length_change_pct")),
+                    1
+                ),
+                signed(paper("pd", Col::Derived("platoon_length_change_pct")), 1),
+                signed(
+                    paper("flow-aware", Col::Derived("platoon_length_change_pct")),
+                    1
+                ),
             ));
         }
         line.push_str(".\n");
@@ -618,10 +632,10 @@ fn checks(cells: &[Cell], rows: &[SummaryRow], mid: &[f64]) -> Vec<Check> {
     if mid.is_empty() {
         return Vec::new();
     }
-    let mean = |p: f64, k: &str, m: &str| {
+    let mean = |p: f64, k: &str, m: Col| {
         row(cells, rows, &num(p), k, m).map_or(f64::NAN, |r| r.stats.mean)
     };
-    let list = |k: &str, m: &str| -> (Vec<f64>, String) {
+    let list = |k: &str, m: Col| -> (Vec<f64>, String) {
         let v: Vec<f64> = mid.iter().map(|&p| mean(p, k, m)).collect();
         let text = v
             .iter()
@@ -637,14 +651,14 @@ fn checks(cells: &[Cell], rows: &[SummaryRow], mid: &[f64]) -> Vec<Check> {
         .collect::<Vec<_>>()
         .join("/");
     let mut out = Vec::new();
-    let (dq_pd, t) = list("pd", "discharge_change_pct");
+    let (dq_pd, t) = list("pd", Col::Derived("discharge_change_pct"));
     out.push(Check {
         statement: format!(
             "the PD lane lowers the network discharge at {pens} % CAV (paper: −0.1 to −7.3 %): {t}"
         ),
         passed: dq_pd.iter().all(|x| *x < 0.0),
     });
-    let (dq_fa, t) = list("flow-aware", "discharge_change_pct");
+    let (dq_fa, t) = list("flow-aware", Col::Derived("discharge_change_pct"));
     out.push(Check {
         statement: format!(
             "the Flow-Aware PD lane keeps the network discharge within 0.5 % of the baseline at \
@@ -652,7 +666,7 @@ fn checks(cells: &[Cell], rows: &[SummaryRow], mid: &[f64]) -> Vec<Check> {
         ),
         passed: dq_fa.iter().all(|x| x.abs() <= 0.5),
     });
-    let (dl_fa, t) = list("flow-aware", "platoon_length_change_pct");
+    let (dl_fa, t) = list("flow-aware", Col::Derived("platoon_length_change_pct"));
     out.push(Check {
         statement: format!(
             "the Flow-Aware PD lane raises L̄ above the baseline at {pens} % CAV (paper: +8.5 to \
@@ -662,9 +676,9 @@ fn checks(cells: &[Cell], rows: &[SummaryRow], mid: &[f64]) -> Vec<Check> {
     });
     let ordered = mid.iter().all(|&p| {
         let (b, pd, fa) = (
-            mean(p, "none", "lane_changes_per_vehicle"),
-            mean(p, "pd", "lane_changes_per_vehicle"),
-            mean(p, "flow-aware", "lane_changes_per_vehicle"),
+            mean(p, "none", Metric::LANE_CHANGES_PER_VEHICLE.into()),
+            mean(p, "pd", Metric::LANE_CHANGES_PER_VEHICLE.into()),
+            mean(p, "flow-aware", Metric::LANE_CHANGES_PER_VEHICLE.into()),
         );
         pd > fa && fa > b
     });

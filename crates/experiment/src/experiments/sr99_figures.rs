@@ -16,6 +16,7 @@ use crate::corridor::{self, FLORIN_DETECTOR};
 use crate::design::num;
 use crate::paper;
 use crate::table::SummaryRow;
+use crate::Metric;
 use crate::{Cell, Error, Labels};
 use platoonsim_plot::{
     bar_panels, heatmap_panels, panels, Bars, Chart, Heatmap, PlotError, Series, Style,
@@ -194,16 +195,21 @@ pub fn bar_charts(cells: &[Cell], rows: &[SummaryRow]) -> Vec<Bars> {
         .collect();
     let metrics = [
         (
-            "lane_changes_per_vehicle",
+            Metric::LANE_CHANGES_PER_VEHICLE,
             "Lane changes per vehicle",
             "1/veh",
         ),
-        ("avg_platoon_length", "Average platoon length L", "CAVs"),
-        ("network_discharge_vph", "Network discharge", "veh/h"),
+        (
+            Metric::AVG_PLATOON_LENGTH,
+            "Average platoon length L",
+            "CAVs",
+        ),
+        (Metric::NETWORK_DISCHARGE, "Network discharge", "veh/h"),
     ];
     let mut ours = Vec::new();
     let mut theirs = Vec::new();
     for (metric, title, unit) in metrics {
+        let name = metric.name();
         let mut s_ours = Vec::new();
         let mut s_paper = Vec::new();
         for k in sr99::STRATEGIES {
@@ -214,12 +220,12 @@ pub fn bar_charts(cells: &[Cell], rows: &[SummaryRow]) -> Vec<Bars> {
             for &p in &pens {
                 let ps = num(p);
                 let r = find(cells, &[("penetration", &ps), ("strategy", ks)])
-                    .and_then(|c| rows.iter().find(|r| r.cell == c && r.metric == metric));
-                let skip = metric == "avg_platoon_length" && p == 0.0;
+                    .and_then(|c| rows.iter().find(|r| r.cell == c && r.metric == *name));
+                let skip = metric == Metric::AVG_PLATOON_LENGTH && p == 0.0;
                 mean.push(r.filter(|_| !skip).map_or(f64::NAN, |r| r.stats.mean));
                 err.push(r.map_or(f64::NAN, |r| r.stats.half_width()));
                 let labels = Labels::new().with("penetration", ps).with("strategy", ks);
-                pap.push(paper::lookup("sr99", &labels, metric).map_or(f64::NAN, |v| v.value));
+                pap.push(paper::lookup("sr99", &labels, &name).map_or(f64::NAN, |v| v.value));
             }
             let name = sr99::strategy_name(ks).to_string();
             s_ours.push((name.clone(), mean, Some(err)));
