@@ -181,7 +181,7 @@ fn strategy_name(k: &str) -> &'static str {
     }
 }
 
-fn row<'a>(rows: &'a [SummaryRow], cell: usize, metric: Col) -> Option<&'a SummaryRow> {
+fn row(rows: &[SummaryRow], cell: usize, metric: Col) -> Option<&SummaryRow> {
     rows.iter()
         .find(|r| r.cell == cell && r.metric == metric.name())
 }
