@@ -123,23 +123,39 @@ const RATIO: Col = Col::Derived("platoon_length_ratio");
 const SEVERE: Col = Col::Metric(Metric::Counted(Counted::SevereBrakings, Share::Rate));
 
 /// (column title, metric, strategy) of the main table.
-const COLUMNS: [(&str, Col, &str); 8] = [
-    ("L̄ B (veh)", Col::Metric(Metric::AVG_PLATOON_LENGTH), "none"),
-    ("L̄ PO (veh)", Col::Metric(Metric::AVG_PLATOON_LENGTH), "pd"),
-    ("L̄ PO / L̄ B (ratio)", RATIO, "pd"),
+const COLUMNS: [(&str, Col, StrategyKind); 8] = [
+    (
+        "L̄ B (veh)",
+        Col::Metric(Metric::AVG_PLATOON_LENGTH),
+        StrategyKind::NONE,
+    ),
+    (
+        "L̄ PO (veh)",
+        Col::Metric(Metric::AVG_PLATOON_LENGTH),
+        StrategyKind::PD,
+    ),
+    ("L̄ PO / L̄ B (ratio)", RATIO, StrategyKind::PD),
     (
         "LC/veh PO (1/veh)",
         Col::Metric(Metric::LANE_CHANGES_PER_VEHICLE),
-        "pd",
+        StrategyKind::PD,
     ),
     (
         "Q_B (veh/h/lane)",
         Col::Metric(Metric::DISCHARGE_FLOW),
-        "none",
+        StrategyKind::NONE,
     ),
-    ("ΔQ (%)", DQ, "pd"),
-    ("severe brakings B (per 100 veh-km)", SEVERE, "none"),
-    ("severe brakings PO (per 100 veh-km)", SEVERE, "pd"),
+    ("ΔQ (%)", DQ, StrategyKind::PD),
+    (
+        "severe brakings B (per 100 veh-km)",
+        SEVERE,
+        StrategyKind::NONE,
+    ),
+    (
+        "severe brakings PO (per 100 veh-km)",
+        SEVERE,
+        StrategyKind::PD,
+    ),
 ];
 
 pub(super) fn markdown(
@@ -165,13 +181,13 @@ pub(super) fn markdown(
         num(s.warmup_s),
         s.seeds
     );
-    let row_of = |demand: &str, variant: &str, strategy: &str, metric: Col| {
+    let row_of = |demand: &str, variant: &str, strategy: StrategyKind, metric: Col| {
         find(
             cells,
             &[
                 ("demand_vphpl", demand),
                 ("variant", variant),
-                ("strategy", strategy),
+                ("strategy", strategy.as_str()),
             ],
         )
         .and_then(|c| {
@@ -198,13 +214,13 @@ pub(super) fn markdown(
     }
     md.push_str(&md_table(&header, &trs));
 
-    let mean = |d: f64, v: &str, st: &str, m: Col| {
+    let mean = |d: f64, v: &str, st: StrategyKind, m: Col| {
         row_of(&num(d), v, st, m).map_or(f64::NAN, |r| r.stats.mean)
     };
     let mut checks = Vec::new();
     // Issue 29's acceptance: cooperative lane changes at 1,500 veh/h/lane.
-    let ratio = mean(1500.0, "cooperative", "pd", RATIO);
-    let dq = mean(1500.0, "cooperative", "pd", DQ);
+    let ratio = mean(1500.0, "cooperative", StrategyKind::PD, RATIO);
+    let dq = mean(1500.0, "cooperative", StrategyKind::PD, DQ);
     checks.push(Check {
         statement: format!(
             "with cooperative lane changes, PD at 1,500 veh/h/lane raises L̄ to at least 1.5 \
@@ -223,7 +239,7 @@ pub(super) fn markdown(
     });
     let severe: Vec<(f64, f64)> = DEMANDS
         .iter()
-        .map(|&d| (d, mean(d, "safe", "pd", SEVERE)))
+        .map(|&d| (d, mean(d, "safe", StrategyKind::PD, SEVERE)))
         .collect();
     checks.push(Check {
         statement: format!(
@@ -240,7 +256,7 @@ pub(super) fn markdown(
     });
     let dq_rules: Vec<String> = VARIANTS
         .iter()
-        .map(|(v, _)| format!("{v} {} %", signed(mean(2500.0, v, "pd", DQ), 2)))
+        .map(|(v, _)| format!("{v} {} %", signed(mean(2500.0, v, StrategyKind::PD, DQ), 2)))
         .collect();
     checks.push(Check {
         statement: format!(
@@ -248,7 +264,7 @@ pub(super) fn markdown(
              lower under the safe rule: {}",
             dq_rules.join(", ")
         ),
-        passed: mean(2500.0, "safe", "pd", DQ) <= -5.0,
+        passed: mean(2500.0, "safe", StrategyKind::PD, DQ) <= -5.0,
     });
     md.push_str("\n## Checks\n\n");
     md.push_str(&checks_md(&checks));

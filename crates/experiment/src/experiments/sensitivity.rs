@@ -89,32 +89,48 @@ const RATIO: Col = Col::Derived("platoon_length_ratio");
 const REAR_END: Col = Col::Metric(M::Counted(Counted::RearEndConflicts, Share::Rate));
 
 /// (column title, metric, strategy) of the paper's Table 3, in its order.
-const COLUMNS: [(&str, Col, &str); 9] = [
+const COLUMNS: [(&str, Col, StrategyKind); 9] = [
     (
         "LC/veh B (1/veh)",
         Col::Metric(M::LANE_CHANGES_PER_VEHICLE),
-        "none",
+        StrategyKind::NONE,
     ),
     (
         "LC/veh PO (1/veh)",
         Col::Metric(M::LANE_CHANGES_PER_VEHICLE),
-        "pd",
+        StrategyKind::PD,
     ),
-    ("L̄ B (veh)", Col::Metric(M::AVG_PLATOON_LENGTH), "none"),
-    ("L̄ PO (veh)", Col::Metric(M::AVG_PLATOON_LENGTH), "pd"),
+    (
+        "L̄ B (veh)",
+        Col::Metric(M::AVG_PLATOON_LENGTH),
+        StrategyKind::NONE,
+    ),
+    (
+        "L̄ PO (veh)",
+        Col::Metric(M::AVG_PLATOON_LENGTH),
+        StrategyKind::PD,
+    ),
     (
         "P_P B (fraction)",
         Col::Metric(M::PLATOONING_PROBABILITY),
-        "none",
+        StrategyKind::NONE,
     ),
     (
         "P_P PO (fraction)",
         Col::Metric(M::PLATOONING_PROBABILITY),
-        "pd",
+        StrategyKind::PD,
     ),
-    ("Q_B (veh/h/lane)", Col::Metric(M::DISCHARGE_FLOW), "none"),
-    ("Q_PO (veh/h/lane)", Col::Metric(M::DISCHARGE_FLOW), "pd"),
-    ("ΔQ = (Q_PO − Q_B)/Q_B (%)", DQ, "pd"),
+    (
+        "Q_B (veh/h/lane)",
+        Col::Metric(M::DISCHARGE_FLOW),
+        StrategyKind::NONE,
+    ),
+    (
+        "Q_PO (veh/h/lane)",
+        Col::Metric(M::DISCHARGE_FLOW),
+        StrategyKind::PD,
+    ),
+    ("ΔQ = (Q_PO − Q_B)/Q_B (%)", DQ, StrategyKind::PD),
 ];
 
 pub(super) fn markdown(
@@ -135,8 +151,12 @@ pub(super) fn markdown(
         num(s.warmup_s),
         s.seeds
     );
-    let row_of = |demand: &str, strategy: &str, metric: Col| {
-        find(cells, &[("demand_vphpl", demand), ("strategy", strategy)]).and_then(|c| {
+    let row_of = |demand: &str, strategy: StrategyKind, metric: Col| {
+        find(
+            cells,
+            &[("demand_vphpl", demand), ("strategy", strategy.as_str())],
+        )
+        .and_then(|c| {
             rows.iter()
                 .find(|r| r.cell == c && r.metric == metric.name())
         })
@@ -182,10 +202,10 @@ pub(super) fn markdown(
         let dem = num(d);
         let mut r = vec![dem.clone()];
         for (metric, strategy) in [
-            (M::LANE_CHANGES_PER_CAV.into(), "none"),
-            (M::LANE_CHANGES_PER_CAV.into(), "pd"),
-            (M::LANE_CHANGES_PER_HUMAN.into(), "none"),
-            (M::LANE_CHANGES_PER_HUMAN.into(), "pd"),
+            (M::LANE_CHANGES_PER_CAV.into(), StrategyKind::NONE),
+            (M::LANE_CHANGES_PER_CAV.into(), StrategyKind::PD),
+            (M::LANE_CHANGES_PER_HUMAN.into(), StrategyKind::NONE),
+            (M::LANE_CHANGES_PER_HUMAN.into(), StrategyKind::PD),
         ] {
             r.push(row_of(&dem, strategy, metric).map_or("–".into(), |x| pm(&x.stats, 3)));
         }
@@ -226,7 +246,7 @@ pub(super) fn markdown(
             DQ,
             REAR_END,
         ] {
-            for strategy in ["pd", "dedicated"] {
+            for strategy in [StrategyKind::PD, StrategyKind::DEDICATED] {
                 let dec = decimals(&metric.name());
                 r.push(row_of(&dem, strategy, metric).map_or("–".into(), |x| pm(&x.stats, dec)));
             }
@@ -236,15 +256,17 @@ pub(super) fn markdown(
     md.push_str(&md_table(&header3, &trs3));
 
     // Issue 3's targets.
-    let mean = |d: f64, st: &str, m: Col| row_of(&num(d), st, m).map_or(f64::NAN, |r| r.stats.mean);
+    let mean = |d: f64, st: StrategyKind, m: Col| {
+        row_of(&num(d), st, m).map_or(f64::NAN, |r| r.stats.mean)
+    };
     let mut checks = Vec::new();
     let ratios: Vec<(f64, f64)> = DEMANDS
         .iter()
         .map(|&d| {
             (
                 d,
-                mean(d, "pd", M::LANE_CHANGES_PER_VEHICLE.into())
-                    / mean(d, "none", M::LANE_CHANGES_PER_VEHICLE.into()),
+                mean(d, StrategyKind::PD, M::LANE_CHANGES_PER_VEHICLE.into())
+                    / mean(d, StrategyKind::NONE, M::LANE_CHANGES_PER_VEHICLE.into()),
             )
         })
         .collect();
@@ -263,7 +285,7 @@ pub(super) fn markdown(
     let range_check = |metric: Col, lo: f64, hi: f64, paper: &str| {
         let v: Vec<(f64, f64)> = DEMANDS
             .iter()
-            .map(|&d| (d, mean(d, "pd", metric)))
+            .map(|&d| (d, mean(d, StrategyKind::PD, metric)))
             .collect();
         Check {
             statement: format!(
@@ -287,7 +309,10 @@ pub(super) fn markdown(
         "5.0-5.4",
     ));
     // The L̄ gain per seed pair (issue 29): the paper's Table 3 gives ×1.64 to ×1.92.
-    let gains: Vec<(f64, f64)> = DEMANDS.iter().map(|&d| (d, mean(d, "pd", RATIO))).collect();
+    let gains: Vec<(f64, f64)> = DEMANDS
+        .iter()
+        .map(|&d| (d, mean(d, StrategyKind::PD, RATIO)))
+        .collect();
     checks.push(Check {
         statement: format!(
             "PD multiplies L̄ by at least 1.5 at every demand (paper ×1.92, ×1.70, ×1.82, ×1.64 \
@@ -306,7 +331,7 @@ pub(super) fn markdown(
         0.95,
         "0.89-0.91",
     ));
-    let dq = |d: f64| mean(d, "pd", DQ);
+    let dq = |d: f64| mean(d, StrategyKind::PD, DQ);
     checks.push(Check {
         statement: format!(
             "the discharge change is within ±1 % at 1,000 and 1,500 veh/h/lane: {} % and {} % \
@@ -336,8 +361,8 @@ pub(super) fn markdown(
         .map(|&d| {
             (
                 d,
-                mean(d, "dedicated", M::AVG_PLATOON_LENGTH.into()),
-                mean(d, "none", M::AVG_PLATOON_LENGTH.into()),
+                mean(d, StrategyKind::DEDICATED, M::AVG_PLATOON_LENGTH.into()),
+                mean(d, StrategyKind::NONE, M::AVG_PLATOON_LENGTH.into()),
             )
         })
         .collect();
@@ -356,7 +381,7 @@ pub(super) fn markdown(
     md.push_str(&paper_comparison(rows, |r| {
         format!(
             "{}, {} veh/h/lane, {}",
-            if r.labels.get("strategy") == Some("pd") {
+            if r.labels.get("strategy") == Some(StrategyKind::PD.as_str()) {
                 "PO"
             } else {
                 "B"

@@ -72,12 +72,19 @@ pub fn strategies_at(p: f64) -> &'static [StrategyKind] {
     }
 }
 
+/// The strategy of a cell, by its `strategy` label (`None` if it has none or names no
+/// registered strategy).
+pub fn strategy_of(cell: &Cell) -> Option<StrategyKind> {
+    let name = cell.labels.get("strategy")?;
+    StrategyKind::all().find(|k| k.as_str() == name)
+}
+
 /// How the strategies are named in tables.
-pub fn strategy_name(k: &str) -> &'static str {
+pub fn strategy_name(k: StrategyKind) -> &'static str {
     match k {
-        "none" => "baseline",
-        "pd" => "PD",
-        "flow-aware" => "Flow-Aware PD",
+        StrategyKind::NONE => "baseline",
+        StrategyKind::PD => "PD",
+        StrategyKind::FLOW_AWARE => "Flow-Aware PD",
         _ => "?",
     }
 }
@@ -252,7 +259,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
     let figure_seed = seeds[0];
     let mut specs = design::runs(&cells, seeds);
     design::keep_detectors(&mut specs, Scope::CrossSection, |c, _| {
-        cells[c].labels.get("strategy") == Some("none")
+        cells[c].labels.get("strategy") == Some(StrategyKind::NONE.as_str())
     });
     design::keep_detectors(&mut specs, Scope::All, |c, seed| {
         seed == figure_seed && is_figure_cell(&cells[c])
@@ -260,14 +267,14 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
     let mut outcomes = runner.run(&specs)?;
     for (i, c) in cells.iter().enumerate() {
         let k = c.labels.get("strategy").unwrap_or("");
-        if k == "none" {
+        if k == StrategyKind::NONE.as_str() {
             continue;
         }
         let base = find(
             &cells,
             &[
                 ("penetration", c.labels.get("penetration").unwrap_or("")),
-                ("strategy", "none"),
+                ("strategy", StrategyKind::NONE.as_str()),
             ],
         );
         if let Some(base) = base {
@@ -314,10 +321,10 @@ fn row<'a>(
     cells: &[Cell],
     rows: &'a [SummaryRow],
     p: &str,
-    k: &str,
+    k: StrategyKind,
     metric: Col,
 ) -> Option<&'a SummaryRow> {
-    let c = find(cells, &[("penetration", p), ("strategy", k)])?;
+    let c = find(cells, &[("penetration", p), ("strategy", k.as_str())])?;
     rows.iter()
         .find(|r| r.cell == c && r.metric == metric.name())
 }
@@ -393,26 +400,20 @@ pub(super) fn markdown(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> (St
             let mut r = vec![
                 format!("{} %", num(100.0 * p)),
                 format!("{scale} / {paper_scale}"),
-                strategy_name(ks).to_string(),
+                strategy_name(k).to_string(),
             ];
             r.extend(triple(
-                row(cells, rows, &ps, ks, Metric::NETWORK_DISCHARGE.into()),
+                row(cells, rows, &ps, k, Metric::NETWORK_DISCHARGE.into()),
                 1,
                 false,
             ));
             r.extend(triple(
-                row(
-                    cells,
-                    rows,
-                    &ps,
-                    ks,
-                    Metric::LANE_CHANGES_PER_VEHICLE.into(),
-                ),
+                row(cells, rows, &ps, k, Metric::LANE_CHANGES_PER_VEHICLE.into()),
                 2,
                 false,
             ));
             r.extend(triple(
-                row(cells, rows, &ps, ks, Metric::AVG_PLATOON_LENGTH.into()),
+                row(cells, rows, &ps, k, Metric::AVG_PLATOON_LENGTH.into()),
                 2,
                 p == 0.0,
             ));
@@ -452,7 +453,7 @@ pub(super) fn markdown(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> (St
         .collect();
     for &p in &mid {
         let ps = num(p);
-        for k in ["pd", "flow-aware"] {
+        for k in [StrategyKind::PD, StrategyKind::FLOW_AWARE] {
             let mut r = vec![format!("{} %", num(100.0 * p)), strategy_name(k).into()];
             for (name, _) in CHANGES {
                 let x = row(cells, rows, &ps, k, Col::Derived(name));
@@ -497,7 +498,7 @@ fn bottleneck_section(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> Stri
         let mean = |m: &str| get(c, m).map_or("–".into(), |r| fixed(r.stats.mean, 0));
         trs.push(vec![
             format!("{} %", num(100.0 * p)),
-            strategy_name(cell.labels.get("strategy").unwrap_or("")).into(),
+            strategy_of(cell).map_or("?", strategy_name).into(),
             cell.labels
                 .get("demand_scale")
                 .and_then(|v| v.parse::<f64>().ok())
@@ -563,41 +564,76 @@ fn plain(cells: &[Cell], rows: &[SummaryRow], pens: &[f64]) -> String {
     let mut md = String::from("\nIn words:\n\n");
     for &p in pens {
         let ps = num(p);
-        let r = |k: &str, m: Col| row(cells, rows, &ps, k, m);
-        let mean = |k: &str, m: Col| r(k, m).map_or(f64::NAN, |x| x.stats.mean);
-        let paper = |k: &str, m: Col| r(k, m).and_then(|x| x.paper).map_or(f64::NAN, |v| v.value);
-        let mut line = format!(
+        let r = |k: StrategyKind, m: Col| row(cells, rows, &ps, k, m);
+        let mean = |k: StrategyKind, m: Col| r(k, m).map_or(f64::NAN, |x| x.stats.mean);
+        let paper =
+            |k: StrategyKind, m: Col| r(k, m).and_then(|x| x.paper).map_or(f64::NAN, |v| v.value);
+        let mut line =
+            format!(
             "- **{} % CAV**: baseline network discharge {} veh/h, {}; lane changes per vehicle \
              {}, {}",
             num(100.0 * p),
-            fixed(mean("none", Metric::NETWORK_DISCHARGE.into()), 0),
-            versus(r("none", Metric::NETWORK_DISCHARGE.into()), 1),
-            fixed(mean("none", Metric::LANE_CHANGES_PER_VEHICLE.into()), 2),
-            versus(r("none", Metric::LANE_CHANGES_PER_VEHICLE.into()), 2),
+            fixed(mean(StrategyKind::NONE, Metric::NETWORK_DISCHARGE.into()), 0),
+            versus(r(StrategyKind::NONE, Metric::NETWORK_DISCHARGE.into()), 1),
+            fixed(mean(StrategyKind::NONE, Metric::LANE_CHANGES_PER_VEHICLE.into()), 2),
+            versus(r(StrategyKind::NONE, Metric::LANE_CHANGES_PER_VEHICLE.into()), 2),
         );
         if p > 0.0 {
             line.push_str(&format!(
                 "; L̄ {}, {}",
-                fixed(mean("none", Metric::AVG_PLATOON_LENGTH.into()), 2),
-                versus(r("none", Metric::AVG_PLATOON_LENGTH.into()), 2)
+                fixed(
+                    mean(StrategyKind::NONE, Metric::AVG_PLATOON_LENGTH.into()),
+                    2
+                ),
+                versus(r(StrategyKind::NONE, Metric::AVG_PLATOON_LENGTH.into()), 2)
             ));
         }
         if strategies_at(p).len() > 1 {
             line.push_str(&format!(
                 ". Against the baseline, PD changes the discharge by {} % (paper {} %) and \
                  Flow-Aware PD by {} % (paper {} %); L̄ by {} % and {} % (paper {} % and {} %)",
-                signed(mean("pd", Col::Derived("discharge_change_pct")), 1),
-                signed(paper("pd", Col::Derived("discharge_change_pct")), 1),
-                signed(mean("flow-aware", Col::Derived("discharge_change_pct")), 1),
-                signed(paper("flow-aware", Col::Derived("discharge_change_pct")), 1),
-                signed(mean("pd", Col::Derived("platoon_length_change_pct")), 1),
                 signed(
-                    mean("flow-aware", Col::Derived("platoon_length_change_pct")),
+                    mean(StrategyKind::PD, Col::Derived("discharge_change_pct")),
                     1
                 ),
-                signed(paper("pd", Col::Derived("platoon_length_change_pct")), 1),
                 signed(
-                    paper("flow-aware", Col::Derived("platoon_length_change_pct")),
+                    paper(StrategyKind::PD, Col::Derived("discharge_change_pct")),
+                    1
+                ),
+                signed(
+                    mean(
+                        StrategyKind::FLOW_AWARE,
+                        Col::Derived("discharge_change_pct")
+                    ),
+                    1
+                ),
+                signed(
+                    paper(
+                        StrategyKind::FLOW_AWARE,
+                        Col::Derived("discharge_change_pct")
+                    ),
+                    1
+                ),
+                signed(
+                    mean(StrategyKind::PD, Col::Derived("platoon_length_change_pct")),
+                    1
+                ),
+                signed(
+                    mean(
+                        StrategyKind::FLOW_AWARE,
+                        Col::Derived("platoon_length_change_pct")
+                    ),
+                    1
+                ),
+                signed(
+                    paper(StrategyKind::PD, Col::Derived("platoon_length_change_pct")),
+                    1
+                ),
+                signed(
+                    paper(
+                        StrategyKind::FLOW_AWARE,
+                        Col::Derived("platoon_length_change_pct")
+                    ),
                     1
                 ),
             ));
@@ -632,10 +668,10 @@ fn checks(cells: &[Cell], rows: &[SummaryRow], mid: &[f64]) -> Vec<Check> {
     if mid.is_empty() {
         return Vec::new();
     }
-    let mean = |p: f64, k: &str, m: Col| {
+    let mean = |p: f64, k: StrategyKind, m: Col| {
         row(cells, rows, &num(p), k, m).map_or(f64::NAN, |r| r.stats.mean)
     };
-    let list = |k: &str, m: Col| -> (Vec<f64>, String) {
+    let list = |k: StrategyKind, m: Col| -> (Vec<f64>, String) {
         let v: Vec<f64> = mid.iter().map(|&p| mean(p, k, m)).collect();
         let text = v
             .iter()
@@ -651,14 +687,17 @@ fn checks(cells: &[Cell], rows: &[SummaryRow], mid: &[f64]) -> Vec<Check> {
         .collect::<Vec<_>>()
         .join("/");
     let mut out = Vec::new();
-    let (dq_pd, t) = list("pd", Col::Derived("discharge_change_pct"));
+    let (dq_pd, t) = list(StrategyKind::PD, Col::Derived("discharge_change_pct"));
     out.push(Check {
         statement: format!(
             "the PD lane lowers the network discharge at {pens} % CAV (paper: −0.1 to −7.3 %): {t}"
         ),
         passed: dq_pd.iter().all(|x| *x < 0.0),
     });
-    let (dq_fa, t) = list("flow-aware", Col::Derived("discharge_change_pct"));
+    let (dq_fa, t) = list(
+        StrategyKind::FLOW_AWARE,
+        Col::Derived("discharge_change_pct"),
+    );
     out.push(Check {
         statement: format!(
             "the Flow-Aware PD lane keeps the network discharge within 0.5 % of the baseline at \
@@ -666,7 +705,10 @@ fn checks(cells: &[Cell], rows: &[SummaryRow], mid: &[f64]) -> Vec<Check> {
         ),
         passed: dq_fa.iter().all(|x| x.abs() <= 0.5),
     });
-    let (dl_fa, t) = list("flow-aware", Col::Derived("platoon_length_change_pct"));
+    let (dl_fa, t) = list(
+        StrategyKind::FLOW_AWARE,
+        Col::Derived("platoon_length_change_pct"),
+    );
     out.push(Check {
         statement: format!(
             "the Flow-Aware PD lane raises L̄ above the baseline at {pens} % CAV (paper: +8.5 to \
@@ -676,9 +718,17 @@ fn checks(cells: &[Cell], rows: &[SummaryRow], mid: &[f64]) -> Vec<Check> {
     });
     let ordered = mid.iter().all(|&p| {
         let (b, pd, fa) = (
-            mean(p, "none", Metric::LANE_CHANGES_PER_VEHICLE.into()),
-            mean(p, "pd", Metric::LANE_CHANGES_PER_VEHICLE.into()),
-            mean(p, "flow-aware", Metric::LANE_CHANGES_PER_VEHICLE.into()),
+            mean(
+                p,
+                StrategyKind::NONE,
+                Metric::LANE_CHANGES_PER_VEHICLE.into(),
+            ),
+            mean(p, StrategyKind::PD, Metric::LANE_CHANGES_PER_VEHICLE.into()),
+            mean(
+                p,
+                StrategyKind::FLOW_AWARE,
+                Metric::LANE_CHANGES_PER_VEHICLE.into(),
+            ),
         );
         pd > fa && fa > b
     });

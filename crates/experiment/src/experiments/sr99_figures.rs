@@ -30,8 +30,8 @@ fn plot_error(e: PlotError) -> Error {
 /// Colour range of the contours (km/h).
 pub const SPEED_RANGE: (f64, f64) = (0.0, 120.0);
 
-fn strategy_of(cells: &[Cell], c: usize) -> &str {
-    cells[c].labels.get("strategy").unwrap_or("")
+fn strategy_name(cells: &[Cell], c: usize) -> &'static str {
+    sr99::strategy_of(&cells[c]).map_or("?", sr99::strategy_name)
 }
 
 pub(super) fn all(
@@ -58,7 +58,7 @@ pub fn contour_maps(cells: &[Cell], d: &Data) -> Vec<Heatmap> {
         .map(|(c, recs)| {
             let k = corridor::contour(recs);
             Heatmap {
-                title: sr99::strategy_name(strategy_of(cells, *c)).into(),
+                title: strategy_name(cells, *c).into(),
                 x_label: "Time from 05:00 (min)".into(),
                 y_label: "Mainline detector (1 = most upstream)".into(),
                 x: k.times_min.clone(),
@@ -117,7 +117,7 @@ pub fn lane_charts(cells: &[Cell], d: &Data) -> Vec<Chart> {
         .iter()
         .map(|(c, recs)| {
             (
-                sr99::strategy_name(strategy_of(cells, *c)).to_string(),
+                strategy_name(cells, *c).to_string(),
                 corridor::lane_series(recs, FLORIN_DETECTOR),
             )
         })
@@ -227,7 +227,7 @@ pub fn bar_charts(cells: &[Cell], rows: &[SummaryRow]) -> Vec<Bars> {
                 let labels = Labels::new().with("penetration", ps).with("strategy", ks);
                 pap.push(paper::lookup("sr99", &labels, &name).map_or(f64::NAN, |v| v.value));
             }
-            let name = sr99::strategy_name(ks).to_string();
+            let name = sr99::strategy_name(k).to_string();
             s_ours.push((name.clone(), mean, Some(err)));
             s_paper.push((name, pap, None));
         }
