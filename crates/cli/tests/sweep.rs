@@ -327,7 +327,12 @@ fn spec_errors_name_the_spec_key() {
             "compare.\"strategy.kind\"",
             "not an axis",
         ),
-        ("metrics = [\"speed\"]", "metrics", "speed"),
+        // The allowed names are listed, and nothing runs before the metrics are checked.
+        (
+            "metrics = [\"discharge_flow_vphpl\", \"speed\"]",
+            "metrics: 'speed'",
+            "lane_changes_per_vehicle, ",
+        ),
     ];
     for (i, (extra, key, detail)) in cases.iter().enumerate() {
         let f = dir.join(format!("bad{i}.toml"));
@@ -338,6 +343,10 @@ fn spec_errors_name_the_spec_key() {
         assert!(
             e.contains(key) && e.contains(detail) && !e.contains("panicked"),
             "{extra}: {e}"
+        );
+        assert!(
+            !dir.join("o").join("runs").exists(),
+            "{extra}: runs computed"
         );
     }
     let o = platoonsim(&["-q", "sweep", &spec(), "--shard", "4/3"]);

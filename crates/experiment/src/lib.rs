@@ -19,8 +19,8 @@ pub mod table;
 
 // The runner and its files, re-exported under their former paths.
 pub use platoonsim_runs::{
-    atomic, columnar, design, detectors, hash, progress, record, runner, safety, stats, sweep,
-    Error, VERSION,
+    atomic, columnar, design, detectors, hash, metric, progress, record, runner, safety, stats,
+    sweep, Error, Metric, VERSION,
 };
 
 pub use design::{Cell, Labels, RunSpec};

@@ -1,6 +1,7 @@
 //! The paper's values (Woo & Skabardonis, "Flow-aware platoon formation of CAVs in mixed
 //! traffic"), as data, each with where it comes from. A value belongs to an experiment, a
-//! cell (a subset of the cell's labels) and a metric (a run field name).
+//! cell (a subset of the cell's labels) and a column (a metric of the runs, or one the
+//! experiment derives).
 //!
 //! Fig. 4 (capacity vs penetration) is not available as a figure; only the values stated in
 //! the text of the Preliminary Study are given. Table 3's and Table 4's (SR-99, the appendix
@@ -9,6 +10,9 @@
 //! printed values' ratio in the last digit).
 
 pub use platoonsim_runs::table::{CellSel, PaperValue};
+
+use crate::table::Col;
+use crate::Metric;
 
 const FIG4_TEXT: &str = "Preliminary Study, text on Fig. 4 (approximate, read from prose)";
 const TABLE3: &str = "Table 3";
@@ -56,11 +60,14 @@ const TABLE3_ROWS: [Table3Row; 4] = [
     },
 ];
 
+/// The capacity experiment's measure: the highest 5-min discharge.
+const CAPACITY_METRIC: Col = Col::Metric(Metric::MAX_SUSTAINED_FLOW);
+
 /// The capacity experiment's values (Fig. 4, from the text).
 pub const CAPACITY: [PaperValue; 3] = [
-    v!("capacity", ["stage" => "baseline", "penetration" => "0"], "max_sustained_flow_vphpl", 2000.0, FIG4_TEXT),
-    v!("capacity", ["stage" => "pd", "penetration" => "0.25"], "max_sustained_flow_vphpl", 1800.0, FIG4_TEXT),
-    v!("capacity", ["stage" => "pd", "penetration" => "0.5"], "max_sustained_flow_vphpl", 2000.0, FIG4_TEXT),
+    v!("capacity", ["stage" => "baseline", "penetration" => "0"], CAPACITY_METRIC, 2000.0, FIG4_TEXT),
+    v!("capacity", ["stage" => "pd", "penetration" => "0.25"], CAPACITY_METRIC, 1800.0, FIG4_TEXT),
+    v!("capacity", ["stage" => "pd", "penetration" => "0.5"], CAPACITY_METRIC, 2000.0, FIG4_TEXT),
 ];
 
 const TABLE4: &str = "Table 4 (SR-99)";
@@ -138,7 +145,7 @@ fn table4() -> Vec<PaperValue> {
     let mut out = Vec::new();
     for (i, &(_, _, q, lc, lbar, change)) in TABLE4_ROWS.iter().enumerate() {
         let cell = table4_cell(i);
-        let mut push = |metric: &'static str, value: f64| {
+        let mut push = |metric: Col, value: f64| {
             if value.is_finite() {
                 out.push(PaperValue {
                     experiment: "sr99",
@@ -149,13 +156,13 @@ fn table4() -> Vec<PaperValue> {
                 });
             }
         };
-        push("network_discharge_vph", q);
-        push("lane_changes_per_vehicle", lc);
-        push("avg_platoon_length", lbar);
+        push(Metric::NETWORK_DISCHARGE.into(), q);
+        push(Metric::LANE_CHANGES_PER_VEHICLE.into(), lc);
+        push(Metric::AVG_PLATOON_LENGTH.into(), lbar);
         if let Some([dq, dlc, dl]) = change {
-            push("discharge_change_pct", dq);
-            push("lane_changes_change_pct", dlc);
-            push("platoon_length_change_pct", dl);
+            push(Col::Derived("discharge_change_pct"), dq);
+            push(Col::Derived("lane_changes_change_pct"), dlc);
+            push(Col::Derived("platoon_length_change_pct"), dl);
         }
     }
     out
@@ -192,17 +199,17 @@ pub fn all() -> Vec<PaperValue> {
     for row in &TABLE3_ROWS {
         let v = row.v;
         let metrics = [
-            ("lane_changes_per_vehicle", v[0], v[1]),
-            ("avg_platoon_length", v[2], v[3]),
-            ("platooning_probability", v[4], v[5]),
-            ("discharge_flow_vphpl", v[6], v[7]),
+            (Metric::LANE_CHANGES_PER_VEHICLE, v[0], v[1]),
+            (Metric::AVG_PLATOON_LENGTH, v[2], v[3]),
+            (Metric::PLATOONING_PROBABILITY, v[4], v[5]),
+            (Metric::DISCHARGE_FLOW, v[6], v[7]),
         ];
         for (metric, b, po) in metrics {
             for (cell, value) in [(row.b, b), (row.po, po)] {
                 out.push(PaperValue {
                     experiment: "sensitivity",
                     cell,
-                    metric,
+                    metric: metric.into(),
                     value,
                     source: TABLE3,
                 });
@@ -211,7 +218,7 @@ pub fn all() -> Vec<PaperValue> {
         out.push(PaperValue {
             experiment: "sensitivity",
             cell: row.po,
-            metric: "discharge_change_pct",
+            metric: Col::Derived("discharge_change_pct"),
             value: v[8],
             source: TABLE3,
         });
@@ -223,7 +230,7 @@ pub fn all() -> Vec<PaperValue> {
 pub fn lookup(experiment: &str, labels: &crate::Labels, metric: &str) -> Option<PaperValue> {
     all()
         .into_iter()
-        .find(|p| p.experiment == experiment && p.metric == metric && labels.matches(p.cell))
+        .find(|p| p.experiment == experiment && p.metric.name() == metric && labels.matches(p.cell))
 }
 
 #[cfg(test)]

@@ -5,6 +5,8 @@
 //!   resumable through atomic run files `<dir>/runs/<key>.json`, where the key is the
 //!   stable hash of the run's configuration ([`hash`]); [`record`] is the run file's
 //!   format. Selected runs also keep detector records beside their run file ([`detectors`]).
+//! * [`metric`]: the per-run metrics, a typed [`Metric`] per numeric field of the engine's
+//!   summary (the tables' columns, the sweep files' `metrics`).
 //! * [`stats`]: mean, sample sd, n, Student-t 95 % confidence interval.
 //! * [`table`]: `runs.csv`, `summary.csv` (or Parquet, [`columnar`]) and Markdown tables.
 //! * [`safety`]: runs with collisions (a failed run) and the safety measures per cell.
@@ -20,6 +22,7 @@ pub mod columnar;
 pub mod design;
 pub mod detectors;
 pub mod hash;
+pub mod metric;
 pub mod page;
 pub mod progress;
 pub mod record;
@@ -30,6 +33,7 @@ pub mod sweep;
 pub mod table;
 
 pub use design::{Cell, Labels, RunSpec};
+pub use metric::Metric;
 pub use runner::{Outcome, Runner};
 pub use stats::Stats;
 

@@ -16,6 +16,7 @@
 //! by another build is not reused, so a rebuilt engine never reports stale results.
 
 use crate::detectors::DetectorsRef;
+use crate::metric::Metric;
 use platoonsim_sim::Summary;
 use serde::de::{Deserializer, MapAccess, Visitor};
 use serde::{Deserialize, Serialize};
@@ -37,51 +38,35 @@ pub const NOT_METRICS: [&str; 10] = [
     "wall_seconds",
 ];
 
-/// The summary's metrics that count things (integers in `summary.json`) besides the
-/// counted safety measures ([`is_count`]); `runs.csv` writes them without a decimal point,
-/// every other metric with one (`crate::table`).
-pub const COUNTS: [&str; 14] = [
-    "vehicles_entered",
-    "vehicles_exited",
-    "vehicles_in_network",
-    "vehicles_waiting",
-    "cooperative_lane_changes",
-    "cavs_counted",
-    "vehicles_counted",
-    "missed_exits",
-    "collisions",
-    "cacc_fallbacks",
-    "vehicle_updates",
-    "steps",
-    "runs_with_collisions",
-    "seed",
-];
+/// Derived columns that count things (written without a decimal point in `runs.csv`, as
+/// the counting [`Metric`]s are, see [`is_count`]).
+pub const DERIVED_COUNTS: [&str; 2] = ["runs_with_collisions", "seed"];
 
-/// The object of integer arrays in the summary whose bins become metrics
-/// `braking_peaks_<kind>_<bin>` (bin 0 = the peaks from 4 m/s², docs/safety.md).
-pub const HISTOGRAM: &str = "braking_peaks";
+pub use crate::metric::HISTOGRAM;
 
-/// Is `name` a metric that counts things: one of [`COUNTS`], a counted safety measure
-/// (`hard_brakings`, `lane_change_conflicts_cav`, …: not its `_per_100vkm` rates) or a bin of
-/// the [`HISTOGRAM`].
+/// Is the column `name` a count: a [`Metric`] that counts things, one of [`DERIVED_COUNTS`],
+/// or a column derived from a bin of the [`HISTOGRAM`] (a sweep's `_diff` and `_pct` of it;
+/// `runs.csv` has always written those as counts).
 pub fn is_count(name: &str) -> bool {
-    COUNTS.contains(&name)
-        || name.starts_with(HISTOGRAM)
-        || platoonsim_sim::Counted::ALL.iter().any(|m| {
-            let n = m.name();
-            name == n
-                || name
-                    .strip_prefix(n)
-                    .is_some_and(|k| k == "_cav" || k == "_human")
-        })
+    match Metric::parse(name) {
+        Some(m) => m.is_count(),
+        None => DERIVED_COUNTS.contains(&name) || name.starts_with(HISTOGRAM),
+    }
 }
 
-/// Named numbers in a fixed order: a run's metrics (the summary's numeric fields, in the
-/// summary's order, then any derived ones). A JSON `null` (a NaN when written) reads as NaN.
+/// Named numbers in a fixed order: a run's metrics (the summary's numeric fields that are
+/// [`Metric`]s, in the summary's order, then any derived ones, named by the experiment or
+/// sweep that adds them). A JSON `null` (a NaN when written) reads as NaN.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Fields(pub Vec<(String, f64)>);
 
 impl Fields {
+    /// The value of a metric of the summary.
+    pub fn metric(&self, m: Metric) -> Option<f64> {
+        self.get(&m.name())
+    }
+
+    /// The value of a column by name (a metric's or a derived one's).
     pub fn get(&self, name: &str) -> Option<f64> {
         self.0.iter().find(|(k, _)| k == name).map(|(_, v)| *v)
     }
@@ -243,6 +228,10 @@ pub fn decode_with(
         if NOT_METRICS.contains(&k.as_str()) {
             continue;
         }
+        // Only the summary's metrics (a histogram's bins are checked one by one).
+        if k != HISTOGRAM && Metric::parse(&k).is_none() {
+            continue;
+        }
         match v {
             serde_json::Value::Number(n) => fields.0.push((k, n.as_f64().unwrap_or(f64::NAN))),
             serde_json::Value::Null => fields.0.push((k, f64::NAN)),
@@ -256,15 +245,17 @@ pub fn decode_with(
                         continue;
                     }
                     for (i, b) in bins.iter().enumerate() {
-                        let v = b.as_f64().unwrap_or(f64::NAN);
-                        fields.0.push((format!("{k}_{kind}_{i}"), v));
+                        let name = format!("{k}_{kind}_{i}");
+                        if Metric::parse(&name).is_some() {
+                            fields.0.push((name, b.as_f64().unwrap_or(f64::NAN)));
+                        }
                     }
                 }
             }
             _ => {}
         }
     }
-    if fields.get("discharge_flow_vphpl").is_none() {
+    if fields.metric(Metric::DISCHARGE_FLOW).is_none() {
         return Err(StaleRunFile::NoSummary);
     }
     Ok((fields, f.detectors))
@@ -338,37 +329,23 @@ mod tests {
     #[test]
     fn the_counts_are_the_integer_fields_of_the_summary() {
         let json = serde_json::to_value(summary()).unwrap();
-        let mut ints: Vec<&str> = json
-            .as_object()
-            .unwrap()
-            .iter()
-            .filter(|(k, v)| v.is_u64() && !NOT_METRICS.contains(&k.as_str()))
-            .map(|(k, _)| k.as_str())
-            .collect();
-        let mut listed: Vec<String> = COUNTS
-            .iter()
-            .filter(|c| !["runs_with_collisions", "seed"].contains(c))
-            .map(|c| c.to_string())
-            .collect();
-        for m in platoonsim_sim::Counted::ALL {
-            for k in ["", "_cav", "_human"] {
-                listed.push(format!("{}{k}", m.name()));
+        for (k, v) in json.as_object().unwrap() {
+            if NOT_METRICS.contains(&k.as_str()) || !v.is_number() {
+                continue;
             }
-        }
-        ints.sort_unstable();
-        listed.sort_unstable();
-        assert_eq!(ints, listed);
-        for name in ints {
-            assert!(is_count(name), "{name}");
+            assert_eq!(is_count(k), v.is_u64(), "{k}");
         }
         for rate in [
             "hard_brakings_per_100vkm",
             "severe_brakings_per_100vkm_cav",
             "tet_s",
+            "discharge_change_pct",
         ] {
             assert!(!is_count(rate), "{rate}");
         }
-        assert!(is_count("braking_peaks_human_2"));
+        for count in ["braking_peaks_human_2", "seed", "runs_with_collisions"] {
+            assert!(is_count(count), "{count}");
+        }
     }
 
     #[test]

@@ -9,60 +9,66 @@
 //! collided, and `summary.csv` counts the failed runs of each cell.
 
 use crate::design::{Cell, Labels};
+use crate::metric::{Field, Kind, Metric, Part};
 use crate::runner::Outcome;
 use crate::stats::Stats;
 use crate::table::{self, md_table, pm};
 use crate::Error;
 use crate::Figure;
 use platoonsim_model::safety::PEAK_BIN_EDGES_MPS2;
+use platoonsim_sim::Counted;
 use std::path::Path;
 
 /// The safety columns: (metric of the summary, column title, decimals).
-pub const METRICS: [(&str, &str, usize); 10] = [
-    ("vehicle_km", "Vehicle-km (veh·km)", 0),
+pub const METRICS: [(Metric, &str, usize); 10] = [
+    (Metric::Field(Field::VehicleKm), "Vehicle-km (veh·km)", 0),
     (
-        "hard_brakings_per_100vkm",
+        Metric::Counted(Counted::HardBrakings, Part::Rate),
         "Hard brakings > 4 m/s² (per 100 veh-km)",
         3,
     ),
     (
-        "severe_brakings_per_100vkm",
+        Metric::Counted(Counted::SevereBrakings, Part::Rate),
         "Severe brakings ≥ 6 m/s² (per 100 veh-km)",
         3,
     ),
     (
-        "brakings_at_limit_per_100vkm",
+        Metric::Counted(Counted::BrakingsAtLimit, Part::Rate),
         "Brakings at the limit b_e (per 100 veh-km)",
         3,
     ),
     (
-        "rear_end_conflicts_per_100vkm",
+        Metric::Counted(Counted::RearEndConflicts, Part::Rate),
         "Rear-end conflicts (per 100 veh-km)",
         2,
     ),
     (
-        "lane_change_conflicts_per_100vkm",
+        Metric::Counted(Counted::LaneChangeConflicts, Part::Rate),
         "Lane-change conflicts (per 100 veh-km)",
         2,
     ),
-    ("tet_s", "TET (s)", 1),
-    ("tit_s2", "TIT (s²)", 1),
-    ("min_ttc_s", "Min TTC (s)", 2),
-    ("max_deceleration_mps2", "Max deceleration (m/s²)", 2),
+    (Metric::Field(Field::TetS), "TET (s)", 1),
+    (Metric::Field(Field::TitS2), "TIT (s²)", 1),
+    (Metric::Field(Field::MinTtc), "Min TTC (s)", 2),
+    (
+        Metric::Field(Field::MaxDeceleration),
+        "Max deceleration (m/s²)",
+        2,
+    ),
 ];
 
 /// The by-kind columns: the braking classes and the lane-change conflicts per 100 veh-km of
 /// human-driven vehicles and of CAVs.
-pub const BY_KIND: [(&str, &str, usize); 3] = [
-    ("hard_brakings", "Hard brakings", 3),
-    ("severe_brakings", "Severe brakings", 3),
-    ("lane_change_conflicts", "Lane-change conflicts", 2),
+pub const BY_KIND: [(Counted, &str, usize); 3] = [
+    (Counted::HardBrakings, "Hard brakings", 3),
+    (Counted::SevereBrakings, "Severe brakings", 3),
+    (Counted::LaneChangeConflicts, "Lane-change conflicts", 2),
 ];
 
 /// Whether a run collided. A run file without the field (an older engine) counts as no
 /// collision known; such files are not reused by a new build anyway.
 pub fn collided(o: &Outcome) -> bool {
-    o.fields.get("collisions").is_some_and(|c| c > 0.0)
+    o.fields.metric(Metric::COLLISIONS).is_some_and(|c| c > 0.0)
 }
 
 /// The runs of `cell` that collided.
@@ -230,8 +236,8 @@ fn cell_table(
 }
 
 /// Mean ± 95 % half-width of a cell's metric over its runs (`n` given when some runs lack it).
-fn mean_text(outcomes: &[Outcome], c: usize, metric: &str, dec: usize, runs: usize) -> String {
-    let v = table::values(outcomes, c, metric);
+fn mean_text(outcomes: &[Outcome], c: usize, metric: Metric, dec: usize, runs: usize) -> String {
+    let v = table::values(outcomes, c, &metric);
     let s = Stats::of(&v);
     let mut text = pm(&s, dec);
     if !v.is_empty() && s.n < runs {
@@ -277,7 +283,7 @@ pub fn section_md(cells: &[Cell], outcomes: &[Outcome], group: &[&str]) -> Strin
         let (metric, _, dec) = METRICS[i - 1];
         mean_text(outcomes, c, metric, dec, runs)
     });
-    let kinds = [("human", "human-driven"), ("cav", "CAV")];
+    let kinds = [(Part::RateHuman, "human-driven"), (Part::RateCav, "CAV")];
     let columns: Vec<String> = BY_KIND
         .iter()
         .flat_map(|(_, title, _)| {
@@ -287,9 +293,9 @@ pub fn section_md(cells: &[Cell], outcomes: &[Outcome], group: &[&str]) -> Strin
         })
         .collect();
     let by_kind = cell_table(cells, outcomes, &order, &columns, |c, i, runs| {
-        let (name, _, dec) = BY_KIND[i / kinds.len()];
-        let kind = kinds[i % kinds.len()].0;
-        mean_text(outcomes, c, &format!("{name}_per_100vkm_{kind}"), dec, runs)
+        let (measure, _, dec) = BY_KIND[i / kinds.len()];
+        let part = kinds[i % kinds.len()].0;
+        mean_text(outcomes, c, Metric::Counted(measure, part), dec, runs)
     });
     format!(
         "## Safety\n\nSurrogate safety measures per cell (definitions in docs/safety.md, spec \
@@ -323,13 +329,17 @@ fn bin_labels() -> Vec<String> {
 
 /// A cell's episodes per 100 veh-km of `kind` in each peak bin: the bins' counts over its
 /// runs divided by the vehicle-km of that kind over the same runs (NaN without any).
-pub fn peak_rates(outcomes: &[Outcome], cell: usize, kind: &str) -> Vec<f64> {
-    let km: f64 = table::values(outcomes, cell, &format!("vehicle_km_{kind}"))
+pub fn peak_rates(outcomes: &[Outcome], cell: usize, kind: Kind) -> Vec<f64> {
+    let km = match kind {
+        Kind::Cav => Field::VehicleKmCav,
+        Kind::Human => Field::VehicleKmHuman,
+    };
+    let km: f64 = table::values(outcomes, cell, &Metric::Field(km))
         .iter()
         .sum();
     (0..PEAK_BIN_EDGES_MPS2.len())
         .map(|i| {
-            let n: f64 = table::values(outcomes, cell, &format!("braking_peaks_{kind}_{i}"))
+            let n: f64 = table::values(outcomes, cell, &Metric::BrakingPeaks(kind, i))
                 .iter()
                 .sum();
             if km > 0.0 {
@@ -349,18 +359,19 @@ pub fn braking_figure(
     cells: &[Cell],
     outcomes: &[Outcome],
 ) -> Result<Vec<Figure>, Error> {
-    if !outcomes
-        .iter()
-        .any(|o| o.fields.get("braking_peaks_human_0").is_some())
-    {
+    if !outcomes.iter().any(|o| {
+        o.fields
+            .metric(Metric::BrakingPeaks(Kind::Human, 0))
+            .is_some()
+    }) {
         return Ok(Vec::new());
     }
     let panels: Vec<(usize, Vec<f64>, Vec<f64>)> = (0..cells.len())
         .filter(|&c| outcomes.iter().any(|o| o.cell == c))
         .map(|c| {
             let (h, v) = (
-                peak_rates(outcomes, c, "human"),
-                peak_rates(outcomes, c, "cav"),
+                peak_rates(outcomes, c, Kind::Human),
+                peak_rates(outcomes, c, Kind::Cav),
             );
             (c, h, v)
         })

@@ -19,7 +19,62 @@
 //! whatever its values, as in `summary.json`.
 
 use crate::design::{Cell, Labels};
+use crate::metric::Metric;
 use crate::runner::Outcome;
+use std::borrow::Cow;
+
+/// A column of the run table: a summary [`Metric`], or a derived column by name (an
+/// experiment's `discharge_change_pct`, a sweep's `<metric>_diff`).
+pub trait Column {
+    fn column(&self) -> Cow<'_, str>;
+}
+
+impl Column for Metric {
+    fn column(&self) -> Cow<'_, str> {
+        self.name()
+    }
+}
+
+/// A column named in report code: a summary [`Metric`], or a column an experiment derives
+/// (by the name it gives it, e.g. `discharge_change_pct` of [`add_paired`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Col {
+    Metric(Metric),
+    Derived(&'static str),
+}
+
+impl Col {
+    pub fn name(self) -> Cow<'static, str> {
+        match self {
+            Col::Metric(m) => m.name(),
+            Col::Derived(n) => Cow::Borrowed(n),
+        }
+    }
+}
+
+impl From<Metric> for Col {
+    fn from(m: Metric) -> Col {
+        Col::Metric(m)
+    }
+}
+
+impl Column for Col {
+    fn column(&self) -> Cow<'_, str> {
+        self.name()
+    }
+}
+
+impl Column for str {
+    fn column(&self) -> Cow<'_, str> {
+        Cow::Borrowed(self)
+    }
+}
+
+impl Column for String {
+    fn column(&self) -> Cow<'_, str> {
+        Cow::Borrowed(self)
+    }
+}
 use crate::stats::Stats;
 use crate::Error;
 
@@ -145,16 +200,17 @@ pub fn runs_csv(cells: &[Cell], outcomes: &[Outcome]) -> Result<Vec<u8>, Error> 
 }
 
 /// A metric's values over the runs of one cell (runs lacking it are left out).
-pub fn values(outcomes: &[Outcome], cell: usize, metric: &str) -> Vec<f64> {
+pub fn values<C: Column + ?Sized>(outcomes: &[Outcome], cell: usize, metric: &C) -> Vec<f64> {
+    let metric = metric.column();
     outcomes
         .iter()
         .filter(|o| o.cell == cell)
-        .filter_map(|o| o.fields.get(metric))
+        .filter_map(|o| o.fields.get(&metric))
         .collect()
 }
 
 /// Statistics of one cell's metric.
-pub fn stats(outcomes: &[Outcome], cell: usize, metric: &str) -> Stats {
+pub fn stats<C: Column + ?Sized>(outcomes: &[Outcome], cell: usize, metric: &C) -> Stats {
     Stats::of(&values(outcomes, cell, metric))
 }
 
@@ -238,7 +294,7 @@ pub fn add_paired(
     outcomes: &mut [Outcome],
     base: usize,
     cell: usize,
-    metric: &str,
+    metric: Metric,
     name: &str,
     percent: bool,
 ) {
@@ -256,7 +312,7 @@ pub fn add_paired(
 /// Add a paired ratio to the runs of `cell`: for each of its runs, the run of `base` with the
 /// same seed gives b, and `name` = x / b (e.g. the L̄ gain L̄_PO / L̄_B). Runs without a
 /// partner, or with b = 0 or a missing value, get NaN.
-pub fn add_ratio(outcomes: &mut [Outcome], base: usize, cell: usize, metric: &str, name: &str) {
+pub fn add_ratio(outcomes: &mut [Outcome], base: usize, cell: usize, metric: Metric, name: &str) {
     pair_with_base(outcomes, base, cell, metric, name, |x, b| {
         if b != 0.0 {
             x / b
@@ -272,21 +328,21 @@ fn pair_with_base(
     outcomes: &mut [Outcome],
     base: usize,
     cell: usize,
-    metric: &str,
+    metric: Metric,
     name: &str,
     f: impl Fn(f64, f64) -> f64,
 ) {
     let reference: Vec<(u64, f64)> = outcomes
         .iter()
         .filter(|o| o.cell == base)
-        .filter_map(|o| o.fields.get(metric).map(|v| (o.seed, v)))
+        .filter_map(|o| o.fields.metric(metric).map(|v| (o.seed, v)))
         .collect();
     for o in outcomes.iter_mut().filter(|o| o.cell == cell) {
         let b = reference
             .iter()
             .find(|(s, _)| *s == o.seed)
             .map(|(_, v)| *v);
-        let d = match (o.fields.get(metric), b) {
+        let d = match (o.fields.metric(metric), b) {
             (Some(x), Some(b)) => f(x, b),
             _ => f64::NAN,
         };
@@ -461,7 +517,7 @@ mod tests {
             &mut outs,
             0,
             1,
-            "avg_platoon_length",
+            Metric::Field(crate::metric::Field::AvgPlatoonLength),
             "platoon_length_ratio",
         );
         let r = |i: usize| outs[i].fields.get("platoon_length_ratio");
@@ -484,7 +540,7 @@ mod tests {
             &mut outs,
             0,
             1,
-            "discharge_flow_vphpl",
+            Metric::DISCHARGE_FLOW,
             "discharge_change_pct",
             true,
         );
@@ -505,9 +561,9 @@ mod tests {
 
         // Reference values as the paper's Table 3 gives them at 1000 veh/h/lane.
         let paper = [
-            ("none", "discharge_flow_vphpl", 1006.3),
-            ("none", "avg_platoon_length", 2.6),
-            ("pd", "discharge_change_pct", 0.04),
+            ("none", Col::Metric(Metric::DISCHARGE_FLOW), 1006.3),
+            ("none", Col::Metric(Metric::AVG_PLATOON_LENGTH), 2.6),
+            ("pd", Col::Derived("discharge_change_pct"), 0.04),
         ]
         .map(|(strategy, metric, value)| PaperValue {
             experiment: "sensitivity",
@@ -522,7 +578,7 @@ mod tests {
         let rows = summarize(&cells, &outs, |labels, metric| {
             paper
                 .iter()
-                .find(|p| p.metric == metric && labels.matches(p.cell))
+                .find(|p| p.metric.name() == metric && labels.matches(p.cell))
                 .copied()
         });
         // Cell 0: two metrics; cell 1: three.
@@ -571,13 +627,14 @@ mod tests {
 }
 
 /// A reference value of a study (e.g. a published table's), with where it comes from: of an
-/// experiment, a cell (a subset of the cell's labels) and a metric (a run field name).
+/// experiment, a cell (a subset of the cell's labels) and a column (a metric of the runs or
+/// one the experiment derives).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PaperValue {
     pub experiment: &'static str,
     /// Labels the cell must have.
     pub cell: CellSel,
-    pub metric: &'static str,
+    pub metric: Col,
     pub value: f64,
     pub source: &'static str,
 }

@@ -1,7 +1,7 @@
 //! The one-paragraph human summary printed after a run, and its number formatting.
 
 use crate::messages::printable;
-use platoonsim_sim::{Config, Summary};
+use platoonsim_sim::{Config, Counted, Summary};
 use std::path::Path;
 
 /// A statistic with `dec` decimals, or "n/a" where it does not apply (nothing to count).
@@ -41,7 +41,7 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
             String::new(),
         ),
     };
-    let count = |name: &str| s.counted.get(name).cloned().unwrap_or_default();
+    let count = |m: Counted| s.counted.get(m.name()).cloned().unwrap_or_default();
     let text = format!(
         "{name}: {dur} s simulated in steps of {dt} s (measured after the {warm} s warm-up) with \
          {pen} % CAV, {demand}, strategy {strategy}, seed {seed}. \
@@ -80,15 +80,15 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
         pp = maybe(s.platooning_probability, 3),
         cavs = s.cavs_counted,
         vkm = s.vehicle_km,
-        hard = count("hard_brakings").total(),
-        hard_cav = count("hard_brakings").cav,
-        hard_human = count("hard_brakings").human,
-        hard_rate = maybe(count("hard_brakings").per_100vkm, 3),
-        severe = count("severe_brakings").total(),
-        severe_rate = maybe(count("severe_brakings").per_100vkm, 3),
-        at_limit = count("brakings_at_limit").total(),
-        rear_end = count("rear_end_conflicts").total(),
-        lane_change = count("lane_change_conflicts").total(),
+        hard = count(Counted::HardBrakings).total(),
+        hard_cav = count(Counted::HardBrakings).cav,
+        hard_human = count(Counted::HardBrakings).human,
+        hard_rate = maybe(count(Counted::HardBrakings).per_100vkm, 3),
+        severe = count(Counted::SevereBrakings).total(),
+        severe_rate = maybe(count(Counted::SevereBrakings).per_100vkm, 3),
+        at_limit = count(Counted::BrakingsAtLimit).total(),
+        rear_end = count(Counted::RearEndConflicts).total(),
+        lane_change = count(Counted::LaneChangeConflicts).total(),
         ttc_star = config.safety.ttc_threshold_s,
         tet = s.tet_s,
         tit = s.tit_s2,

@@ -17,10 +17,14 @@ use super::{
     Settings,
 };
 use crate::design::num;
+use crate::metric::Part as Share;
 use crate::runner::{Outcome, Runner};
+use crate::table::Col;
 use crate::table::{self, decimals, fixed, md_table, pm, signed, SummaryRow};
+use crate::Metric;
 use crate::{Cell, Error};
 use platoonsim_scenario::StrategyKind;
+use platoonsim_sim::Counted;
 
 /// The paper's Table 3 demands (veh/h/lane) and penetration.
 pub const DEMANDS: [f64; 4] = [1000.0, 1500.0, 2000.0, 2500.0];
@@ -97,7 +101,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
                 &mut outcomes,
                 b,
                 b + k,
-                "discharge_flow_vphpl",
+                Metric::DISCHARGE_FLOW,
                 "discharge_change_pct",
                 true,
             );
@@ -105,7 +109,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
                 &mut outcomes,
                 b,
                 b + k,
-                "avg_platoon_length",
+                Metric::AVG_PLATOON_LENGTH,
                 "platoon_length_ratio",
             );
         }
@@ -113,23 +117,44 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
     Ok(Done::new(cells, outcomes))
 }
 
+/// The columns this experiment derives (`run`) and the severe-braking rate.
+const DQ: Col = Col::Derived("discharge_change_pct");
+const RATIO: Col = Col::Derived("platoon_length_ratio");
+const SEVERE: Col = Col::Metric(Metric::Counted(Counted::SevereBrakings, Share::Rate));
+
 /// (column title, metric, strategy) of the main table.
-const COLUMNS: [(&str, &str, &str); 8] = [
-    ("L̄ B (veh)", "avg_platoon_length", "none"),
-    ("L̄ PO (veh)", "avg_platoon_length", "pd"),
-    ("L̄ PO / L̄ B (ratio)", "platoon_length_ratio", "pd"),
-    ("LC/veh PO (1/veh)", "lane_changes_per_vehicle", "pd"),
-    ("Q_B (veh/h/lane)", "discharge_flow_vphpl", "none"),
-    ("ΔQ (%)", "discharge_change_pct", "pd"),
+const COLUMNS: [(&str, Col, StrategyKind); 8] = [
+    (
+        "L̄ B (veh)",
+        Col::Metric(Metric::AVG_PLATOON_LENGTH),
+        StrategyKind::NONE,
+    ),
+    (
+        "L̄ PO (veh)",
+        Col::Metric(Metric::AVG_PLATOON_LENGTH),
+        StrategyKind::PD,
+    ),
+    ("L̄ PO / L̄ B (ratio)", RATIO, StrategyKind::PD),
+    (
+        "LC/veh PO (1/veh)",
+        Col::Metric(Metric::LANE_CHANGES_PER_VEHICLE),
+        StrategyKind::PD,
+    ),
+    (
+        "Q_B (veh/h/lane)",
+        Col::Metric(Metric::DISCHARGE_FLOW),
+        StrategyKind::NONE,
+    ),
+    ("ΔQ (%)", DQ, StrategyKind::PD),
     (
         "severe brakings B (per 100 veh-km)",
-        "severe_brakings_per_100vkm",
-        "none",
+        SEVERE,
+        StrategyKind::NONE,
     ),
     (
         "severe brakings PO (per 100 veh-km)",
-        "severe_brakings_per_100vkm",
-        "pd",
+        SEVERE,
+        StrategyKind::PD,
     ),
 ];
 
@@ -156,16 +181,19 @@ pub(super) fn markdown(
         num(s.warmup_s),
         s.seeds
     );
-    let row_of = |demand: &str, variant: &str, strategy: &str, metric: &str| {
+    let row_of = |demand: &str, variant: &str, strategy: StrategyKind, metric: Col| {
         find(
             cells,
             &[
                 ("demand_vphpl", demand),
                 ("variant", variant),
-                ("strategy", strategy),
+                ("strategy", strategy.as_str()),
             ],
         )
-        .and_then(|c| rows.iter().find(|r| r.cell == c && r.metric == metric))
+        .and_then(|c| {
+            rows.iter()
+                .find(|r| r.cell == c && r.metric == metric.name())
+        })
     };
     let mut header = vec!["Demand (veh/h/lane)".to_string(), "Variant".to_string()];
     header.extend(COLUMNS.iter().map(|c| c.0.to_string()));
@@ -175,7 +203,7 @@ pub(super) fn markdown(
         for (variant, _) in VARIANTS {
             let mut r = vec![dem.clone(), variant.to_string()];
             for (_, metric, strategy) in COLUMNS {
-                let dec = decimals(metric);
+                let dec = decimals(&metric.name());
                 r.push(
                     row_of(&dem, variant, strategy, metric)
                         .map_or("–".into(), |x| pm(&x.stats, dec)),
@@ -186,13 +214,13 @@ pub(super) fn markdown(
     }
     md.push_str(&md_table(&header, &trs));
 
-    let mean = |d: f64, v: &str, st: &str, m: &str| {
+    let mean = |d: f64, v: &str, st: StrategyKind, m: Col| {
         row_of(&num(d), v, st, m).map_or(f64::NAN, |r| r.stats.mean)
     };
     let mut checks = Vec::new();
     // Issue 29's acceptance: cooperative lane changes at 1,500 veh/h/lane.
-    let ratio = mean(1500.0, "cooperative", "pd", "platoon_length_ratio");
-    let dq = mean(1500.0, "cooperative", "pd", "discharge_change_pct");
+    let ratio = mean(1500.0, "cooperative", StrategyKind::PD, RATIO);
+    let dq = mean(1500.0, "cooperative", StrategyKind::PD, DQ);
     checks.push(Check {
         statement: format!(
             "with cooperative lane changes, PD at 1,500 veh/h/lane raises L̄ to at least 1.5 \
@@ -211,7 +239,7 @@ pub(super) fn markdown(
     });
     let severe: Vec<(f64, f64)> = DEMANDS
         .iter()
-        .map(|&d| (d, mean(d, "safe", "pd", "severe_brakings_per_100vkm")))
+        .map(|&d| (d, mean(d, "safe", StrategyKind::PD, SEVERE)))
         .collect();
     checks.push(Check {
         statement: format!(
@@ -228,12 +256,7 @@ pub(super) fn markdown(
     });
     let dq_rules: Vec<String> = VARIANTS
         .iter()
-        .map(|(v, _)| {
-            format!(
-                "{v} {} %",
-                signed(mean(2500.0, v, "pd", "discharge_change_pct"), 2)
-            )
-        })
+        .map(|(v, _)| format!("{v} {} %", signed(mean(2500.0, v, StrategyKind::PD, DQ), 2)))
         .collect();
     checks.push(Check {
         statement: format!(
@@ -241,7 +264,7 @@ pub(super) fn markdown(
              lower under the safe rule: {}",
             dq_rules.join(", ")
         ),
-        passed: mean(2500.0, "safe", "pd", "discharge_change_pct") <= -5.0,
+        passed: mean(2500.0, "safe", StrategyKind::PD, DQ) <= -5.0,
     });
     md.push_str("\n## Checks\n\n");
     md.push_str(&checks_md(&checks));

@@ -16,6 +16,7 @@ use super::{
 use crate::design::num;
 use crate::runner::{Outcome, Runner};
 use crate::table::{self, csv_num, fixed, md_table, signed, SummaryRow};
+use crate::Metric;
 use crate::{Cell, Error, VERSION};
 use platoonsim_plot::{line_chart, Chart, Series, Style};
 use platoonsim_scenario::StrategyKind;
@@ -112,7 +113,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
             &mut outcomes,
             base,
             fa,
-            "discharge_flow_vphpl",
+            Metric::DISCHARGE_FLOW,
             "discharge_change_pct",
             true,
         );
@@ -120,7 +121,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
             &mut outcomes,
             base,
             fa,
-            "avg_platoon_length",
+            Metric::AVG_PLATOON_LENGTH,
             "platoon_length_gain",
             false,
         );

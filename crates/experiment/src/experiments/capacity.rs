@@ -22,12 +22,13 @@ use super::{
 use crate::design::num;
 use crate::runner::{Outcome, Runner};
 use crate::table::{self, fixed, md_table, paper_comparison, pm, signed, SummaryRow};
+use crate::Metric;
 use crate::{Cell, Error};
 use platoonsim_scenario::StrategyKind;
 
 pub const PENETRATIONS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
-const CAPACITY: &str = "max_sustained_flow_vphpl";
-const DISCHARGE: &str = "discharge_flow_vphpl";
+const CAPACITY: Metric = Metric::MAX_SUSTAINED_FLOW;
+const DISCHARGE: Metric = Metric::DISCHARGE_FLOW;
 /// Stage 1 measures from the end of the first aggregation interval: the road is empty at the
 /// start, and the first vehicles reach the discharge detector (6.1 km) after about 220 s.
 pub const FILL_S: f64 = 300.0;
@@ -73,7 +74,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
         ("dedicated", StrategyKind::DEDICATED),
     ] {
         for (i, &p) in PENETRATIONS.iter().enumerate().skip(1) {
-            let cap = table::stats(&outcomes, i, CAPACITY).mean;
+            let cap = table::stats(&outcomes, i, &CAPACITY).mean;
             if !(cap.is_finite() && cap > 0.0) {
                 return Err(Error::Other(format!(
                     "capacity: no baseline capacity at penetration {p} (stage 1 gave {cap})"
@@ -135,10 +136,13 @@ pub(super) fn markdown(
     let mut table_rows = Vec::new();
     let mut checks = Vec::new();
     let mut below = Vec::new();
-    let row_of = |cell: usize| rows.iter().find(|r| r.cell == cell && r.metric == CAPACITY);
+    let row_of = |cell: usize| {
+        rows.iter()
+            .find(|r| r.cell == cell && r.metric == CAPACITY.name())
+    };
     let mean_of = |cell: usize| {
         rows.iter()
-            .find(|r| r.cell == cell && r.metric == DISCHARGE)
+            .find(|r| r.cell == cell && r.metric == DISCHARGE.name())
     };
     let base0 = find(cells, &[("stage", "baseline"), ("penetration", "0")]);
     let cap0 = base0.and_then(row_of).map(|r| r.stats);

@@ -9,7 +9,9 @@
 
 use super::{find, point, run_cells, Check, Done, Experiment, Part, Report, Results, Settings};
 use crate::design::{self, num, Cell, Labels};
+use crate::metric::{EnergyField, Metric};
 use crate::runner::{Outcome, Runner};
+use crate::table::Col;
 use crate::table::{self, fixed, md_table, pm, signed, SummaryRow};
 use crate::Error;
 use platoonsim_scenario::{demand_scale_set, load_with, Overrides, StrategyKind};
@@ -27,10 +29,22 @@ pub const STRATEGIES: [StrategyKind; 4] = [
 pub const ENERGY_ON: &str = "energy.enabled=true";
 
 /// Fuel per 100 km by group: (metric, paired change, group name).
-pub const FUEL: [(&str, &str, &str); 3] = [
-    ("fuel_l_per_100km_cav", "cav_fuel_change_pct", "CAVs"),
-    ("fuel_l_per_100km_human", "human_fuel_change_pct", "humans"),
-    ("fuel_l_per_100km", "fuel_change_pct", "all"),
+pub const FUEL: [(Metric, &str, &str); 3] = [
+    (
+        Metric::Energy(EnergyField::FuelPer100kmCav),
+        "cav_fuel_change_pct",
+        "CAVs",
+    ),
+    (
+        Metric::Energy(EnergyField::FuelPer100kmHuman),
+        "human_fuel_change_pct",
+        "humans",
+    ),
+    (
+        Metric::Energy(EnergyField::FuelPer100km),
+        "fuel_change_pct",
+        "all",
+    ),
 ];
 
 /// The SR-99 penetrations of the settings strictly between 0 and 1.
@@ -167,17 +181,18 @@ fn strategy_name(k: &str) -> &'static str {
     }
 }
 
-fn row<'a>(rows: &'a [SummaryRow], cell: usize, metric: &str) -> Option<&'a SummaryRow> {
-    rows.iter().find(|r| r.cell == cell && r.metric == metric)
+fn row(rows: &[SummaryRow], cell: usize, metric: Col) -> Option<&SummaryRow> {
+    rows.iter()
+        .find(|r| r.cell == cell && r.metric == metric.name())
 }
 
 /// `mean ± half-width` of a metric, "–" if absent.
-fn value(rows: &[SummaryRow], cell: usize, metric: &str, dec: usize) -> String {
+fn value(rows: &[SummaryRow], cell: usize, metric: Col, dec: usize) -> String {
     row(rows, cell, metric).map_or("–".into(), |r| pm(&r.stats, dec))
 }
 
 /// A signed change with its half-width.
-fn change(rows: &[SummaryRow], cell: usize, metric: &str) -> String {
+fn change(rows: &[SummaryRow], cell: usize, metric: Col) -> String {
     row(rows, cell, metric).map_or("–".into(), |r| {
         let hw = r.stats.half_width();
         if hw.is_finite() {
@@ -189,7 +204,7 @@ fn change(rows: &[SummaryRow], cell: usize, metric: &str) -> String {
 }
 
 /// Does a change differ from 0 at 95 %: +1 above, −1 below, 0 not significant (or no CI).
-fn sign(rows: &[SummaryRow], cell: usize, metric: &str) -> i8 {
+fn sign(rows: &[SummaryRow], cell: usize, metric: Col) -> i8 {
     match row(rows, cell, metric) {
         Some(r) if r.stats.ci_low > 0.0 => 1,
         Some(r) if r.stats.ci_high < 0.0 => -1,
@@ -274,13 +289,13 @@ pub(super) fn markdown(
     for (i, j, k) in strategy_cells(cells) {
         let mut r = vec![point_name(&cells[i]), strategy_name(k).into()];
         for (metric, _, _) in FUEL {
-            r.push(value(rows, i, metric, 3));
+            r.push(value(rows, i, metric.into(), 3));
         }
         for (_, ch, _) in FUEL {
             r.push(if j == 0 {
                 "–".into()
             } else {
-                change(rows, i, ch)
+                change(rows, i, Col::Derived(ch))
             });
         }
         trs.push(r);
@@ -314,11 +329,36 @@ pub(super) fn markdown(
             vec![
                 point_name(&cells[i]),
                 strategy_name(k).into(),
-                value(rows, i, "cav_drag_reduction_pct", 2),
-                value(rows, i, "cav_drag_saving_pct", 2),
-                value(rows, i, "cav_dynamics_excess_pct", 2),
-                value(rows, i, "human_drag_reduction_pct", 2),
-                value(rows, i, "human_dynamics_excess_pct", 2),
+                value(
+                    rows,
+                    i,
+                    Metric::Energy(EnergyField::CavDragReduction).into(),
+                    2,
+                ),
+                value(
+                    rows,
+                    i,
+                    Metric::Energy(EnergyField::CavDragSaving).into(),
+                    2,
+                ),
+                value(
+                    rows,
+                    i,
+                    Metric::Energy(EnergyField::CavDynamicsExcess).into(),
+                    2,
+                ),
+                value(
+                    rows,
+                    i,
+                    Metric::Energy(EnergyField::HumanDragReduction).into(),
+                    2,
+                ),
+                value(
+                    rows,
+                    i,
+                    Metric::Energy(EnergyField::HumanDynamicsExcess).into(),
+                    2,
+                ),
             ]
         })
         .collect();
@@ -339,8 +379,8 @@ fn answer(cells: &[Cell], rows: &[SummaryRow]) -> (String, Vec<Check>) {
     let mut system_costs = Vec::new();
     for (i, _, k) in strategy_cells(cells).into_iter().filter(|&(_, j, _)| j > 0) {
         let name = format!("{} at {}", strategy_name(k), point_name(&cells[i]));
-        let cav = sign(rows, i, "cav_fuel_change_pct");
-        let all = sign(rows, i, "fuel_change_pct");
+        let cav = sign(rows, i, Col::Derived("cav_fuel_change_pct"));
+        let all = sign(rows, i, Col::Derived("fuel_change_pct"));
         if cav < 0 {
             cav_saves.push(name.clone());
         }
@@ -378,8 +418,14 @@ fn answer(cells: &[Cell], rows: &[SummaryRow]) -> (String, Vec<Check>) {
             "the CAVs' air drag is reduced by drafting in every cell with CAVs ({} cells)",
             cells.len()
         ),
-        passed: (0..cells.len())
-            .all(|i| row(rows, i, "cav_drag_reduction_pct").is_some_and(|r| r.stats.mean > 0.0)),
+        passed: (0..cells.len()).all(|i| {
+            row(
+                rows,
+                i,
+                Metric::Energy(EnergyField::CavDragReduction).into(),
+            )
+            .is_some_and(|r| r.stats.mean > 0.0)
+        }),
     }];
     (md, checks)
 }
@@ -456,7 +502,7 @@ pub(super) fn figure(
                     series(
                         &format!("{}, 95 % CI", strategy_name(k.as_str())),
                         &x,
-                        curve(rows, &at, metric),
+                        curve(rows, &at, Col::Derived(metric)),
                         style,
                     )
                 })

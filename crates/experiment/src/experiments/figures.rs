@@ -5,7 +5,8 @@
 
 use super::{capacity, find, sensitivity, Figure};
 use crate::design::num;
-use crate::table::SummaryRow;
+use crate::table::{Col, SummaryRow};
+use crate::Metric;
 use crate::{Cell, Error};
 use platoonsim_plot::{line_chart, panels, Chart, Series, Style};
 use std::path::Path;
@@ -14,13 +15,14 @@ use std::path::Path;
 pub(super) fn curve(
     rows: &[SummaryRow],
     cells: &[Option<usize>],
-    metric: &str,
+    metric: impl Into<Col>,
 ) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let metric = metric.into().name();
     let mut m = Vec::new();
     let mut lo = Vec::new();
     let mut hi = Vec::new();
     for c in cells {
-        let r = c.and_then(|c| rows.iter().find(|r| r.cell == c && r.metric == metric));
+        let r = c.and_then(|c| rows.iter().find(|r| r.cell == c && r.metric == *metric));
         m.push(r.map_or(f64::NAN, |r| r.stats.mean));
         lo.push(r.map_or(f64::NAN, |r| r.stats.ci_low));
         hi.push(r.map_or(f64::NAN, |r| r.stats.ci_high));
@@ -29,11 +31,12 @@ pub(super) fn curve(
 }
 
 /// The paper's values of a metric over the given cells (NaN where it gives none).
-fn paper(rows: &[SummaryRow], cells: &[Option<usize>], metric: &str) -> Vec<f64> {
+fn paper(rows: &[SummaryRow], cells: &[Option<usize>], metric: Metric) -> Vec<f64> {
+    let metric = metric.name();
     cells
         .iter()
         .map(|c| {
-            c.and_then(|c| rows.iter().find(|r| r.cell == c && r.metric == metric))
+            c.and_then(|c| rows.iter().find(|r| r.cell == c && r.metric == *metric))
                 .and_then(|r| r.paper)
                 .map_or(f64::NAN, |p| p.value)
         })
@@ -86,7 +89,7 @@ pub(super) fn capacity(
             .collect()
     };
     let (base, pd, dl) = (pick("baseline"), pick("pd"), pick("dedicated"));
-    let m = "max_sustained_flow_vphpl";
+    let m = Metric::MAX_SUSTAINED_FLOW;
     let mut s = vec![
         series(
             "baseline (no organization), 95 % CI",
@@ -132,7 +135,7 @@ pub(super) fn sensitivity(
             .collect()
     };
     let (b, po, dl) = (pick("none"), pick("pd"), pick("dedicated"));
-    let panel = |metric: &str, title: &str, y_label: &str| {
+    let panel = |metric: Metric, title: &str, y_label: &str| {
         let mut s = vec![
             series(
                 "baseline (B), 95 % CI",
@@ -165,17 +168,17 @@ pub(super) fn sensitivity(
     };
     let charts = [
         panel(
-            "lane_changes_per_vehicle",
+            Metric::LANE_CHANGES_PER_VEHICLE,
             "Lane changes per vehicle",
             "Lane changes / vehicle",
         ),
-        panel("avg_platoon_length", "Average platoon length", "CAVs"),
+        panel(Metric::AVG_PLATOON_LENGTH, "Average platoon length", "CAVs"),
         panel(
-            "platooning_probability",
+            Metric::PLATOONING_PROBABILITY,
             "Platooning probability P_P",
             "Probability",
         ),
-        panel("discharge_flow_vphpl", "Discharge flow", "veh/h/lane"),
+        panel(Metric::DISCHARGE_FLOW, "Discharge flow", "veh/h/lane"),
     ];
     panels(
         &charts,

@@ -6,7 +6,9 @@
 use super::{checks_md, find, run_cells, Check, Done, Experiment, Part, Report, Results, Settings};
 use crate::design::num;
 use crate::runner::{Outcome, Runner};
+use crate::table::Col;
 use crate::table::{self, md_table, pm, SummaryRow};
+use crate::Metric;
 use crate::{Cell, Error};
 use platoonsim_scenario::StrategyKind;
 
@@ -56,7 +58,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
             &mut outcomes,
             0,
             i,
-            "discharge_flow_vphpl",
+            Metric::DISCHARGE_FLOW,
             "discharge_change_pct",
             true,
         );
@@ -64,7 +66,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
             &mut outcomes,
             0,
             i,
-            "avg_platoon_length",
+            Metric::AVG_PLATOON_LENGTH,
             "platoon_length_gain",
             false,
         );
@@ -102,9 +104,9 @@ pub(super) fn markdown(
         num(s.warmup_s),
         s.seeds
     );
-    let get = |k: &str, m: &str| {
+    let get = |k: &str, m: Col| {
         find(cells, &[("strategy", k)])
-            .and_then(|c| rows.iter().find(|r| r.cell == c && r.metric == m))
+            .and_then(|c| rows.iter().find(|r| r.cell == c && r.metric == m.name()))
     };
     let header: Vec<String> = [
         "Strategy",
@@ -123,28 +125,28 @@ pub(super) fn markdown(
     let mut trs = Vec::new();
     for k in STRATEGIES {
         let name = k.as_str();
-        let f = |m: &str, dec: usize| get(name, m).map_or("–".into(), |r| pm(&r.stats, dec));
+        let f = |m: Col, dec: usize| get(name, m).map_or("–".into(), |r| pm(&r.stats, dec));
         trs.push(vec![
             match k {
                 StrategyKind::NONE => "baseline".into(),
                 other => other.as_str().to_string(),
             },
-            f("discharge_flow_vphpl", 1),
-            f("discharge_change_pct", 2),
-            f("avg_platoon_length", 2),
-            f("platoon_length_gain", 2),
-            f("platooning_probability", 3),
-            f("lane_changes_per_vehicle", 3),
-            f("lane_changes_per_cav", 3),
-            f("lane_changes_per_human", 3),
+            f(Metric::DISCHARGE_FLOW.into(), 1),
+            f(Col::Derived("discharge_change_pct"), 2),
+            f(Metric::AVG_PLATOON_LENGTH.into(), 2),
+            f(Col::Derived("platoon_length_gain"), 2),
+            f(Metric::PLATOONING_PROBABILITY.into(), 3),
+            f(Metric::LANE_CHANGES_PER_VEHICLE.into(), 3),
+            f(Metric::LANE_CHANGES_PER_CAV.into(), 3),
+            f(Metric::LANE_CHANGES_PER_HUMAN.into(), 3),
         ]);
     }
     md.push_str(&md_table(&header, &trs));
 
     let mut checks = Vec::new();
     if let (Some(dq), Some(gain)) = (
-        get("flow-aware", "discharge_change_pct"),
-        get("flow-aware", "platoon_length_gain"),
+        get("flow-aware", Col::Derived("discharge_change_pct")),
+        get("flow-aware", Col::Derived("platoon_length_gain")),
     ) {
         checks.push(Check {
             statement: format!(

@@ -11,10 +11,13 @@ use super::{
     Settings,
 };
 use crate::design::num;
+use crate::metric::{Metric as M, Part as Share};
 use crate::runner::{Outcome, Runner};
+use crate::table::Col;
 use crate::table::{self, decimals, fixed, md_table, paper_comparison, pm, signed, SummaryRow};
 use crate::{Cell, Error};
 use platoonsim_scenario::StrategyKind;
+use platoonsim_sim::Counted;
 
 pub const DEMANDS: [f64; 4] = [1000.0, 1500.0, 2000.0, 2500.0];
 pub const PENETRATION: f64 = 0.5;
@@ -64,7 +67,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
                 &mut outcomes,
                 i,
                 i + k,
-                "discharge_flow_vphpl",
+                M::DISCHARGE_FLOW,
                 "discharge_change_pct",
                 true,
             );
@@ -72,7 +75,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
                 &mut outcomes,
                 i,
                 i + k,
-                "avg_platoon_length",
+                M::AVG_PLATOON_LENGTH,
                 "platoon_length_ratio",
             );
         }
@@ -80,17 +83,54 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
     Ok(Done::new(cells, outcomes))
 }
 
+/// The columns this experiment derives (`run`) and the rear-end conflict rate.
+const DQ: Col = Col::Derived("discharge_change_pct");
+const RATIO: Col = Col::Derived("platoon_length_ratio");
+const REAR_END: Col = Col::Metric(M::Counted(Counted::RearEndConflicts, Share::Rate));
+
 /// (column title, metric, strategy) of the paper's Table 3, in its order.
-const COLUMNS: [(&str, &str, &str); 9] = [
-    ("LC/veh B (1/veh)", "lane_changes_per_vehicle", "none"),
-    ("LC/veh PO (1/veh)", "lane_changes_per_vehicle", "pd"),
-    ("L̄ B (veh)", "avg_platoon_length", "none"),
-    ("L̄ PO (veh)", "avg_platoon_length", "pd"),
-    ("P_P B (fraction)", "platooning_probability", "none"),
-    ("P_P PO (fraction)", "platooning_probability", "pd"),
-    ("Q_B (veh/h/lane)", "discharge_flow_vphpl", "none"),
-    ("Q_PO (veh/h/lane)", "discharge_flow_vphpl", "pd"),
-    ("ΔQ = (Q_PO − Q_B)/Q_B (%)", "discharge_change_pct", "pd"),
+const COLUMNS: [(&str, Col, StrategyKind); 9] = [
+    (
+        "LC/veh B (1/veh)",
+        Col::Metric(M::LANE_CHANGES_PER_VEHICLE),
+        StrategyKind::NONE,
+    ),
+    (
+        "LC/veh PO (1/veh)",
+        Col::Metric(M::LANE_CHANGES_PER_VEHICLE),
+        StrategyKind::PD,
+    ),
+    (
+        "L̄ B (veh)",
+        Col::Metric(M::AVG_PLATOON_LENGTH),
+        StrategyKind::NONE,
+    ),
+    (
+        "L̄ PO (veh)",
+        Col::Metric(M::AVG_PLATOON_LENGTH),
+        StrategyKind::PD,
+    ),
+    (
+        "P_P B (fraction)",
+        Col::Metric(M::PLATOONING_PROBABILITY),
+        StrategyKind::NONE,
+    ),
+    (
+        "P_P PO (fraction)",
+        Col::Metric(M::PLATOONING_PROBABILITY),
+        StrategyKind::PD,
+    ),
+    (
+        "Q_B (veh/h/lane)",
+        Col::Metric(M::DISCHARGE_FLOW),
+        StrategyKind::NONE,
+    ),
+    (
+        "Q_PO (veh/h/lane)",
+        Col::Metric(M::DISCHARGE_FLOW),
+        StrategyKind::PD,
+    ),
+    ("ΔQ = (Q_PO − Q_B)/Q_B (%)", DQ, StrategyKind::PD),
 ];
 
 pub(super) fn markdown(
@@ -111,9 +151,15 @@ pub(super) fn markdown(
         num(s.warmup_s),
         s.seeds
     );
-    let row_of = |demand: &str, strategy: &str, metric: &str| {
-        find(cells, &[("demand_vphpl", demand), ("strategy", strategy)])
-            .and_then(|c| rows.iter().find(|r| r.cell == c && r.metric == metric))
+    let row_of = |demand: &str, strategy: StrategyKind, metric: Col| {
+        find(
+            cells,
+            &[("demand_vphpl", demand), ("strategy", strategy.as_str())],
+        )
+        .and_then(|c| {
+            rows.iter()
+                .find(|r| r.cell == c && r.metric == metric.name())
+        })
     };
     let mut header = vec!["Demand (veh/h/lane)".to_string(), String::new()];
     header.extend(COLUMNS.iter().map(|c| c.0.to_string()));
@@ -124,7 +170,7 @@ pub(super) fn markdown(
         let mut paper = vec![String::new(), "paper".into()];
         let mut diff = vec![String::new(), "difference".into()];
         for (_, metric, strategy) in COLUMNS {
-            let dec = decimals(metric);
+            let dec = decimals(&metric.name());
             let r = row_of(&dem, strategy, metric);
             ours.push(r.map_or("–".into(), |r| pm(&r.stats, dec)));
             let p = r.and_then(|r| r.paper);
@@ -156,10 +202,10 @@ pub(super) fn markdown(
         let dem = num(d);
         let mut r = vec![dem.clone()];
         for (metric, strategy) in [
-            ("lane_changes_per_cav", "none"),
-            ("lane_changes_per_cav", "pd"),
-            ("lane_changes_per_human", "none"),
-            ("lane_changes_per_human", "pd"),
+            (M::LANE_CHANGES_PER_CAV.into(), StrategyKind::NONE),
+            (M::LANE_CHANGES_PER_CAV.into(), StrategyKind::PD),
+            (M::LANE_CHANGES_PER_HUMAN.into(), StrategyKind::NONE),
+            (M::LANE_CHANGES_PER_HUMAN.into(), StrategyKind::PD),
         ] {
             r.push(row_of(&dem, strategy, metric).map_or("–".into(), |x| pm(&x.stats, 3)));
         }
@@ -194,14 +240,14 @@ pub(super) fn markdown(
         let dem = num(d);
         let mut r = vec![dem.clone()];
         for metric in [
-            "lane_changes_per_vehicle",
-            "avg_platoon_length",
-            "platooning_probability",
-            "discharge_change_pct",
-            "rear_end_conflicts_per_100vkm",
+            M::LANE_CHANGES_PER_VEHICLE.into(),
+            M::AVG_PLATOON_LENGTH.into(),
+            M::PLATOONING_PROBABILITY.into(),
+            DQ,
+            REAR_END,
         ] {
-            for strategy in ["pd", "dedicated"] {
-                let dec = decimals(metric);
+            for strategy in [StrategyKind::PD, StrategyKind::DEDICATED] {
+                let dec = decimals(&metric.name());
                 r.push(row_of(&dem, strategy, metric).map_or("–".into(), |x| pm(&x.stats, dec)));
             }
         }
@@ -210,16 +256,17 @@ pub(super) fn markdown(
     md.push_str(&md_table(&header3, &trs3));
 
     // Issue 3's targets.
-    let mean =
-        |d: f64, st: &str, m: &str| row_of(&num(d), st, m).map_or(f64::NAN, |r| r.stats.mean);
+    let mean = |d: f64, st: StrategyKind, m: Col| {
+        row_of(&num(d), st, m).map_or(f64::NAN, |r| r.stats.mean)
+    };
     let mut checks = Vec::new();
     let ratios: Vec<(f64, f64)> = DEMANDS
         .iter()
         .map(|&d| {
             (
                 d,
-                mean(d, "pd", "lane_changes_per_vehicle")
-                    / mean(d, "none", "lane_changes_per_vehicle"),
+                mean(d, StrategyKind::PD, M::LANE_CHANGES_PER_VEHICLE.into())
+                    / mean(d, StrategyKind::NONE, M::LANE_CHANGES_PER_VEHICLE.into()),
             )
         })
         .collect();
@@ -235,31 +282,36 @@ pub(super) fn markdown(
         ),
         passed: ratios.iter().all(|(_, r)| *r >= 5.0),
     });
-    let range_check = |metric: &str, lo: f64, hi: f64, paper: &str| {
+    let range_check = |metric: Col, lo: f64, hi: f64, paper: &str| {
         let v: Vec<(f64, f64)> = DEMANDS
             .iter()
-            .map(|&d| (d, mean(d, "pd", metric)))
+            .map(|&d| (d, mean(d, StrategyKind::PD, metric)))
             .collect();
         Check {
             statement: format!(
                 "PD raises {} to {}-{} (paper {}): {}",
-                metric_label(metric),
+                metric_label(&metric.name()),
                 num(lo),
                 num(hi),
                 paper,
                 v.iter()
-                    .map(|(d, x)| format!("{} at {}", fixed(*x, decimals(metric)), num(*d)))
+                    .map(|(d, x)| format!("{} at {}", fixed(*x, decimals(&metric.name())), num(*d)))
                     .collect::<Vec<_>>()
                     .join(", ")
             ),
             passed: v.iter().all(|(_, x)| (lo..=hi).contains(x)),
         }
     };
-    checks.push(range_check("avg_platoon_length", 4.0, 6.0, "5.0-5.4"));
+    checks.push(range_check(
+        M::AVG_PLATOON_LENGTH.into(),
+        4.0,
+        6.0,
+        "5.0-5.4",
+    ));
     // The L̄ gain per seed pair (issue 29): the paper's Table 3 gives ×1.64 to ×1.92.
     let gains: Vec<(f64, f64)> = DEMANDS
         .iter()
-        .map(|&d| (d, mean(d, "pd", "platoon_length_ratio")))
+        .map(|&d| (d, mean(d, StrategyKind::PD, RATIO)))
         .collect();
     checks.push(Check {
         statement: format!(
@@ -274,12 +326,12 @@ pub(super) fn markdown(
         passed: gains.iter().all(|(_, r)| *r >= 1.5),
     });
     checks.push(range_check(
-        "platooning_probability",
+        M::PLATOONING_PROBABILITY.into(),
         0.85,
         0.95,
         "0.89-0.91",
     ));
-    let dq = |d: f64| mean(d, "pd", "discharge_change_pct");
+    let dq = |d: f64| mean(d, StrategyKind::PD, DQ);
     checks.push(Check {
         statement: format!(
             "the discharge change is within ±1 % at 1,000 and 1,500 veh/h/lane: {} % and {} % \
@@ -309,8 +361,8 @@ pub(super) fn markdown(
         .map(|&d| {
             (
                 d,
-                mean(d, "dedicated", "avg_platoon_length"),
-                mean(d, "none", "avg_platoon_length"),
+                mean(d, StrategyKind::DEDICATED, M::AVG_PLATOON_LENGTH.into()),
+                mean(d, StrategyKind::NONE, M::AVG_PLATOON_LENGTH.into()),
             )
         })
         .collect();
@@ -329,7 +381,7 @@ pub(super) fn markdown(
     md.push_str(&paper_comparison(rows, |r| {
         format!(
             "{}, {} veh/h/lane, {}",
-            if r.labels.get("strategy") == Some("pd") {
+            if r.labels.get("strategy") == Some(StrategyKind::PD.as_str()) {
                 "PO"
             } else {
                 "B"

@@ -13,8 +13,10 @@ use super::{checks_md, find, Check, Done, Experiment, Extra, Part, Report, Resul
 use crate::corridor::{self, Criterion};
 use crate::design::{self, num, Cell, Labels};
 use crate::detectors::Scope;
+use crate::metric::{Field, Metric};
 use crate::paper;
 use crate::runner::Runner;
+use crate::table::Col;
 use crate::table::{self, fixed, md_table, pm, signed, SummaryRow};
 use crate::Error;
 use platoonsim_scenario::{demand_scale_set, demand_scales, load_with, Overrides, StrategyKind};
@@ -36,11 +38,20 @@ pub const STRATEGIES: [StrategyKind; 3] = [
 /// Changes vs the baseline at the same penetration: (name, metric it is computed from). The
 /// last is L̄ under the strict link statistic (spec 6.15: a link only while the follower keeps
 /// a time gap ≤ 2 s), which the paper does not report.
-pub const CHANGES: [(&str, &str); 4] = [
-    ("discharge_change_pct", "network_discharge_vph"),
-    ("lane_changes_change_pct", "lane_changes_per_vehicle"),
-    ("platoon_length_change_pct", "avg_platoon_length"),
-    ("platoon_length_tg2_change_pct", "avg_platoon_length_tg2"),
+pub const CHANGES: [(&str, Metric); 4] = [
+    (
+        "discharge_change_pct",
+        Metric::Field(Field::NetworkDischarge),
+    ),
+    (
+        "lane_changes_change_pct",
+        Metric::Field(Field::LaneChangesPerVehicle),
+    ),
+    ("platoon_length_change_pct", Metric::AVG_PLATOON_LENGTH),
+    (
+        "platoon_length_tg2_change_pct",
+        Metric::Field(Field::AvgPlatoonLengthTg2),
+    ),
 ];
 
 /// What `sr99` keeps besides the runs' metrics.
@@ -61,12 +72,19 @@ pub fn strategies_at(p: f64) -> &'static [StrategyKind] {
     }
 }
 
+/// The strategy of a cell, by its `strategy` label (`None` if it has none or names no
+/// registered strategy).
+pub fn strategy_of(cell: &Cell) -> Option<StrategyKind> {
+    let name = cell.labels.get("strategy")?;
+    StrategyKind::all().find(|k| k.as_str() == name)
+}
+
 /// How the strategies are named in tables.
-pub fn strategy_name(k: &str) -> &'static str {
+pub fn strategy_name(k: StrategyKind) -> &'static str {
     match k {
-        "none" => "baseline",
-        "pd" => "PD",
-        "flow-aware" => "Flow-Aware PD",
+        StrategyKind::NONE => "baseline",
+        StrategyKind::PD => "PD",
+        StrategyKind::FLOW_AWARE => "Flow-Aware PD",
         _ => "?",
     }
 }
@@ -241,7 +259,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
     let figure_seed = seeds[0];
     let mut specs = design::runs(&cells, seeds);
     design::keep_detectors(&mut specs, Scope::CrossSection, |c, _| {
-        cells[c].labels.get("strategy") == Some("none")
+        cells[c].labels.get("strategy") == Some(StrategyKind::NONE.as_str())
     });
     design::keep_detectors(&mut specs, Scope::All, |c, seed| {
         seed == figure_seed && is_figure_cell(&cells[c])
@@ -249,14 +267,14 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
     let mut outcomes = runner.run(&specs)?;
     for (i, c) in cells.iter().enumerate() {
         let k = c.labels.get("strategy").unwrap_or("");
-        if k == "none" {
+        if k == StrategyKind::NONE.as_str() {
             continue;
         }
         let base = find(
             &cells,
             &[
                 ("penetration", c.labels.get("penetration").unwrap_or("")),
-                ("strategy", "none"),
+                ("strategy", StrategyKind::NONE.as_str()),
             ],
         );
         if let Some(base) = base {
@@ -303,11 +321,12 @@ fn row<'a>(
     cells: &[Cell],
     rows: &'a [SummaryRow],
     p: &str,
-    k: &str,
-    metric: &str,
+    k: StrategyKind,
+    metric: Col,
 ) -> Option<&'a SummaryRow> {
-    let c = find(cells, &[("penetration", p), ("strategy", k)])?;
-    rows.iter().find(|r| r.cell == c && r.metric == metric)
+    let c = find(cells, &[("penetration", p), ("strategy", k.as_str())])?;
+    rows.iter()
+        .find(|r| r.cell == c && r.metric == metric.name())
 }
 
 /// Ours with its 95 % interval (half-width), the paper's value, and ours − paper in % of the
@@ -381,20 +400,20 @@ pub(super) fn markdown(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> (St
             let mut r = vec![
                 format!("{} %", num(100.0 * p)),
                 format!("{scale} / {paper_scale}"),
-                strategy_name(ks).to_string(),
+                strategy_name(k).to_string(),
             ];
             r.extend(triple(
-                row(cells, rows, &ps, ks, "network_discharge_vph"),
+                row(cells, rows, &ps, k, Metric::NETWORK_DISCHARGE.into()),
                 1,
                 false,
             ));
             r.extend(triple(
-                row(cells, rows, &ps, ks, "lane_changes_per_vehicle"),
+                row(cells, rows, &ps, k, Metric::LANE_CHANGES_PER_VEHICLE.into()),
                 2,
                 false,
             ));
             r.extend(triple(
-                row(cells, rows, &ps, ks, "avg_platoon_length"),
+                row(cells, rows, &ps, k, Metric::AVG_PLATOON_LENGTH.into()),
                 2,
                 p == 0.0,
             ));
@@ -434,10 +453,10 @@ pub(super) fn markdown(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> (St
         .collect();
     for &p in &mid {
         let ps = num(p);
-        for k in ["pd", "flow-aware"] {
+        for k in [StrategyKind::PD, StrategyKind::FLOW_AWARE] {
             let mut r = vec![format!("{} %", num(100.0 * p)), strategy_name(k).into()];
             for (name, _) in CHANGES {
-                let x = row(cells, rows, &ps, k, name);
+                let x = row(cells, rows, &ps, k, Col::Derived(name));
                 r.push(x.map_or("–".into(), |x| signed_pm(x, 1)));
                 r.push(
                     x.and_then(|x| x.paper)
@@ -479,7 +498,7 @@ fn bottleneck_section(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> Stri
         let mean = |m: &str| get(c, m).map_or("–".into(), |r| fixed(r.stats.mean, 0));
         trs.push(vec![
             format!("{} %", num(100.0 * p)),
-            strategy_name(cell.labels.get("strategy").unwrap_or("")).into(),
+            strategy_of(cell).map_or("?", strategy_name).into(),
             cell.labels
                 .get("demand_scale")
                 .and_then(|v| v.parse::<f64>().ok())
@@ -545,37 +564,78 @@ fn plain(cells: &[Cell], rows: &[SummaryRow], pens: &[f64]) -> String {
     let mut md = String::from("\nIn words:\n\n");
     for &p in pens {
         let ps = num(p);
-        let r = |k: &str, m: &str| row(cells, rows, &ps, k, m);
-        let mean = |k: &str, m: &str| r(k, m).map_or(f64::NAN, |x| x.stats.mean);
-        let paper = |k: &str, m: &str| r(k, m).and_then(|x| x.paper).map_or(f64::NAN, |v| v.value);
-        let mut line = format!(
+        let r = |k: StrategyKind, m: Col| row(cells, rows, &ps, k, m);
+        let mean = |k: StrategyKind, m: Col| r(k, m).map_or(f64::NAN, |x| x.stats.mean);
+        let paper =
+            |k: StrategyKind, m: Col| r(k, m).and_then(|x| x.paper).map_or(f64::NAN, |v| v.value);
+        let mut line =
+            format!(
             "- **{} % CAV**: baseline network discharge {} veh/h, {}; lane changes per vehicle \
              {}, {}",
             num(100.0 * p),
-            fixed(mean("none", "network_discharge_vph"), 0),
-            versus(r("none", "network_discharge_vph"), 1),
-            fixed(mean("none", "lane_changes_per_vehicle"), 2),
-            versus(r("none", "lane_changes_per_vehicle"), 2),
+            fixed(mean(StrategyKind::NONE, Metric::NETWORK_DISCHARGE.into()), 0),
+            versus(r(StrategyKind::NONE, Metric::NETWORK_DISCHARGE.into()), 1),
+            fixed(mean(StrategyKind::NONE, Metric::LANE_CHANGES_PER_VEHICLE.into()), 2),
+            versus(r(StrategyKind::NONE, Metric::LANE_CHANGES_PER_VEHICLE.into()), 2),
         );
         if p > 0.0 {
             line.push_str(&format!(
                 "; L̄ {}, {}",
-                fixed(mean("none", "avg_platoon_length"), 2),
-                versus(r("none", "avg_platoon_length"), 2)
+                fixed(
+                    mean(StrategyKind::NONE, Metric::AVG_PLATOON_LENGTH.into()),
+                    2
+                ),
+                versus(r(StrategyKind::NONE, Metric::AVG_PLATOON_LENGTH.into()), 2)
             ));
         }
         if strategies_at(p).len() > 1 {
             line.push_str(&format!(
                 ". Against the baseline, PD changes the discharge by {} % (paper {} %) and \
                  Flow-Aware PD by {} % (paper {} %); L̄ by {} % and {} % (paper {} % and {} %)",
-                signed(mean("pd", "discharge_change_pct"), 1),
-                signed(paper("pd", "discharge_change_pct"), 1),
-                signed(mean("flow-aware", "discharge_change_pct"), 1),
-                signed(paper("flow-aware", "discharge_change_pct"), 1),
-                signed(mean("pd", "platoon_length_change_pct"), 1),
-                signed(mean("flow-aware", "platoon_length_change_pct"), 1),
-                signed(paper("pd", "platoon_length_change_pct"), 1),
-                signed(paper("flow-aware", "platoon_length_change_pct"), 1),
+                signed(
+                    mean(StrategyKind::PD, Col::Derived("discharge_change_pct")),
+                    1
+                ),
+                signed(
+                    paper(StrategyKind::PD, Col::Derived("discharge_change_pct")),
+                    1
+                ),
+                signed(
+                    mean(
+                        StrategyKind::FLOW_AWARE,
+                        Col::Derived("discharge_change_pct")
+                    ),
+                    1
+                ),
+                signed(
+                    paper(
+                        StrategyKind::FLOW_AWARE,
+                        Col::Derived("discharge_change_pct")
+                    ),
+                    1
+                ),
+                signed(
+                    mean(StrategyKind::PD, Col::Derived("platoon_length_change_pct")),
+                    1
+                ),
+                signed(
+                    mean(
+                        StrategyKind::FLOW_AWARE,
+                        Col::Derived("platoon_length_change_pct")
+                    ),
+                    1
+                ),
+                signed(
+                    paper(StrategyKind::PD, Col::Derived("platoon_length_change_pct")),
+                    1
+                ),
+                signed(
+                    paper(
+                        StrategyKind::FLOW_AWARE,
+                        Col::Derived("platoon_length_change_pct")
+                    ),
+                    1
+                ),
             ));
         }
         line.push_str(".\n");
@@ -608,10 +668,10 @@ fn checks(cells: &[Cell], rows: &[SummaryRow], mid: &[f64]) -> Vec<Check> {
     if mid.is_empty() {
         return Vec::new();
     }
-    let mean = |p: f64, k: &str, m: &str| {
+    let mean = |p: f64, k: StrategyKind, m: Col| {
         row(cells, rows, &num(p), k, m).map_or(f64::NAN, |r| r.stats.mean)
     };
-    let list = |k: &str, m: &str| -> (Vec<f64>, String) {
+    let list = |k: StrategyKind, m: Col| -> (Vec<f64>, String) {
         let v: Vec<f64> = mid.iter().map(|&p| mean(p, k, m)).collect();
         let text = v
             .iter()
@@ -627,14 +687,17 @@ fn checks(cells: &[Cell], rows: &[SummaryRow], mid: &[f64]) -> Vec<Check> {
         .collect::<Vec<_>>()
         .join("/");
     let mut out = Vec::new();
-    let (dq_pd, t) = list("pd", "discharge_change_pct");
+    let (dq_pd, t) = list(StrategyKind::PD, Col::Derived("discharge_change_pct"));
     out.push(Check {
         statement: format!(
             "the PD lane lowers the network discharge at {pens} % CAV (paper: −0.1 to −7.3 %): {t}"
         ),
         passed: dq_pd.iter().all(|x| *x < 0.0),
     });
-    let (dq_fa, t) = list("flow-aware", "discharge_change_pct");
+    let (dq_fa, t) = list(
+        StrategyKind::FLOW_AWARE,
+        Col::Derived("discharge_change_pct"),
+    );
     out.push(Check {
         statement: format!(
             "the Flow-Aware PD lane keeps the network discharge within 0.5 % of the baseline at \
@@ -642,7 +705,10 @@ fn checks(cells: &[Cell], rows: &[SummaryRow], mid: &[f64]) -> Vec<Check> {
         ),
         passed: dq_fa.iter().all(|x| x.abs() <= 0.5),
     });
-    let (dl_fa, t) = list("flow-aware", "platoon_length_change_pct");
+    let (dl_fa, t) = list(
+        StrategyKind::FLOW_AWARE,
+        Col::Derived("platoon_length_change_pct"),
+    );
     out.push(Check {
         statement: format!(
             "the Flow-Aware PD lane raises L̄ above the baseline at {pens} % CAV (paper: +8.5 to \
@@ -652,9 +718,17 @@ fn checks(cells: &[Cell], rows: &[SummaryRow], mid: &[f64]) -> Vec<Check> {
     });
     let ordered = mid.iter().all(|&p| {
         let (b, pd, fa) = (
-            mean(p, "none", "lane_changes_per_vehicle"),
-            mean(p, "pd", "lane_changes_per_vehicle"),
-            mean(p, "flow-aware", "lane_changes_per_vehicle"),
+            mean(
+                p,
+                StrategyKind::NONE,
+                Metric::LANE_CHANGES_PER_VEHICLE.into(),
+            ),
+            mean(p, StrategyKind::PD, Metric::LANE_CHANGES_PER_VEHICLE.into()),
+            mean(
+                p,
+                StrategyKind::FLOW_AWARE,
+                Metric::LANE_CHANGES_PER_VEHICLE.into(),
+            ),
         );
         pd > fa && fa > b
     });

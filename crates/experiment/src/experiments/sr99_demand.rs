@@ -27,7 +27,9 @@ use crate::design::{self, num};
 use crate::detectors::Scope;
 use crate::paper;
 use crate::runner::{Outcome, Runner};
+use crate::table::Col;
 use crate::table::{fixed, md_table, signed, SummaryRow};
+use crate::Metric;
 use crate::{Cell, Error, VERSION};
 use platoonsim_plot::{heatmap_panels, line_chart, Chart, Heatmap, Series, Style};
 use platoonsim_scenario::{demand_scales, StrategyKind};
@@ -371,9 +373,9 @@ pub(super) fn markdown(
     .iter()
     .map(|h| h.to_string())
     .collect();
-    let mean = |c: usize, m: &str| {
+    let mean = |c: usize, m: Col| {
         rows.iter()
-            .find(|r| r.cell == c && r.metric == m)
+            .find(|r| r.cell == c && r.metric == m.name())
             .map_or(f64::NAN, |r| r.stats.mean)
     };
     let mut trs = Vec::new();
@@ -383,9 +385,9 @@ pub(super) fn markdown(
                 format!("{} %", num(100.0 * x.penetration)),
                 fixed(t.scale, 2),
                 format!("{}/{}", t.active, t.seeds),
-                fixed(mean(t.cell, "florin_congested_min"), 0),
-                fixed(mean(t.cell, "south_congested_min"), 0),
-                fixed(mean(t.cell, "network_discharge_vph"), 0),
+                fixed(mean(t.cell, Col::Derived("florin_congested_min")), 0),
+                fixed(mean(t.cell, Col::Derived("south_congested_min")), 0),
+                fixed(mean(t.cell, Metric::NETWORK_DISCHARGE.into()), 0),
             ]);
         }
     }

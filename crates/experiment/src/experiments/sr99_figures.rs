@@ -16,6 +16,7 @@ use crate::corridor::{self, FLORIN_DETECTOR};
 use crate::design::num;
 use crate::paper;
 use crate::table::SummaryRow;
+use crate::Metric;
 use crate::{Cell, Error, Labels};
 use platoonsim_plot::{
     bar_panels, heatmap_panels, panels, Bars, Chart, Heatmap, PlotError, Series, Style,
@@ -29,8 +30,8 @@ fn plot_error(e: PlotError) -> Error {
 /// Colour range of the contours (km/h).
 pub const SPEED_RANGE: (f64, f64) = (0.0, 120.0);
 
-fn strategy_of(cells: &[Cell], c: usize) -> &str {
-    cells[c].labels.get("strategy").unwrap_or("")
+fn strategy_name(cells: &[Cell], c: usize) -> &'static str {
+    sr99::strategy_of(&cells[c]).map_or("?", sr99::strategy_name)
 }
 
 pub(super) fn all(
@@ -57,7 +58,7 @@ pub fn contour_maps(cells: &[Cell], d: &Data) -> Vec<Heatmap> {
         .map(|(c, recs)| {
             let k = corridor::contour(recs);
             Heatmap {
-                title: sr99::strategy_name(strategy_of(cells, *c)).into(),
+                title: strategy_name(cells, *c).into(),
                 x_label: "Time from 05:00 (min)".into(),
                 y_label: "Mainline detector (1 = most upstream)".into(),
                 x: k.times_min.clone(),
@@ -116,7 +117,7 @@ pub fn lane_charts(cells: &[Cell], d: &Data) -> Vec<Chart> {
         .iter()
         .map(|(c, recs)| {
             (
-                sr99::strategy_name(strategy_of(cells, *c)).to_string(),
+                strategy_name(cells, *c).to_string(),
                 corridor::lane_series(recs, FLORIN_DETECTOR),
             )
         })
@@ -194,16 +195,21 @@ pub fn bar_charts(cells: &[Cell], rows: &[SummaryRow]) -> Vec<Bars> {
         .collect();
     let metrics = [
         (
-            "lane_changes_per_vehicle",
+            Metric::LANE_CHANGES_PER_VEHICLE,
             "Lane changes per vehicle",
             "1/veh",
         ),
-        ("avg_platoon_length", "Average platoon length L", "CAVs"),
-        ("network_discharge_vph", "Network discharge", "veh/h"),
+        (
+            Metric::AVG_PLATOON_LENGTH,
+            "Average platoon length L",
+            "CAVs",
+        ),
+        (Metric::NETWORK_DISCHARGE, "Network discharge", "veh/h"),
     ];
     let mut ours = Vec::new();
     let mut theirs = Vec::new();
     for (metric, title, unit) in metrics {
+        let name = metric.name();
         let mut s_ours = Vec::new();
         let mut s_paper = Vec::new();
         for k in sr99::STRATEGIES {
@@ -214,14 +220,14 @@ pub fn bar_charts(cells: &[Cell], rows: &[SummaryRow]) -> Vec<Bars> {
             for &p in &pens {
                 let ps = num(p);
                 let r = find(cells, &[("penetration", &ps), ("strategy", ks)])
-                    .and_then(|c| rows.iter().find(|r| r.cell == c && r.metric == metric));
-                let skip = metric == "avg_platoon_length" && p == 0.0;
+                    .and_then(|c| rows.iter().find(|r| r.cell == c && r.metric == *name));
+                let skip = metric == Metric::AVG_PLATOON_LENGTH && p == 0.0;
                 mean.push(r.filter(|_| !skip).map_or(f64::NAN, |r| r.stats.mean));
                 err.push(r.map_or(f64::NAN, |r| r.stats.half_width()));
                 let labels = Labels::new().with("penetration", ps).with("strategy", ks);
-                pap.push(paper::lookup("sr99", &labels, metric).map_or(f64::NAN, |v| v.value));
+                pap.push(paper::lookup("sr99", &labels, &name).map_or(f64::NAN, |v| v.value));
             }
-            let name = sr99::strategy_name(ks).to_string();
+            let name = sr99::strategy_name(k).to_string();
             s_ours.push((name.clone(), mean, Some(err)));
             s_paper.push((name, pap, None));
         }

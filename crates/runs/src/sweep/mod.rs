@@ -90,6 +90,8 @@ pub fn run_with(spec: &Spec, opts: &Options, exec: Executor<'_>) -> Result<Done,
             "--collect writes the tables of the whole sweep; it takes no shard".into(),
         ));
     }
+    // The metrics are checked before any run is computed.
+    report::requested(spec).map_err(|e| Error::Other(e.to_string()))?;
     let cells = plan::cells(spec).map_err(|e| Error::Other(e.to_string()))?;
     let specs = design::runs(&cells, &spec.seeds);
     let total = specs.len();

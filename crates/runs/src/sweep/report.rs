@@ -3,40 +3,58 @@
 //! the first axis is numeric, grouped bars with the interval as error bars otherwise).
 
 use super::collect::{reference_text, Row};
-use super::spec::{label, number, Spec};
+use super::spec::{label, number, Spec, SpecError};
 use crate::design::Cell;
+use crate::metric::{Field, Metric, Part};
 use crate::runner::Outcome;
 use crate::table::metric_label;
 use crate::table::{decimals, md_table, pm};
 use crate::Error;
 use crate::Figure;
 use platoonsim_plot::{bar_chart, line_chart, Bars, Chart, Series, Style};
+use platoonsim_sim::Counted;
 use std::path::Path;
 
 /// The metrics shown when the spec names none (those the runs have).
-pub const DEFAULT_METRICS: [&str; 9] = [
-    "discharge_flow_vphpl",
-    "max_sustained_flow_vphpl",
-    "network_discharge_vph",
-    "lane_changes_per_vehicle",
-    "avg_platoon_length",
-    "platooning_probability",
-    "severe_brakings_per_100vkm",
-    "rear_end_conflicts_per_100vkm",
-    "lane_change_conflicts_per_100vkm",
+pub const DEFAULT_METRICS: [Metric; 9] = [
+    Metric::DISCHARGE_FLOW,
+    Metric::MAX_SUSTAINED_FLOW,
+    Metric::Field(Field::NetworkDischarge),
+    Metric::Field(Field::LaneChangesPerVehicle),
+    Metric::Field(Field::AvgPlatoonLength),
+    Metric::Field(Field::PlatooningProbability),
+    Metric::Counted(Counted::SevereBrakings, Part::Rate),
+    Metric::Counted(Counted::RearEndConflicts, Part::Rate),
+    Metric::Counted(Counted::LaneChangeConflicts, Part::Rate),
 ];
 
-/// The metrics to show: the spec's (each must be a metric of the runs), or the defaults.
-pub fn shown(spec: &Spec, metrics: &[String]) -> Result<Vec<String>, Error> {
+/// The spec's `metrics`, each parsed into a [`Metric`] (checked before any run): an error
+/// names the key, the value and the allowed names.
+pub fn requested(spec: &Spec) -> Result<Vec<Metric>, SpecError> {
+    spec.metrics
+        .iter()
+        .map(|m| {
+            Metric::parse(m).ok_or_else(|| SpecError {
+                origin: spec.origin.clone(),
+                key: "metrics".into(),
+                message: format!(
+                    "'{m}' is not a metric of the run summary; the metrics are {}",
+                    Metric::allowed_names()
+                ),
+            })
+        })
+        .collect()
+}
+
+/// The metrics to show: the spec's (each must be a metric the runs have), or the defaults.
+pub fn shown(spec: &Spec, metrics: &[String]) -> Result<Vec<Metric>, Error> {
+    let has = |m: &Metric| metrics.iter().any(|x| *x == m.name());
     if spec.metrics.is_empty() {
-        return Ok(DEFAULT_METRICS
-            .iter()
-            .filter(|m| metrics.iter().any(|x| x == *m))
-            .map(|m| m.to_string())
-            .collect());
+        return Ok(DEFAULT_METRICS.into_iter().filter(has).collect());
     }
-    for m in &spec.metrics {
-        if !metrics.contains(m) {
+    let wanted = requested(spec).map_err(|e| Error::Other(e.to_string()))?;
+    for m in &wanted {
+        if !has(m) {
             return Err(Error::Other(format!(
                 "{}: metrics: '{m}' is not a metric of the runs; they are {}",
                 spec.origin,
@@ -44,7 +62,7 @@ pub fn shown(spec: &Spec, metrics: &[String]) -> Result<Vec<String>, Error> {
             )));
         }
     }
-    Ok(spec.metrics.clone())
+    Ok(wanted)
 }
 
 fn row<'a>(rows: &'a [Row], cell: usize, metric: &str) -> Option<&'a Row> {
@@ -57,7 +75,7 @@ pub fn markdown(
     cells: &[Cell],
     outcomes: &[Outcome],
     rows: &[Row],
-    shown: &[String],
+    shown: &[Metric],
 ) -> String {
     let mut md = format!("# Sweep {}\n\n", spec.name);
     if let Some(d) = &spec.description {
@@ -95,6 +113,7 @@ pub fn markdown(
     md.push_str("\n\n");
     md.push_str(&crate::safety::warning_md(cells, outcomes));
     for m in shown {
+        let m = &*m.name();
         md.push_str(&format!("## {}\n\n", metric_label(m)));
         let mut header: Vec<String> = spec.axes.iter().map(|a| a.key.clone()).collect();
         header.extend(["n".to_string(), m.to_string()]);
@@ -136,7 +155,7 @@ pub fn figures(
     spec: &Spec,
     cells: &[Cell],
     rows: &[Row],
-    shown: &[String],
+    shown: &[Metric],
 ) -> Result<Vec<Figure>, Error> {
     let Some(first) = spec.axes.first() else {
         return Ok(Vec::new());
@@ -154,6 +173,7 @@ pub fn figures(
     let xs: Option<Vec<f64>> = first.levels.iter().map(number).collect();
     let mut out = Vec::new();
     for m in shown {
+        let m = &*m.name();
         let stem = format!("fig_{m}");
         let title = format!("{} against {}", metric_label(m), first.key);
         let get = |l: usize, g: usize| row(rows, l * groups + g, m).map(|r| r.stats);
@@ -212,4 +232,57 @@ pub fn figures(
         out.push(Figure { title, stem });
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spec(metrics: &str) -> Spec {
+        let text = format!("scenario = \"homogeneous\"\nseeds = 1\nmetrics = {metrics}\n");
+        Spec::from_toml(&text, "s.toml", "s").unwrap()
+    }
+
+    #[test]
+    fn the_spec_names_metrics_of_the_summary() {
+        let s = spec(r#"["fuel_l", "braking_peaks_cav_2", "hard_brakings_per_100vkm_human"]"#);
+        let got: Vec<String> = requested(&s)
+            .unwrap()
+            .iter()
+            .map(|m| m.to_string())
+            .collect();
+        assert_eq!(
+            got,
+            [
+                "fuel_l",
+                "braking_peaks_cav_2",
+                "hard_brakings_per_100vkm_human"
+            ]
+        );
+        let e = requested(&spec(r#"["avg_platoon_length", "seed"]"#)).unwrap_err();
+        assert_eq!((e.origin.as_str(), e.key.as_str()), ("s.toml", "metrics"));
+        assert!(e.message.starts_with("'seed' is not a metric"), "{e}");
+        assert!(e.message.contains("avg_platoon_length, "), "{e}");
+        assert!(e.message.contains("braking_peaks_<cav|human>_<bin>"), "{e}");
+    }
+
+    #[test]
+    fn the_defaults_are_those_the_runs_have() {
+        let s = spec(r#"["vehicles_entered"]"#);
+        let have = ["vehicles_entered".to_string(), "avg_platoon_length".into()];
+        assert_eq!(
+            shown(&s, &have).unwrap(),
+            [Metric::Field(Field::VehiclesEntered)]
+        );
+        let none = Spec {
+            metrics: Vec::new(),
+            ..s.clone()
+        };
+        assert_eq!(shown(&none, &have).unwrap(), [Metric::AVG_PLATOON_LENGTH]);
+        let e = shown(&s, &have[1..]).unwrap_err().to_string();
+        assert!(
+            e.contains("'vehicles_entered' is not a metric of the runs"),
+            "{e}"
+        );
+    }
 }
