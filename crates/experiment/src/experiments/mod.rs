@@ -31,7 +31,6 @@ use crate::{Error, VERSION};
 pub(crate) use platoonsim_runs::table::metric_label;
 pub use platoonsim_runs::Figure;
 use platoonsim_scenario::StrategyKind;
-use platoonsim_sim::Config;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -500,15 +499,6 @@ fn write_file(path: &Path, bytes: &[u8]) -> Result<(), Error> {
 }
 
 #[derive(Serialize)]
-struct CellProvenance<'a> {
-    labels: &'a Labels,
-    /// Run keys (file names in runs/), one per seed.
-    keys: Vec<&'a str>,
-    /// The resolved scenario; `seed` is replaced by each run's.
-    scenario: &'a Config,
-}
-
-#[derive(Serialize)]
 struct Provenance<'a> {
     experiment: &'a str,
     version: &'a str,
@@ -520,7 +510,7 @@ struct Provenance<'a> {
     reused: usize,
     wall_seconds: f64,
     finished_unix_s: u64,
-    cells: Vec<CellProvenance<'a>>,
+    cells: Vec<platoonsim_runs::sweep::CellProvenance<'a>>,
 }
 
 /// Write `runs.csv`, `summary.csv` (or `.parquet`, [`Settings::format`]), `summary.md` and
@@ -547,21 +537,7 @@ pub fn write_outputs(out: &ExperimentOutput) -> Result<(), Error> {
         finished_unix_s: std::time::SystemTime::now()
             .duration_since(std::time::UNIX_EPOCH)
             .map_or(0, |d| d.as_secs()),
-        cells: out
-            .cells
-            .iter()
-            .enumerate()
-            .map(|(i, c)| CellProvenance {
-                labels: &c.labels,
-                keys: out
-                    .outcomes
-                    .iter()
-                    .filter(|o| o.cell == i)
-                    .map(|o| o.key.as_str())
-                    .collect(),
-                scenario: &c.config,
-            })
-            .collect(),
+        cells: platoonsim_runs::sweep::cell_provenance(&out.cells, &out.outcomes),
     };
     let mut bytes = serde_json::to_vec_pretty(&prov)
         .map_err(|e| Error::Other(format!("cannot encode run.json: {e}")))?;

@@ -212,11 +212,32 @@ pub fn run_with(spec: &Spec, opts: &Options, exec: Executor<'_>) -> Result<Done,
     Ok(done)
 }
 
+/// One cell of a `run.json` (a sweep's or an experiment's): its labels, its runs and the
+/// scenario they share.
 #[derive(Serialize)]
-struct CellProvenance<'a> {
+pub struct CellProvenance<'a> {
     labels: &'a Labels,
+    /// Run keys (file names in runs/), one per seed.
     keys: Vec<&'a str>,
+    /// The resolved scenario; `seed` is replaced by each run's.
     scenario: &'a Config,
+}
+
+/// The cells of a `run.json`, each with the keys of its runs in `outcomes`.
+pub fn cell_provenance<'a>(cells: &'a [Cell], outcomes: &'a [Outcome]) -> Vec<CellProvenance<'a>> {
+    cells
+        .iter()
+        .enumerate()
+        .map(|(i, c)| CellProvenance {
+            labels: &c.labels,
+            keys: outcomes
+                .iter()
+                .filter(|o| o.cell == i)
+                .map(|o| o.key.as_str())
+                .collect(),
+            scenario: &c.config,
+        })
+        .collect()
 }
 
 #[derive(Serialize)]
@@ -258,19 +279,7 @@ fn provenance(
         finished_unix_s: std::time::SystemTime::now()
             .duration_since(std::time::UNIX_EPOCH)
             .map_or(0, |d| d.as_secs()),
-        cells: cells
-            .iter()
-            .enumerate()
-            .map(|(i, c)| CellProvenance {
-                labels: &c.labels,
-                keys: outcomes
-                    .iter()
-                    .filter(|o| o.cell == i)
-                    .map(|o| o.key.as_str())
-                    .collect(),
-                scenario: &c.config,
-            })
-            .collect(),
+        cells: cell_provenance(cells, outcomes),
     };
     let mut bytes = serde_json::to_vec_pretty(&p)
         .map_err(|e| Error::Other(format!("cannot encode run.json: {e}")))?;
