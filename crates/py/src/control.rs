@@ -134,7 +134,7 @@ fn observe(
 
 fn road(inner: &Inner) -> (f64, f64) {
     let r = &inner.config.road;
-    let origin = r.network.as_ref().map_or(0.0, |n| n.origin_m);
+    let origin = r.origin_m();
     (r.length_m, origin)
 }
 

@@ -15,7 +15,7 @@ use toml::{Table, Value};
 /// spacing is read back from their positions), and `demand_scale` is the total scale (with
 /// `base_demand_multiplier = 1`).
 pub fn to_raw(config: &Config, description: Option<String>) -> RawScenario {
-    let origin = config.road.network.as_ref().map_or(0.0, |n| n.origin_m);
+    let origin = config.road.origin_m();
     let file = |x: f64| x + origin;
     let mut strategy = RawStrategy::default();
     let Strategy {

@@ -29,7 +29,7 @@ fn longest(cfg: &Config) -> f64 {
 
 /// Corridor coordinate of an engine position.
 fn corridor(cfg: &Config, x: f64) -> f64 {
-    x + cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m)
+    x + cfg.road.origin_m()
 }
 
 pub(super) fn check_room(c: &mut Checker, cfg: &Config) {

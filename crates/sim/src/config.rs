@@ -26,6 +26,14 @@ pub struct Road {
     pub network: Option<Network>,
 }
 
+impl Road {
+    /// Output coordinate of engine x = 0: the network's `origin_m`, 0 on the plain road.
+    #[inline]
+    pub fn origin_m(&self) -> f64 {
+        self.network.as_ref().map_or(0.0, |n| n.origin_m)
+    }
+}
+
 /// A freeway corridor (issue 4). Engine coordinates: x = 0 at the mainline entrance, x =
 /// `length_m` at the end; outputs report x + `origin_m` (e.g. metres downstream of a
 /// reference ramp). Lateral lane indices run from the right: index 0 is the rightmost

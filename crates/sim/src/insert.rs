@@ -451,7 +451,7 @@ impl Inserting<'_> {
                 kind: veh.kind,
                 entrance: veh.route.origin,
                 lane: veh.lane,
-                x_m: x + self.cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m),
+                x_m: x + self.cfg.road.origin_m(),
                 v_mps: speed,
             });
         }

@@ -94,7 +94,7 @@ pub const MAX_TRAJECTORY_BYTES: f64 = 4.0 * (1u64 << 30) as f64;
 /// the smallest jam gap, at least 1 m: vehicles do not overlap); the samples are the multiples
 /// of the period inside the window and the run.
 pub fn trajectory_rows_bound(t: &TrajectorySpec, cfg: &Config) -> (f64, f64, f64) {
-    let origin = cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m);
+    let origin = cfg.road.origin_m();
     let (lo, hi) = (origin, origin + cfg.road.length_m);
     let (x0, x1) = t.x_m.map_or((lo, hi), |(a, b)| (a.max(lo), b.min(hi)));
     let spacing = (cfg.human.length_m.min + cfg.human.jam_gap_m.min).max(1.0);

@@ -46,7 +46,7 @@ impl Simulation {
         let n_lanes = cfg.road.lanes as usize;
         let steps = |s: f64| (s / dt).round() as u64;
         let geom = Geometry::new(&cfg)?;
-        let origin = cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m);
+        let origin = cfg.road.origin_m();
         let detectors = cfg
             .detectors
             .iter()
@@ -209,7 +209,7 @@ impl Simulation {
 
     /// Output coordinate of engine x = 0 (the network origin; 0 on a plain road).
     pub(crate) fn origin_m(&self) -> f64 {
-        self.cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m)
+        self.cfg.road.origin_m()
     }
 
     /// Slot `s` leaves the road as `how` in this step (or is still on it at the end): the
@@ -375,7 +375,7 @@ impl Simulation {
                 .on_step(&step_view(&self.clock, origin_m, &self.traffic, &[]));
         }
         if let Some(e) = self.energy.as_mut() {
-            let origin_m = self.cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m);
+            let origin_m = self.cfg.road.origin_m();
             e.on_step(&step_view(&self.clock, origin_m, &self.traffic, &[]));
         }
         let checked = crate::invariants::check_invariants(
@@ -628,7 +628,7 @@ impl Simulation {
         let Watch {
             observers, events, ..
         } = &mut self.watch;
-        let origin_m = self.cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m);
+        let origin_m = self.cfg.road.origin_m();
         let view = step_view(&self.clock, origin_m, &self.traffic, events);
         for o in observers.iter_mut() {
             o.on_step(&view);

@@ -66,7 +66,7 @@ impl Simulation {
                     return Err(SimError::Command(format!(
                         "vehicle {id} cannot change {side:?} at x = {:.1} m: no lane it may \
                          enter there",
-                        v.x + self.cfg.road.network.as_ref().map_or(0.0, |n| n.origin_m)
+                        v.x + self.cfg.road.origin_m()
                     )));
                 }
                 active.left = u64::from(to);

@@ -310,7 +310,7 @@ impl RunArgs {
         let x_m = match pair(&self.trajectory_x) {
             None => None,
             Some((text, Some((x0, x1)))) if x0 < x1 => {
-                let origin = config.road.network.as_ref().map_or(0.0, |n| n.origin_m);
+                let origin = config.road.origin_m();
                 let end = origin + config.road.length_m;
                 if x1 < origin || x0 > end {
                     bail!(
