@@ -9,12 +9,8 @@ cd "$(dirname "$0")/.."
 VENV=target/py-venv
 PY_PACKAGES=(pytest gymnasium matplotlib)
 
-if [ "${1:-}" = "--install" ] && [ ! -x "$VENV/bin/python" ]; then
-    if ! python3 -m venv --help >/dev/null 2>&1 || ! python3 -c "import ensurepip" 2>/dev/null; then
-        apt-get update
-        DEBIAN_FRONTEND=noninteractive apt-get install -y python3-venv
-    fi
-    python3 -m venv "$VENV"
+if [ "${1:-}" = "--install" ]; then
+    scripts/py-venv.sh
 fi
 if [ ! -x "$VENV/bin/python" ]; then
     if [ "${CI:-}" = "true" ]; then

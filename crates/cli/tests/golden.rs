@@ -93,8 +93,8 @@ fn canonical(v: &serde_json::Value, out: &mut String) {
     }
 }
 
-/// `summary.json` without `wall_seconds`, canonical.
-fn summary_text(dir: &Path) -> String {
+/// `summary.json` without `wall_seconds` (which it must have).
+fn summary_value(dir: &Path) -> serde_json::Value {
     let mut v: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("summary.json")).unwrap()).unwrap();
     let m = v.as_object_mut().expect("summary.json is an object");
@@ -102,14 +102,19 @@ fn summary_text(dir: &Path) -> String {
         m.remove("wall_seconds").is_some(),
         "summary.json has no wall_seconds"
     );
+    v
+}
+
+/// A summary (as [`summary_value`] gives it) as canonical JSON text.
+fn summary_text(v: &serde_json::Value) -> String {
     let mut out = String::new();
-    canonical(&v, &mut out);
+    canonical(v, &mut out);
     out
 }
 
-/// `summary.json` without `wall_seconds` as one `path = value` line per leaf, sorted by
+/// A summary (as [`summary_value`] gives it) as one `path = value` line per leaf, sorted by
 /// path: the readable copy of the summary digest, so that a failure shows which figures moved.
-fn flat_summary(dir: &Path) -> String {
+fn flat_summary(v: &serde_json::Value) -> String {
     fn walk(v: &serde_json::Value, path: String, out: &mut Vec<String>) {
         use serde_json::Value;
         match v {
@@ -134,11 +139,8 @@ fn flat_summary(dir: &Path) -> String {
             )),
         }
     }
-    let mut v: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(dir.join("summary.json")).unwrap()).unwrap();
-    v.as_object_mut().unwrap().remove("wall_seconds");
     let mut lines = Vec::new();
-    walk(&v, String::new(), &mut lines);
+    walk(v, String::new(), &mut lines);
     lines.sort();
     lines.iter().map(|l| format!("{l}\n")).collect()
 }
@@ -242,11 +244,12 @@ fn compute() -> Vec<Digest> {
                     let o = platoonsim(&a);
                     assert!(o.status.success(), "{name}: {a:?}\n{}", stderr(&o));
                     let detectors = std::fs::read(out.join("detectors.csv")).unwrap();
+                    let summary = summary_value(&out);
                     Digest {
                         name,
-                        summary: fnv1a64(summary_text(&out).as_bytes()),
+                        summary: fnv1a64(summary_text(&summary).as_bytes()),
                         detectors: fnv1a64(&detectors),
-                        summary_lines: flat_summary(&out),
+                        summary_lines: flat_summary(&summary),
                         detectors_lines: cross_sections(&String::from_utf8(detectors).unwrap()),
                     }
                 })
@@ -378,5 +381,8 @@ fn canonical_summary_ignores_wall_time_and_key_order() {
         "{\n  \"b\": 1.5,\n  \"wall_seconds\": 0.25,\n  \"a\": [1, null, \"x\"]\n}",
     )
     .unwrap();
-    assert_eq!(summary_text(&dir), r#"{"a":[1,null,"x"],"b":1.5}"#);
+    assert_eq!(
+        summary_text(&summary_value(&dir)),
+        r#"{"a":[1,null,"x"],"b":1.5}"#
+    );
 }
