@@ -324,6 +324,11 @@ impl View<'_> {
     /// requester as a virtual leader as a yielding driver would (spec 4.5), without leaving
     /// automation [D]. `held`: (lag gap acceptable, a_ant, target-lane leader ahead) of a CAV waiting for a PD-lane gap
     /// (`driver::held_back`). Then the demand goes through the actuators (spec 9.3).
+    // Inlined, with `cav_control`, into the decide loop: as two calls, the leader view, the
+    // 40-byte `Decision` and what `decide_one` had loaded already (the sensed record, the
+    // desired speed) crossed two call boundaries, about 105 instructions per automated CAV
+    // and step (docs/performance.md).
+    #[inline(always)]
     fn automated_decision(
         &self,
         s: u32,
@@ -374,6 +379,8 @@ impl View<'_> {
     }
 
     /// Automated CAV control (spec 3.9).
+    // Inlined: see `automated_decision`.
+    #[inline(always)]
     fn cav_control(&self, s: u32, v: &Vehicle, leader: Option<Leader>, wall: bool) -> Decision {
         let p = &self.cfg.cav;
         let v_des = self.v_des_in(s, v, v.lane as usize);
