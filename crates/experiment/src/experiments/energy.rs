@@ -7,14 +7,15 @@
 //! the CAVs, the humans and all. The paper's question: when does organization save energy for
 //! the CAVs while it costs the system more?
 
-use super::{find, point, run_cells, Check, Done, Experiment, Part, Report, Results, Settings};
-use crate::design::{self, num, Cell, Labels};
+use super::{find, grid, run_cells, Check, Done, Experiment, Part, Report, Results, Settings};
+use crate::design::{self, num, Cell};
 use crate::metric::{EnergyField, Metric};
 use crate::runner::{Outcome, Runner};
+use crate::sweep::spec::Spec;
 use crate::table::Col;
 use crate::table::{self, fixed, md_table, pm, signed, SummaryRow};
 use crate::Error;
-use platoonsim_scenario::{demand_scale_set, load_with, Overrides, StrategyKind};
+use platoonsim_scenario::StrategyKind;
 
 /// The homogeneous road's penetration (the paper's Table 3).
 pub const PENETRATION: f64 = 0.5;
@@ -25,8 +26,6 @@ pub const STRATEGIES: [StrategyKind; 4] = [
     StrategyKind::FLOW_AWARE,
     StrategyKind::DEDICATED,
 ];
-/// The override that turns the energy observer on.
-pub const ENERGY_ON: &str = "energy.enabled=true";
 
 /// Fuel per 100 km by group: (metric, paired change, group name).
 pub const FUEL: [(Metric, &str, &str); 3] = [
@@ -47,72 +46,44 @@ pub const FUEL: [(Metric, &str, &str); 3] = [
     ),
 ];
 
-/// The SR-99 penetrations of the settings strictly between 0 and 1.
-fn network_penetrations(s: &Settings) -> Vec<f64> {
-    s.network_penetrations
-        .iter()
-        .copied()
-        .filter(|&p| p > 0.0 && p < 1.0)
-        .collect()
+/// The grid on the homogeneous road: `sweeps/energy.toml`; on SR-99:
+/// `sweeps/energy-sr99.toml`.
+pub const SWEEP: &str = include_str!("../../../../sweeps/energy.toml");
+pub const SWEEP_SR99: &str = include_str!("../../../../sweeps/energy-sr99.toml");
+
+/// The settings with only their SR-99 penetrations strictly between 0 and 1.
+fn network_settings(s: &Settings) -> Settings {
+    let mut n = s.clone();
+    n.network_penetrations.retain(|&p| p > 0.0 && p < 1.0);
+    n
+}
+
+/// The homogeneous road's spec with the settings' demands.
+fn road_spec(s: &Settings) -> Result<Spec, Error> {
+    let mut spec = grid::spec("energy", SWEEP, s)?;
+    let demands = s.energy_demands.iter().map(|&d| grid::float(d)).collect();
+    grid::levels(&mut spec, "demand.vph_per_lane", demands)?;
+    Ok(spec)
 }
 
 pub(super) fn cell_count(s: &Settings) -> (usize, usize) {
+    let n = network_settings(s);
     (
-        s.energy_demands.len() * STRATEGIES.len(),
-        network_penetrations(s).len() * STRATEGIES.len(),
+        road_spec(s).map_or(0, |x| x.cell_count()),
+        super::sr99::spec("energy-sr99", SWEEP_SR99, &n, |_| 1.0).map_or(0, |x| x.cell_count()),
     )
 }
 
-/// A homogeneous-road cell with energy on.
-fn road_cell(s: &Settings, demand: f64, k: StrategyKind) -> Result<Cell, Error> {
-    let mut p = point(s, PENETRATION, demand, k);
-    p.set.push(ENERGY_ON.into());
-    Ok(Cell {
-        labels: Labels::new()
-            .with("road", "homogeneous")
-            .with("penetration", num(PENETRATION))
-            .with("demand", num(demand))
-            .with("strategy", k.as_str()),
-        config: design::homogeneous(&p)?,
-    })
-}
-
-/// An SR-99 cell with energy on, at the penetration's demand scale (as `sr99`).
-fn sr99_cell(s: &Settings, p: f64, k: StrategyKind, scale: f64) -> Result<Cell, Error> {
-    let o = Overrides {
-        penetration: Some(p),
-        seed: Some(1),
-        strategy: Some(k),
-        duration_s: s.network_duration_s,
-        set: vec![demand_scale_set(scale), ENERGY_ON.into()],
-        ..Overrides::default()
-    };
-    Ok(Cell {
-        labels: Labels::new()
-            .with("road", "sr99")
-            .with("penetration", num(p))
-            .with("demand", num(scale))
-            .with("strategy", k.as_str()),
-        config: load_with(super::sr99::SCENARIO, &o)?,
-    })
-}
-
-/// The cells: the homogeneous road by demand, then SR-99 by penetration; the strategies of
-/// a point together, the baseline first.
+/// The cells: the homogeneous road by demand, then SR-99 by penetration (at its demand scale,
+/// as `sr99`); the strategies of a point together, the baseline first. Also the number of
+/// the homogeneous road's.
 pub fn cells(s: &Settings) -> Result<(Vec<Cell>, usize), Error> {
-    let mut out = Vec::new();
-    for &d in &s.energy_demands {
-        for k in STRATEGIES {
-            out.push(road_cell(s, d, k)?);
-        }
-    }
+    let mut out = grid::cells_of(&road_spec(s)?)?;
     let road = out.len();
-    let scales = super::sr99::Scales::from_settings(s)?;
-    for p in network_penetrations(s) {
-        for k in STRATEGIES {
-            out.push(sr99_cell(s, p, k, scales.at(p))?);
-        }
-    }
+    let n = network_settings(s);
+    let scales = super::sr99::Scales::from_settings(&n)?;
+    let spec = super::sr99::spec("energy-sr99", SWEEP_SR99, &n, |p| scales.at(p))?;
+    out.extend(grid::cells_of(&spec)?);
     Ok((out, road))
 }
 
