@@ -68,7 +68,7 @@ fn report(r: &Results<'_>) -> Result<Report, Error> {
 /// [`FILL_S`].
 pub const SWEEP: &str = include_str!("../../../../sweeps/capacity.toml");
 
-fn stage1(s: &Settings) -> Result<Spec, Error> {
+pub(super) fn stage1(s: &Settings) -> Result<Spec, Error> {
     let mut spec = grid::spec(EXPERIMENT.name, SWEEP, s)?;
     grid::fix(
         &mut spec,

@@ -85,3 +85,33 @@ pub(crate) fn cell_count(name: &str, text: &str) -> usize {
 pub(crate) fn float(v: f64) -> Value {
     Value::Float(v)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::{behaviour, capacity, energy, sr99};
+    use super::*;
+
+    fn as_shipped(name: &str, text: &str) -> Vec<Cell> {
+        cells_of(&parse(name, text).unwrap()).unwrap()
+    }
+
+    /// `platoonsim sweep sweeps/NAME.toml` plans the experiment's cells at its defaults: the
+    /// files' levels are the settings' defaults and the embedded demand-scale table.
+    #[test]
+    fn the_shipped_files_are_the_experiments_default_grids() {
+        let s = Settings::default();
+        assert_eq!(as_shipped("sr99", sr99::SWEEP), sr99::cells(&s).unwrap());
+        let mut both = as_shipped("energy", energy::SWEEP);
+        both.extend(as_shipped("energy-sr99", energy::SWEEP_SR99));
+        assert_eq!(both, energy::cells(&s).unwrap().0);
+        assert_eq!(
+            as_shipped("behaviour", behaviour::SWEEP),
+            cells("behaviour", behaviour::SWEEP, &s).unwrap()
+        );
+        let stage1 = as_shipped("capacity", capacity::SWEEP);
+        assert_eq!(stage1, cells_of(&capacity::stage1(&s).unwrap()).unwrap());
+        // The report's table and figure go by these penetrations.
+        let pens: Vec<f64> = stage1.iter().map(|c| c.config.penetration).collect();
+        assert_eq!(pens, capacity::PENETRATIONS);
+    }
+}

@@ -69,3 +69,56 @@ pub fn cells(spec: &Spec) -> Result<Vec<Cell>, SpecError> {
     }
     Ok(cells)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use platoonsim_scenario::StrategyKind;
+
+    #[test]
+    fn a_bundle_level_sets_its_keys_and_skipped_cells_are_not_planned() {
+        let spec = Spec::from_toml(
+            "scenario = \"homogeneous\"\nseeds = 1\n\
+             [set]\n\"run.duration_s\" = 600.0\n\"run.warmup_s\" = 100.0\n\
+             [axes]\n\
+             point = [\n\
+               { \"run.penetration\" = 0.0, \"demand.vph_per_lane\" = 1000.0 },\n\
+               { \"run.penetration\" = 0.5, \"demand.vph_per_lane\" = 2000.0 },\n\
+             ]\n\
+             \"strategy.kind\" = [\"none\", \"pd\"]\n\
+             [[skip]]\n\"run.penetration\" = 0.0\n\"strategy.kind\" = \"pd\"\n",
+            "s.toml",
+            "s",
+        )
+        .unwrap();
+        let cells = cells(&spec).unwrap();
+        let got: Vec<(f64, f64, StrategyKind, String)> = cells
+            .iter()
+            .map(|c| {
+                (
+                    c.config.penetration,
+                    c.config.demand.vph_per_lane,
+                    c.config.strategy.kind,
+                    c.labels.get("point").unwrap().to_string(),
+                )
+            })
+            .collect();
+        assert_eq!(
+            got,
+            [
+                (0.0, 1000.0, StrategyKind::NONE, "0, 1000".to_string()),
+                (0.5, 2000.0, StrategyKind::NONE, "0.5, 2000".to_string()),
+                (0.5, 2000.0, StrategyKind::PD, "0.5, 2000".to_string()),
+            ]
+        );
+        // A bundle level that the scenario refuses is blamed on the axis and the level.
+        let mut bad = spec.clone();
+        bad.axes[0].levels[1]
+            .as_table_mut()
+            .unwrap()
+            .insert("run.penetration".into(), toml::Value::Float(1.5));
+        let e = super::cells(&bad).unwrap_err();
+        assert!(e.key.starts_with("axes.\"point\" = "), "{e}");
+        assert!(e.message.contains("run.penetration"), "{e}");
+    }
+}

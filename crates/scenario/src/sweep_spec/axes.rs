@@ -94,17 +94,18 @@ pub(super) fn parse(
     set: &[(String, Value)],
     err: Err<'_>,
 ) -> Result<Vec<Axis>, SpecError> {
-    let t =
-        match doc.get("axes") {
-            None => return Ok(Vec::new()),
-            Some(Value::Table(t)) => t,
-            Some(v) => return Err(err(
+    let t = match doc.get("axes") {
+        None => return Ok(Vec::new()),
+        Some(Value::Table(t)) => t,
+        Some(v) => {
+            return Err(err(
                 "axes",
                 format!(
                     "{v} is not a table of KEY = [LEVELS] (or NAME = [{{KEY = VALUE, ...}}, ...])"
                 ),
-            )),
-        };
+            ))
+        }
+    };
     let mut out: Vec<Axis> = Vec::new();
     for (k, v) in t {
         let key = format!("axes.\"{k}\"");
