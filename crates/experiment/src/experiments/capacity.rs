@@ -147,6 +147,14 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
     Ok(Done::new(cells, outcomes))
 }
 
+/// The cell of a strategy (stage 1: none) at a penetration (as its label).
+pub(super) fn at(cells: &[Cell], k: StrategyKind, penetration: &str) -> Option<usize> {
+    find(
+        cells,
+        &[("strategy", k.as_str()), ("penetration", penetration)],
+    )
+}
+
 pub(super) fn markdown(
     s: &Settings,
     cells: &[Cell],
@@ -201,14 +209,14 @@ pub(super) fn markdown(
         rows.iter()
             .find(|r| r.cell == cell && r.metric == DISCHARGE.name())
     };
-    let base0 = find(cells, &[("stage", "baseline"), ("penetration", "0")]);
+    let base0 = at(cells, StrategyKind::NONE, "0");
     let cap0 = base0.and_then(row_of).map(|r| r.stats);
     let mean0 = base0.and_then(mean_of).map(|r| r.stats);
     for &p in &PENETRATIONS {
         let pen = num(p);
-        let b_cell = find(cells, &[("stage", "baseline"), ("penetration", &pen)]);
+        let b_cell = at(cells, StrategyKind::NONE, &pen);
         let b = b_cell.and_then(row_of);
-        let pd_cell = find(cells, &[("stage", "pd"), ("penetration", &pen)]);
+        let pd_cell = at(cells, StrategyKind::PD, &pen);
         let pd = pd_cell.and_then(row_of);
         let mean = |c: Option<usize>| {
             c.and_then(mean_of)
@@ -233,7 +241,7 @@ pub(super) fn markdown(
             }
             _ => String::new(),
         };
-        let dl_cell = find(cells, &[("stage", "dedicated"), ("penetration", &pen)]);
+        let dl_cell = at(cells, StrategyKind::DEDICATED, &pen);
         let dl = dl_cell.and_then(row_of);
         let dl_versus = match (b, dl) {
             (Some(b), Some(dl)) => format!(
@@ -276,7 +284,7 @@ pub(super) fn markdown(
             passed: all,
         });
     }
-    let pd25 = find(cells, &[("stage", "pd"), ("penetration", "0.25")])
+    let pd25 = at(cells, StrategyKind::PD, "0.25")
         .and_then(row_of)
         .map(|r| r.stats);
     if let (Some(pd25), Some(cap0)) = (pd25, cap0) {
@@ -289,7 +297,7 @@ pub(super) fn markdown(
             passed: pd25.mean < cap0.mean,
         });
     }
-    let pd25_mean = find(cells, &[("stage", "pd"), ("penetration", "0.25")])
+    let pd25_mean = at(cells, StrategyKind::PD, "0.25")
         .and_then(mean_of)
         .map(|r| r.stats);
     if let (Some(pd), Some(b)) = (pd25_mean, mean0) {
@@ -305,9 +313,9 @@ pub(super) fn markdown(
     }
     md.push_str("\n## Against the paper\n\n");
     md.push_str(&paper_comparison(rows, |r| {
-        let stage = match r.labels.get("stage") {
-            Some("pd") => "PD capacity",
-            Some("dedicated") => "dedicated-lane capacity",
+        let stage = match r.labels.get("strategy").and_then(|k| k.parse().ok()) {
+            Some(StrategyKind::PD) => "PD capacity",
+            Some(StrategyKind::DEDICATED) => "dedicated-lane capacity",
             _ => "baseline capacity",
         };
         format!(

@@ -141,16 +141,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
     Ok(Done::new(cells, outcomes))
 }
 
-/// How the strategies are named in tables.
-fn strategy_name(k: &str) -> &'static str {
-    match k {
-        "none" => "baseline",
-        "pd" => "PD",
-        "flow-aware" => "Flow-Aware PD",
-        "dedicated" => "dedicated lane (ours)",
-        _ => "?",
-    }
-}
+use super::sr99::strategy_name;
 
 fn row(rows: &[SummaryRow], cell: usize, metric: Col) -> Option<&SummaryRow> {
     rows.iter()
@@ -186,19 +177,19 @@ fn sign(rows: &[SummaryRow], cell: usize, metric: Col) -> i8 {
 /// The points (road, penetration, demand) in cell order, with their baseline cell.
 fn points(cells: &[Cell]) -> Vec<usize> {
     (0..cells.len())
-        .filter(|&i| cells[i].labels.get("strategy") == Some("none"))
+        .filter(|&i| cells[i].labels.get("strategy") == Some(StrategyKind::NONE.as_str()))
         .collect()
 }
 
 /// Every (cell index, strategy index, strategy name) of the design, point by point in table
 /// order: the cells that follow a point's baseline and carry the strategy expected there.
-fn strategy_cells(cells: &[Cell]) -> Vec<(usize, usize, &'static str)> {
+fn strategy_cells(cells: &[Cell]) -> Vec<(usize, usize, StrategyKind)> {
     let mut out = Vec::new();
     for &b in &points(cells) {
         for (j, k) in STRATEGIES.iter().enumerate() {
             let i = b + j;
             if i < cells.len() && cells[i].labels.get("strategy") == Some(k.as_str()) {
-                out.push((i, j, k.as_str()));
+                out.push((i, j, *k));
             }
         }
     }
@@ -427,8 +418,8 @@ pub(super) fn figure_points(cells: &[Cell], road: &str) -> (Vec<f64>, Vec<usize>
 }
 
 /// Index of a cell by its labels (for tests).
-pub fn cell_of(cells: &[Cell], road: &str, strategy: &str) -> Option<usize> {
-    find(cells, &[("road", road), ("strategy", strategy)])
+pub fn cell_of(cells: &[Cell], road: &str, strategy: StrategyKind) -> Option<usize> {
+    find(cells, &[("road", road), ("strategy", strategy.as_str())])
 }
 
 /// `energy.png` / `.svg`: the paired fuel changes of the CAVs and of all vehicles against the
@@ -471,7 +462,7 @@ pub(super) fn figure(
                         .collect();
                     let style = if j == 1 { Style::Dashed } else { Style::Line };
                     series(
-                        &format!("{}, 95 % CI", strategy_name(k.as_str())),
+                        &format!("{}, 95 % CI", strategy_name(*k)),
                         &x,
                         curve(rows, &at, Col::Derived(metric)),
                         style,
@@ -533,7 +524,7 @@ mod tests {
         assert_eq!(c[8].labels.get("penetration"), Some("0.4"));
         assert_eq!(c[8].labels.get("demand"), Some("1.1"));
         assert_eq!(c[9].config.strategy.kind, StrategyKind::PD);
-        assert_eq!(cell_of(&c, "sr99", "flow-aware"), Some(10));
+        assert_eq!(cell_of(&c, "sr99", StrategyKind::FLOW_AWARE), Some(10));
         let (x, base) = figure_points(&c, "homogeneous");
         assert_eq!((x, base), (vec![1500.0, 2500.0], vec![0, 4]));
         let (x, base) = figure_points(&c, "sr99");

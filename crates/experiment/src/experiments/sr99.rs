@@ -82,8 +82,7 @@ pub fn strategies_at(p: f64) -> &'static [StrategyKind] {
 /// The strategy of a cell, by its `strategy` label (`None` if it has none or names no
 /// registered strategy).
 pub fn strategy_of(cell: &Cell) -> Option<StrategyKind> {
-    let name = cell.labels.get("strategy")?;
-    StrategyKind::all().find(|k| k.as_str() == name)
+    cell.labels.get("strategy")?.parse().ok()
 }
 
 /// How the strategies are named in tables.
