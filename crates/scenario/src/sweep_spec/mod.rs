@@ -370,7 +370,8 @@ impl Spec {
     }
 
     /// The text of a `[labels]` key in a cell: the scenario's name for `"scenario"`, a
-    /// `[set]` value, or what an axis gives the key ([`axes::value_label`]).
+    /// `[set]` value, or what an axis gives the key (a level, a bundle level's label or one
+    /// of its values).
     pub fn label_of(&self, combo: &[usize], key: &str) -> Option<String> {
         if key == SCENARIO {
             return Some(self.scenario.clone());
