@@ -13,15 +13,16 @@ pub use platoonsim_runs::table::{CellSel, PaperValue};
 
 use crate::table::Col;
 use crate::Metric;
+use platoonsim_scenario::StrategyKind;
 
 const FIG4_TEXT: &str = "Preliminary Study, text on Fig. 4 (approximate, read from prose)";
 const TABLE3: &str = "Table 3";
 
 macro_rules! v {
-    ($exp:expr, [$($k:expr => $val:expr),*], $metric:expr, $value:expr, $src:expr) => {
+    ($exp:expr, $kind:expr, [$($k:expr => $val:expr),*], $metric:expr, $value:expr, $src:expr) => {
         PaperValue {
             experiment: $exp,
-            cell: &[$(($k, $val)),*],
+            cell: CellSel::of($kind, &[$(($k, $val)),*]),
             metric: $metric,
             value: $value,
             source: $src,
@@ -39,23 +40,23 @@ struct Table3Row {
 
 const TABLE3_ROWS: [Table3Row; 4] = [
     Table3Row {
-        b: &[("demand_vphpl", "1000"), ("strategy", "none")],
-        po: &[("demand_vphpl", "1000"), ("strategy", "pd")],
+        b: CellSel::of(StrategyKind::NONE, &[("demand_vphpl", "1000")]),
+        po: CellSel::of(StrategyKind::PD, &[("demand_vphpl", "1000")]),
         v: [0.05, 0.49, 2.6, 5.0, 0.73, 0.89, 1006.3, 1006.7, 0.04],
     },
     Table3Row {
-        b: &[("demand_vphpl", "1500"), ("strategy", "none")],
-        po: &[("demand_vphpl", "1500"), ("strategy", "pd")],
+        b: CellSel::of(StrategyKind::NONE, &[("demand_vphpl", "1500")]),
+        po: CellSel::of(StrategyKind::PD, &[("demand_vphpl", "1500")]),
         v: [0.07, 0.51, 3.0, 5.1, 0.74, 0.89, 1483.4, 1478.3, -0.34],
     },
     Table3Row {
-        b: &[("demand_vphpl", "2000"), ("strategy", "none")],
-        po: &[("demand_vphpl", "2000"), ("strategy", "pd")],
+        b: CellSel::of(StrategyKind::NONE, &[("demand_vphpl", "2000")]),
+        po: CellSel::of(StrategyKind::PD, &[("demand_vphpl", "2000")]),
         v: [0.05, 0.53, 2.8, 5.1, 0.74, 0.89, 1961.7, 1924.6, -1.89],
     },
     Table3Row {
-        b: &[("demand_vphpl", "2500"), ("strategy", "none")],
-        po: &[("demand_vphpl", "2500"), ("strategy", "pd")],
+        b: CellSel::of(StrategyKind::NONE, &[("demand_vphpl", "2500")]),
+        po: CellSel::of(StrategyKind::PD, &[("demand_vphpl", "2500")]),
         v: [0.04, 0.56, 3.3, 5.4, 0.78, 0.91, 2260.6, 2045.0, -9.54],
     },
 ];
@@ -63,11 +64,12 @@ const TABLE3_ROWS: [Table3Row; 4] = [
 /// The capacity experiment's measure: the highest 5-min discharge.
 const CAPACITY_METRIC: Col = Col::Metric(Metric::MAX_SUSTAINED_FLOW);
 
-/// The capacity experiment's values (Fig. 4, from the text).
+/// The capacity experiment's values (Fig. 4, from the text): the baseline capacity (stage
+/// 1) and the PD capacity (stage 2).
 pub const CAPACITY: [PaperValue; 3] = [
-    v!("capacity", ["stage" => "baseline", "penetration" => "0"], CAPACITY_METRIC, 2000.0, FIG4_TEXT),
-    v!("capacity", ["stage" => "pd", "penetration" => "0.25"], CAPACITY_METRIC, 1800.0, FIG4_TEXT),
-    v!("capacity", ["stage" => "pd", "penetration" => "0.5"], CAPACITY_METRIC, 2000.0, FIG4_TEXT),
+    v!("capacity", StrategyKind::NONE, ["stage" => "baseline", "penetration" => "0"], CAPACITY_METRIC, 2000.0, FIG4_TEXT),
+    v!("capacity", StrategyKind::PD, ["penetration" => "0.25"], CAPACITY_METRIC, 1800.0, FIG4_TEXT),
+    v!("capacity", StrategyKind::PD, ["penetration" => "0.5"], CAPACITY_METRIC, 2000.0, FIG4_TEXT),
 ];
 
 const TABLE4: &str = "Table 4 (SR-99)";
@@ -75,51 +77,79 @@ const TABLE4: &str = "Table 4 (SR-99)";
 /// One row of Table 4: penetration label, strategy, network discharge (veh/h), lane changes
 /// per vehicle, L̄ (NaN: not applicable), and for PD / Flow-Aware PD the changes to the
 /// baseline at the same penetration (%).
-type Table4Row = (&'static str, &'static str, f64, f64, f64, Option<[f64; 3]>);
+type Table4Row = (&'static str, StrategyKind, f64, f64, f64, Option<[f64; 3]>);
 
 const TABLE4_ROWS: [Table4Row; 14] = [
-    ("0", "none", 10675.8, 2.40, f64::NAN, None),
-    ("0.2", "none", 10687.3, 2.35, 1.87, None),
-    ("0.2", "pd", 10675.8, 3.40, 4.47, Some([-0.1, 45.0, 138.9])),
+    ("0", StrategyKind::NONE, 10675.8, 2.40, f64::NAN, None),
+    ("0.2", StrategyKind::NONE, 10687.3, 2.35, 1.87, None),
     (
         "0.2",
-        "flow-aware",
+        StrategyKind::PD,
+        10675.8,
+        3.40,
+        4.47,
+        Some([-0.1, 45.0, 138.9]),
+    ),
+    (
+        "0.2",
+        StrategyKind::FLOW_AWARE,
         10687.8,
         2.58,
         2.25,
         Some([0.0, 9.7, 20.0]),
     ),
-    ("0.4", "none", 11739.8, 2.40, 3.28, None),
-    ("0.4", "pd", 11402.0, 4.90, 6.81, Some([-2.9, 103.9, 107.2])),
+    ("0.4", StrategyKind::NONE, 11739.8, 2.40, 3.28, None),
     (
         "0.4",
-        "flow-aware",
+        StrategyKind::PD,
+        11402.0,
+        4.90,
+        6.81,
+        Some([-2.9, 103.9, 107.2]),
+    ),
+    (
+        "0.4",
+        StrategyKind::FLOW_AWARE,
         11733.8,
         2.93,
         3.94,
         Some([-0.1, 22.0, 20.0]),
     ),
-    ("0.6", "none", 12449.3, 2.15, 4.27, None),
-    ("0.6", "pd", 11780.3, 5.55, 7.12, Some([-5.4, 157.6, 66.6])),
+    ("0.6", StrategyKind::NONE, 12449.3, 2.15, 4.27, None),
     (
         "0.6",
-        "flow-aware",
+        StrategyKind::PD,
+        11780.3,
+        5.55,
+        7.12,
+        Some([-5.4, 157.6, 66.6]),
+    ),
+    (
+        "0.6",
+        StrategyKind::FLOW_AWARE,
         12446.8,
         3.06,
         4.98,
         Some([0.0, 42.2, 16.6]),
     ),
-    ("0.8", "none", 13347.0, 2.03, 5.97, None),
-    ("0.8", "pd", 12378.8, 5.24, 7.78, Some([-7.3, 157.9, 30.4])),
+    ("0.8", StrategyKind::NONE, 13347.0, 2.03, 5.97, None),
     (
         "0.8",
-        "flow-aware",
+        StrategyKind::PD,
+        12378.8,
+        5.24,
+        7.78,
+        Some([-7.3, 157.9, 30.4]),
+    ),
+    (
+        "0.8",
+        StrategyKind::FLOW_AWARE,
         13356.8,
         2.66,
         6.47,
         Some([0.1, 30.9, 8.5]),
     ),
-    ("1", "none", 13069.0, 1.82, 7.55, None),
+    ("1", StrategyKind::NONE, 13069.0, 1.82, 7.55, None),
 ];
 
 /// The paper's SR-99 demand scales by penetration (Table 4 and the Results text).
@@ -170,26 +200,35 @@ fn table4() -> Vec<PaperValue> {
 
 /// The cell selector of Table 4's row `i` (static, for [`PaperValue::cell`]).
 fn table4_cell(i: usize) -> CellSel {
-    const fn sel(p: &'static str, k: &'static str) -> [(&'static str, &'static str); 2] {
-        [("penetration", p), ("strategy", k)]
+    const fn sel(i: usize) -> CellSel {
+        CellSel::of(TABLE4_ROWS[i].1, &PENETRATIONS[i])
     }
-    const CELLS: [[(&str, &str); 2]; 14] = [
-        sel(TABLE4_ROWS[0].0, TABLE4_ROWS[0].1),
-        sel(TABLE4_ROWS[1].0, TABLE4_ROWS[1].1),
-        sel(TABLE4_ROWS[2].0, TABLE4_ROWS[2].1),
-        sel(TABLE4_ROWS[3].0, TABLE4_ROWS[3].1),
-        sel(TABLE4_ROWS[4].0, TABLE4_ROWS[4].1),
-        sel(TABLE4_ROWS[5].0, TABLE4_ROWS[5].1),
-        sel(TABLE4_ROWS[6].0, TABLE4_ROWS[6].1),
-        sel(TABLE4_ROWS[7].0, TABLE4_ROWS[7].1),
-        sel(TABLE4_ROWS[8].0, TABLE4_ROWS[8].1),
-        sel(TABLE4_ROWS[9].0, TABLE4_ROWS[9].1),
-        sel(TABLE4_ROWS[10].0, TABLE4_ROWS[10].1),
-        sel(TABLE4_ROWS[11].0, TABLE4_ROWS[11].1),
-        sel(TABLE4_ROWS[12].0, TABLE4_ROWS[12].1),
-        sel(TABLE4_ROWS[13].0, TABLE4_ROWS[13].1),
+    const PENETRATIONS: [[(&str, &str); 1]; 14] = {
+        let mut out = [[("penetration", "")]; 14];
+        let mut i = 0;
+        while i < 14 {
+            out[i] = [("penetration", TABLE4_ROWS[i].0)];
+            i += 1;
+        }
+        out
+    };
+    const CELLS: [CellSel; 14] = [
+        sel(0),
+        sel(1),
+        sel(2),
+        sel(3),
+        sel(4),
+        sel(5),
+        sel(6),
+        sel(7),
+        sel(8),
+        sel(9),
+        sel(10),
+        sel(11),
+        sel(12),
+        sel(13),
     ];
-    &CELLS[i]
+    CELLS[i]
 }
 
 /// Every value of the paper used here.
@@ -230,7 +269,7 @@ pub fn all() -> Vec<PaperValue> {
 pub fn lookup(experiment: &str, labels: &crate::Labels, metric: &str) -> Option<PaperValue> {
     all()
         .into_iter()
-        .find(|p| p.experiment == experiment && p.metric.name() == metric && labels.matches(p.cell))
+        .find(|p| p.experiment == experiment && p.metric.name() == metric && p.cell.matches(labels))
 }
 
 #[cfg(test)]
@@ -275,13 +314,15 @@ mod tests {
         assert!(lookup("sensitivity", &b1500, "discharge_change_pct").is_none());
         let cap = Labels::new()
             .with("stage", "pd")
-            .with("penetration", "0.25");
+            .with("penetration", "0.25")
+            .with("strategy", "pd");
         let v = lookup("capacity", &cap, "max_sustained_flow_vphpl").unwrap();
         assert_eq!(v.value, 1800.0);
         assert!(v.source.contains("Fig. 4"));
         let cap75 = Labels::new()
             .with("stage", "pd")
-            .with("penetration", "0.75");
+            .with("penetration", "0.75")
+            .with("strategy", "pd");
         assert!(lookup("capacity", &cap75, "max_sustained_flow_vphpl").is_none());
         // 3 Fig. 4 values + 4 demands × (4 metrics × 2 strategies + ΔQ) + Table 4: 14 rows ×
         // 3 (no L̄ at 0 %) + 8 × 3 changes.

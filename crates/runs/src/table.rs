@@ -21,6 +21,7 @@
 use crate::design::{Cell, Labels};
 use crate::metric::Metric;
 use crate::runner::Outcome;
+use platoonsim_scenario::StrategyKind;
 use std::borrow::Cow;
 
 /// A column of the run table: a summary [`Metric`], or a derived column by name (an
@@ -568,8 +569,8 @@ mod tests {
         .map(|(strategy, metric, value)| PaperValue {
             experiment: "sensitivity",
             cell: match strategy {
-                "none" => &[("strategy", "none")],
-                _ => &[("strategy", "pd")],
+                "none" => CellSel::of(StrategyKind::NONE, &[]),
+                _ => CellSel::of(StrategyKind::PD, &[]),
             },
             metric,
             value,
@@ -578,7 +579,7 @@ mod tests {
         let rows = summarize(&cells, &outs, |labels, metric| {
             paper
                 .iter()
-                .find(|p| p.metric.name() == metric && labels.matches(p.cell))
+                .find(|p| p.metric.name() == metric && p.cell.matches(labels))
                 .copied()
         });
         // Cell 0: two metrics; cell 1: three.
@@ -639,8 +640,34 @@ pub struct PaperValue {
     pub source: &'static str,
 }
 
-/// Labels a cell must have: (name, value) pairs.
-pub type CellSel = &'static [(&'static str, &'static str)];
+/// What a cell must be: its strategy (its `strategy` label), if that matters, and further
+/// labels, (name, value) pairs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CellSel {
+    pub strategy: Option<StrategyKind>,
+    pub labels: &'static [(&'static str, &'static str)],
+}
+
+impl CellSel {
+    /// A cell of this strategy with these labels.
+    pub const fn of(
+        strategy: StrategyKind,
+        labels: &'static [(&'static str, &'static str)],
+    ) -> CellSel {
+        CellSel {
+            strategy: Some(strategy),
+            labels,
+        }
+    }
+
+    /// Whether a cell's labels are selected.
+    pub fn matches(&self, labels: &Labels) -> bool {
+        labels.matches(self.labels)
+            && self
+                .strategy
+                .is_none_or(|k| labels.get("strategy") == Some(k.as_str()))
+    }
+}
 
 /// Human-readable metric names.
 pub fn metric_label(metric: &str) -> &str {

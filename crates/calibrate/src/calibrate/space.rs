@@ -53,6 +53,7 @@ impl Space {
             compare: None,
             metrics: Vec::new(),
             labels: Vec::new(),
+            skip: Vec::new(),
             text: p.text.clone(),
         };
         let cells = crate::sweep::plan::cells(&spec)?;

@@ -12,10 +12,7 @@
 //! (`platoon_length_ratio`). The braking measures per 100 veh-km (spec 9.4) show what each
 //! variant does to safety.
 
-use super::{
-    cell, checks_md, find, point, run_cells, Check, Done, Experiment, Part, Report, Results,
-    Settings,
-};
+use super::{checks_md, find, run_cells, Check, Done, Experiment, Part, Report, Results, Settings};
 use crate::design::num;
 use crate::metric::Part as Share;
 use crate::runner::{Outcome, Runner};
@@ -32,39 +29,15 @@ pub const PENETRATION: f64 = 0.5;
 /// The baseline first: PD's paired metrics are against it.
 pub const STRATEGIES: [StrategyKind; 2] = [StrategyKind::NONE, StrategyKind::PD];
 
-/// The driver models: (label, scenario overrides).
-pub const VARIANTS: [(&str, &[&str]); 3] = [
-    ("published", &["lane_change.gap_rule=published"]),
-    ("safe", &["lane_change.gap_rule=safe"]),
-    (
-        "cooperative",
-        &[
-            "lane_change.gap_rule=safe",
-            "cav.cooperative_lane_change=true",
-        ],
-    ),
-];
+/// The driver models, as the sweep file's `variant` bundle names them.
+pub const VARIANTS: [&str; 3] = ["published", "safe", "cooperative"];
 
 /// Severe brakings per 100 veh-km: the bound for a credible model.
 pub const SEVERE_BOUND_PER_100VKM: f64 = 0.05;
 
-/// The number of cells.
-pub const CELLS: usize = DEMANDS.len() * VARIANTS.len() * STRATEGIES.len();
-
-/// The cells: demand × variant × strategy, the baseline of each (demand, variant) first.
-fn cells(s: &Settings) -> Result<Vec<Cell>, Error> {
-    let mut cells = Vec::new();
-    for &d in &DEMANDS {
-        for (variant, set) in VARIANTS {
-            for k in STRATEGIES {
-                let mut p = point(s, PENETRATION, d, k);
-                p.set = set.iter().map(|x| x.to_string()).collect();
-                cells.push(cell(&[("variant", variant.to_string())], p)?);
-            }
-        }
-    }
-    Ok(cells)
-}
+/// The grid: `sweeps/behaviour.toml` (demand × variant × strategy, the baseline of each
+/// (demand, variant) first).
+pub const SWEEP: &str = include_str!("../../../../sweeps/behaviour.toml");
 
 pub(super) const EXPERIMENT: Experiment = Experiment {
     name: "behaviour",
@@ -76,7 +49,7 @@ pub(super) const EXPERIMENT: Experiment = Experiment {
     own_period: false,
     safety_group: Some(&["demand_vphpl", "variant"]),
     reuse_from: &[],
-    total_runs: |s| s.seeds as usize * CELLS,
+    total_runs: |s| s.seeds as usize * super::grid::cell_count(EXPERIMENT.name, SWEEP),
     run,
     report,
     quick: super::unchanged,
@@ -92,7 +65,7 @@ fn report(r: &Results<'_>) -> Result<Report, Error> {
 }
 
 pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {
-    let cells = cells(s)?;
+    let cells = super::grid::cells(EXPERIMENT.name, SWEEP, s)?;
     let mut outcomes = run_cells(runner, &cells, seeds, 0)?;
     let n = STRATEGIES.len();
     for b in (0..cells.len()).step_by(n) {
@@ -200,7 +173,7 @@ pub(super) fn markdown(
     let mut trs = Vec::new();
     for &d in &DEMANDS {
         let dem = num(d);
-        for (variant, _) in VARIANTS {
+        for variant in VARIANTS {
             let mut r = vec![dem.clone(), variant.to_string()];
             for (_, metric, strategy) in COLUMNS {
                 let dec = decimals(&metric.name());
@@ -256,7 +229,7 @@ pub(super) fn markdown(
     });
     let dq_rules: Vec<String> = VARIANTS
         .iter()
-        .map(|(v, _)| format!("{v} {} %", signed(mean(2500.0, v, StrategyKind::PD, DQ), 2)))
+        .map(|v| format!("{v} {} %", signed(mean(2500.0, v, StrategyKind::PD, DQ), 2)))
         .collect();
     checks.push(Check {
         statement: format!(
@@ -278,8 +251,11 @@ mod tests {
 
     #[test]
     fn the_variants_differ_only_in_their_driver_model() {
-        let cells = cells(&Settings::default()).unwrap();
-        assert_eq!(cells.len(), CELLS);
+        let cells = super::super::grid::cells("behaviour", SWEEP, &Settings::default()).unwrap();
+        assert_eq!(
+            cells.len(),
+            DEMANDS.len() * VARIANTS.len() * STRATEGIES.len()
+        );
         for c in &cells {
             let (rule, coop) = (
                 c.config.lane_change.gap_rule,

@@ -170,7 +170,7 @@ pub fn candidates(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> Vec<Cand
                         &[
                             ("penetration", &pen),
                             ("demand_vphpl", &num(d)),
-                            ("strategy", "flow-aware"),
+                            ("strategy", StrategyKind::FLOW_AWARE.as_str()),
                             ("flow_threshold_vphpl", &qs),
                             ("speed_threshold_kmh", &vs),
                         ],
@@ -502,7 +502,7 @@ mod tests {
                         let labels = Labels::new()
                             .with("penetration", num(p))
                             .with("demand_vphpl", num(d))
-                            .with("strategy", "flow-aware")
+                            .with("strategy", StrategyKind::FLOW_AWARE.as_str())
                             .with("flow_threshold_vphpl", num(q))
                             .with("speed_threshold_kmh", num(v));
                         // Organizes at demands below q: gain 1 there; a loss of 2 % at

@@ -16,15 +16,16 @@
 //! stage 1, so the two measures can order a PD cell and a baseline differently.
 
 use super::{
-    cell, checks_md, find, point, run_cells, Check, Done, Experiment, Part, Report, Results,
-    Settings,
+    checks_md, find, grid, run_cells, Check, Done, Experiment, Part, Report, Results, Settings,
 };
 use crate::design::num;
 use crate::runner::{Outcome, Runner};
+use crate::sweep::spec::{Axis, Spec};
 use crate::table::{self, fixed, md_table, paper_comparison, pm, signed, SummaryRow};
 use crate::Metric;
 use crate::{Cell, Error};
 use platoonsim_scenario::StrategyKind;
+use toml::Value;
 
 pub const PENETRATIONS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
 const CAPACITY: Metric = Metric::MAX_SUSTAINED_FLOW;
@@ -42,7 +43,11 @@ pub(super) const EXPERIMENT: Experiment = Experiment {
     own_period: false,
     safety_group: Some(&["penetration"]),
     reuse_from: &[],
-    total_runs: |s| s.seeds as usize * (3 * PENETRATIONS.len() - 2),
+    // Stage 1, and stage 2's two strategies at every penetration but 0.
+    total_runs: |s| {
+        let n = grid::cell_count(EXPERIMENT.name, SWEEP);
+        s.seeds as usize * (3 * n).saturating_sub(2)
+    },
     run,
     report,
     quick: super::unchanged,
@@ -59,35 +64,95 @@ fn report(r: &Results<'_>) -> Result<Report, Error> {
     })
 }
 
-pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {
-    let mut stage1 = Vec::new();
-    for &p in &PENETRATIONS {
-        let mut pt = point(s, p, s.capacity_demand_vphpl, StrategyKind::NONE);
-        pt.warmup_s = FILL_S.min(s.duration_s);
-        stage1.push(cell(&[("stage", "baseline".into())], pt)?);
+/// Stage 1: `sweeps/capacity.toml` at the settings' demand and duration, measured from
+/// [`FILL_S`].
+pub const SWEEP: &str = include_str!("../../../../sweeps/capacity.toml");
+
+pub(super) fn stage1(s: &Settings) -> Result<Spec, Error> {
+    let mut spec = grid::spec(EXPERIMENT.name, SWEEP, s)?;
+    grid::fix(
+        &mut spec,
+        "demand.vph_per_lane",
+        grid::float(s.capacity_demand_vphpl),
+    );
+    grid::fix(
+        &mut spec,
+        "run.warmup_s",
+        grid::float(FILL_S.min(s.duration_s)),
+    );
+    Ok(spec)
+}
+
+/// Stage 2 from stage 1's spec: the PD lane and the dedicated lane (outer) at each
+/// penetration with CAVs and its capacity (a bundle), with the settings' warm-up.
+fn stage2(s: &Settings, points: Vec<(f64, f64)>) -> Result<Spec, Error> {
+    let mut spec = grid::spec(EXPERIMENT.name, SWEEP, s)?;
+    spec.set
+        .retain(|(k, _)| k != "demand.vph_per_lane" && k != "strategy.kind");
+    let kinds = [StrategyKind::PD, StrategyKind::DEDICATED];
+    spec.axes = vec![
+        Axis::plain(
+            "strategy.kind",
+            kinds.iter().map(|k| Value::from(k.as_str())).collect(),
+        ),
+        Axis::bundle(
+            "point",
+            points
+                .into_iter()
+                .map(|(p, demand)| {
+                    vec![
+                        ("run.penetration", grid::float(p)),
+                        ("demand.vph_per_lane", grid::float(demand)),
+                    ]
+                })
+                .collect(),
+        ),
+    ];
+    Ok(spec)
+}
+
+/// The cells of a stage, labelled by it first (`baseline`, or the strategy).
+fn staged(spec: &Spec, stage: Option<&str>) -> Result<Vec<Cell>, Error> {
+    let mut cells = grid::cells_of(spec)?;
+    for c in &mut cells {
+        let name = stage.or(c.labels.get("strategy")).unwrap_or("").to_string();
+        c.labels.0.insert(0, ("stage".into(), name));
     }
+    Ok(cells)
+}
+
+pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Done, Error> {
+    let stage1 = staged(&stage1(s)?, Some("baseline"))?;
     let mut outcomes = run_cells(runner, &stage1, seeds, 0)?;
 
-    let mut stage2 = Vec::new();
-    for (stage, kind) in [
-        ("pd", StrategyKind::PD),
-        ("dedicated", StrategyKind::DEDICATED),
-    ] {
-        for (i, &p) in PENETRATIONS.iter().enumerate().skip(1) {
-            let cap = table::stats(&outcomes, i, &CAPACITY).mean;
-            if !(cap.is_finite() && cap > 0.0) {
-                return Err(Error::Other(format!(
-                    "capacity: no baseline capacity at penetration {p} (stage 1 gave {cap})"
-                )));
-            }
-            let pt = point(s, p, cap.round(), kind);
-            stage2.push(cell(&[("stage", stage.into())], pt)?);
+    // PD does not apply without CAVs.
+    let mut points = Vec::new();
+    for (i, c) in stage1.iter().enumerate() {
+        let p = c.config.penetration;
+        if p <= 0.0 {
+            continue;
         }
+        let cap = table::stats(&outcomes, i, &CAPACITY).mean;
+        if !(cap.is_finite() && cap > 0.0) {
+            return Err(Error::Other(format!(
+                "capacity: no baseline capacity at penetration {p} (stage 1 gave {cap})"
+            )));
+        }
+        points.push((p, cap.round()));
     }
+    let stage2 = staged(&stage2(s, points)?, None)?;
     outcomes.extend(run_cells(runner, &stage2, seeds, stage1.len())?);
     let mut cells = stage1;
     cells.extend(stage2);
     Ok(Done::new(cells, outcomes))
+}
+
+/// The cell of a strategy (stage 1: none) at a penetration (as its label).
+pub(super) fn at(cells: &[Cell], k: StrategyKind, penetration: &str) -> Option<usize> {
+    find(
+        cells,
+        &[("strategy", k.as_str()), ("penetration", penetration)],
+    )
 }
 
 pub(super) fn markdown(
@@ -144,14 +209,14 @@ pub(super) fn markdown(
         rows.iter()
             .find(|r| r.cell == cell && r.metric == DISCHARGE.name())
     };
-    let base0 = find(cells, &[("stage", "baseline"), ("penetration", "0")]);
+    let base0 = at(cells, StrategyKind::NONE, "0");
     let cap0 = base0.and_then(row_of).map(|r| r.stats);
     let mean0 = base0.and_then(mean_of).map(|r| r.stats);
     for &p in &PENETRATIONS {
         let pen = num(p);
-        let b_cell = find(cells, &[("stage", "baseline"), ("penetration", &pen)]);
+        let b_cell = at(cells, StrategyKind::NONE, &pen);
         let b = b_cell.and_then(row_of);
-        let pd_cell = find(cells, &[("stage", "pd"), ("penetration", &pen)]);
+        let pd_cell = at(cells, StrategyKind::PD, &pen);
         let pd = pd_cell.and_then(row_of);
         let mean = |c: Option<usize>| {
             c.and_then(mean_of)
@@ -176,7 +241,7 @@ pub(super) fn markdown(
             }
             _ => String::new(),
         };
-        let dl_cell = find(cells, &[("stage", "dedicated"), ("penetration", &pen)]);
+        let dl_cell = at(cells, StrategyKind::DEDICATED, &pen);
         let dl = dl_cell.and_then(row_of);
         let dl_versus = match (b, dl) {
             (Some(b), Some(dl)) => format!(
@@ -219,7 +284,7 @@ pub(super) fn markdown(
             passed: all,
         });
     }
-    let pd25 = find(cells, &[("stage", "pd"), ("penetration", "0.25")])
+    let pd25 = at(cells, StrategyKind::PD, "0.25")
         .and_then(row_of)
         .map(|r| r.stats);
     if let (Some(pd25), Some(cap0)) = (pd25, cap0) {
@@ -232,7 +297,7 @@ pub(super) fn markdown(
             passed: pd25.mean < cap0.mean,
         });
     }
-    let pd25_mean = find(cells, &[("stage", "pd"), ("penetration", "0.25")])
+    let pd25_mean = at(cells, StrategyKind::PD, "0.25")
         .and_then(mean_of)
         .map(|r| r.stats);
     if let (Some(pd), Some(b)) = (pd25_mean, mean0) {
@@ -248,9 +313,9 @@ pub(super) fn markdown(
     }
     md.push_str("\n## Against the paper\n\n");
     md.push_str(&paper_comparison(rows, |r| {
-        let stage = match r.labels.get("stage") {
-            Some("pd") => "PD capacity",
-            Some("dedicated") => "dedicated-lane capacity",
+        let stage = match r.labels.get("strategy").and_then(|k| k.parse().ok()) {
+            Some(StrategyKind::PD) => "PD capacity",
+            Some(StrategyKind::DEDICATED) => "dedicated-lane capacity",
             _ => "baseline capacity",
         };
         format!(

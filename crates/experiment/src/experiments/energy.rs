@@ -7,14 +7,15 @@
 //! the CAVs, the humans and all. The paper's question: when does organization save energy for
 //! the CAVs while it costs the system more?
 
-use super::{find, point, run_cells, Check, Done, Experiment, Part, Report, Results, Settings};
-use crate::design::{self, num, Cell, Labels};
+use super::{find, grid, run_cells, Check, Done, Experiment, Part, Report, Results, Settings};
+use crate::design::{self, num, Cell};
 use crate::metric::{EnergyField, Metric};
 use crate::runner::{Outcome, Runner};
+use crate::sweep::spec::Spec;
 use crate::table::Col;
 use crate::table::{self, fixed, md_table, pm, signed, SummaryRow};
 use crate::Error;
-use platoonsim_scenario::{demand_scale_set, load_with, Overrides, StrategyKind};
+use platoonsim_scenario::StrategyKind;
 
 /// The homogeneous road's penetration (the paper's Table 3).
 pub const PENETRATION: f64 = 0.5;
@@ -25,8 +26,6 @@ pub const STRATEGIES: [StrategyKind; 4] = [
     StrategyKind::FLOW_AWARE,
     StrategyKind::DEDICATED,
 ];
-/// The override that turns the energy observer on.
-pub const ENERGY_ON: &str = "energy.enabled=true";
 
 /// Fuel per 100 km by group: (metric, paired change, group name).
 pub const FUEL: [(Metric, &str, &str); 3] = [
@@ -47,72 +46,44 @@ pub const FUEL: [(Metric, &str, &str); 3] = [
     ),
 ];
 
-/// The SR-99 penetrations of the settings strictly between 0 and 1.
-fn network_penetrations(s: &Settings) -> Vec<f64> {
-    s.network_penetrations
-        .iter()
-        .copied()
-        .filter(|&p| p > 0.0 && p < 1.0)
-        .collect()
+/// The grid on the homogeneous road: `sweeps/energy.toml`; on SR-99:
+/// `sweeps/energy-sr99.toml`.
+pub const SWEEP: &str = include_str!("../../../../sweeps/energy.toml");
+pub const SWEEP_SR99: &str = include_str!("../../../../sweeps/energy-sr99.toml");
+
+/// The settings with only their SR-99 penetrations strictly between 0 and 1.
+fn network_settings(s: &Settings) -> Settings {
+    let mut n = s.clone();
+    n.network_penetrations.retain(|&p| p > 0.0 && p < 1.0);
+    n
+}
+
+/// The homogeneous road's spec with the settings' demands.
+fn road_spec(s: &Settings) -> Result<Spec, Error> {
+    let mut spec = grid::spec("energy", SWEEP, s)?;
+    let demands = s.energy_demands.iter().map(|&d| grid::float(d)).collect();
+    grid::levels(&mut spec, "demand.vph_per_lane", demands)?;
+    Ok(spec)
 }
 
 pub(super) fn cell_count(s: &Settings) -> (usize, usize) {
+    let n = network_settings(s);
     (
-        s.energy_demands.len() * STRATEGIES.len(),
-        network_penetrations(s).len() * STRATEGIES.len(),
+        road_spec(s).map_or(0, |x| x.cell_count()),
+        super::sr99::spec("energy-sr99", SWEEP_SR99, &n, |_| 1.0).map_or(0, |x| x.cell_count()),
     )
 }
 
-/// A homogeneous-road cell with energy on.
-fn road_cell(s: &Settings, demand: f64, k: StrategyKind) -> Result<Cell, Error> {
-    let mut p = point(s, PENETRATION, demand, k);
-    p.set.push(ENERGY_ON.into());
-    Ok(Cell {
-        labels: Labels::new()
-            .with("road", "homogeneous")
-            .with("penetration", num(PENETRATION))
-            .with("demand", num(demand))
-            .with("strategy", k.as_str()),
-        config: design::homogeneous(&p)?,
-    })
-}
-
-/// An SR-99 cell with energy on, at the penetration's demand scale (as `sr99`).
-fn sr99_cell(s: &Settings, p: f64, k: StrategyKind, scale: f64) -> Result<Cell, Error> {
-    let o = Overrides {
-        penetration: Some(p),
-        seed: Some(1),
-        strategy: Some(k),
-        duration_s: s.network_duration_s,
-        set: vec![demand_scale_set(scale), ENERGY_ON.into()],
-        ..Overrides::default()
-    };
-    Ok(Cell {
-        labels: Labels::new()
-            .with("road", "sr99")
-            .with("penetration", num(p))
-            .with("demand", num(scale))
-            .with("strategy", k.as_str()),
-        config: load_with(super::sr99::SCENARIO, &o)?,
-    })
-}
-
-/// The cells: the homogeneous road by demand, then SR-99 by penetration; the strategies of
-/// a point together, the baseline first.
+/// The cells: the homogeneous road by demand, then SR-99 by penetration (at its demand scale,
+/// as `sr99`); the strategies of a point together, the baseline first. Also the number of
+/// the homogeneous road's.
 pub fn cells(s: &Settings) -> Result<(Vec<Cell>, usize), Error> {
-    let mut out = Vec::new();
-    for &d in &s.energy_demands {
-        for k in STRATEGIES {
-            out.push(road_cell(s, d, k)?);
-        }
-    }
+    let mut out = grid::cells_of(&road_spec(s)?)?;
     let road = out.len();
-    let scales = super::sr99::Scales::from_settings(s)?;
-    for p in network_penetrations(s) {
-        for k in STRATEGIES {
-            out.push(sr99_cell(s, p, k, scales.at(p))?);
-        }
-    }
+    let n = network_settings(s);
+    let scales = super::sr99::Scales::from_settings(&n)?;
+    let spec = super::sr99::spec("energy-sr99", SWEEP_SR99, &n, |p| scales.at(p))?;
+    out.extend(grid::cells_of(&spec)?);
     Ok((out, road))
 }
 
@@ -170,16 +141,7 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
     Ok(Done::new(cells, outcomes))
 }
 
-/// How the strategies are named in tables.
-fn strategy_name(k: &str) -> &'static str {
-    match k {
-        "none" => "baseline",
-        "pd" => "PD",
-        "flow-aware" => "Flow-Aware PD",
-        "dedicated" => "dedicated lane (ours)",
-        _ => "?",
-    }
-}
+use super::sr99::strategy_name;
 
 fn row(rows: &[SummaryRow], cell: usize, metric: Col) -> Option<&SummaryRow> {
     rows.iter()
@@ -215,19 +177,19 @@ fn sign(rows: &[SummaryRow], cell: usize, metric: Col) -> i8 {
 /// The points (road, penetration, demand) in cell order, with their baseline cell.
 fn points(cells: &[Cell]) -> Vec<usize> {
     (0..cells.len())
-        .filter(|&i| cells[i].labels.get("strategy") == Some("none"))
+        .filter(|&i| cells[i].labels.get("strategy") == Some(StrategyKind::NONE.as_str()))
         .collect()
 }
 
 /// Every (cell index, strategy index, strategy name) of the design, point by point in table
 /// order: the cells that follow a point's baseline and carry the strategy expected there.
-fn strategy_cells(cells: &[Cell]) -> Vec<(usize, usize, &'static str)> {
+fn strategy_cells(cells: &[Cell]) -> Vec<(usize, usize, StrategyKind)> {
     let mut out = Vec::new();
     for &b in &points(cells) {
         for (j, k) in STRATEGIES.iter().enumerate() {
             let i = b + j;
             if i < cells.len() && cells[i].labels.get("strategy") == Some(k.as_str()) {
-                out.push((i, j, k.as_str()));
+                out.push((i, j, *k));
             }
         }
     }
@@ -456,8 +418,8 @@ pub(super) fn figure_points(cells: &[Cell], road: &str) -> (Vec<f64>, Vec<usize>
 }
 
 /// Index of a cell by its labels (for tests).
-pub fn cell_of(cells: &[Cell], road: &str, strategy: &str) -> Option<usize> {
-    find(cells, &[("road", road), ("strategy", strategy)])
+pub fn cell_of(cells: &[Cell], road: &str, strategy: StrategyKind) -> Option<usize> {
+    find(cells, &[("road", road), ("strategy", strategy.as_str())])
 }
 
 /// `energy.png` / `.svg`: the paired fuel changes of the CAVs and of all vehicles against the
@@ -500,7 +462,7 @@ pub(super) fn figure(
                         .collect();
                     let style = if j == 1 { Style::Dashed } else { Style::Line };
                     series(
-                        &format!("{}, 95 % CI", strategy_name(k.as_str())),
+                        &format!("{}, 95 % CI", strategy_name(*k)),
                         &x,
                         curve(rows, &at, Col::Derived(metric)),
                         style,
@@ -562,7 +524,7 @@ mod tests {
         assert_eq!(c[8].labels.get("penetration"), Some("0.4"));
         assert_eq!(c[8].labels.get("demand"), Some("1.1"));
         assert_eq!(c[9].config.strategy.kind, StrategyKind::PD);
-        assert_eq!(cell_of(&c, "sr99", "flow-aware"), Some(10));
+        assert_eq!(cell_of(&c, "sr99", StrategyKind::FLOW_AWARE), Some(10));
         let (x, base) = figure_points(&c, "homogeneous");
         assert_eq!((x, base), (vec![1500.0, 2500.0], vec![0, 4]));
         let (x, base) = figure_points(&c, "sr99");

@@ -9,6 +9,7 @@ use crate::table::{Col, SummaryRow};
 use crate::Metric;
 use crate::{Cell, Error};
 use platoonsim_plot::{line_chart, panels, Chart, Series, Style};
+use platoonsim_scenario::StrategyKind;
 use std::path::Path;
 
 /// A series' mean, low and high over the given cells (NaN where a cell is missing).
@@ -82,13 +83,17 @@ pub(super) fn capacity(
     rows: &[SummaryRow],
 ) -> Result<Vec<Figure>, Error> {
     let x: Vec<f64> = capacity::PENETRATIONS.iter().map(|p| 100.0 * p).collect();
-    let pick = |stage: &str| -> Vec<Option<usize>> {
+    let pick = |k: StrategyKind| -> Vec<Option<usize>> {
         capacity::PENETRATIONS
             .iter()
-            .map(|&p| find(cells, &[("stage", stage), ("penetration", &num(p))]))
+            .map(|&p| capacity::at(cells, k, &num(p)))
             .collect()
     };
-    let (base, pd, dl) = (pick("baseline"), pick("pd"), pick("dedicated"));
+    let (base, pd, dl) = (
+        pick(StrategyKind::NONE),
+        pick(StrategyKind::PD),
+        pick(StrategyKind::DEDICATED),
+    );
     let m = Metric::MAX_SUSTAINED_FLOW;
     let mut s = vec![
         series(
@@ -128,13 +133,22 @@ pub(super) fn sensitivity(
     rows: &[SummaryRow],
 ) -> Result<Vec<Figure>, Error> {
     let x: Vec<f64> = sensitivity::DEMANDS.to_vec();
-    let pick = |strategy: &str| -> Vec<Option<usize>> {
+    let pick = |k: StrategyKind| -> Vec<Option<usize>> {
         sensitivity::DEMANDS
             .iter()
-            .map(|&d| find(cells, &[("demand_vphpl", &num(d)), ("strategy", strategy)]))
+            .map(|&d| {
+                find(
+                    cells,
+                    &[("demand_vphpl", &num(d)), ("strategy", k.as_str())],
+                )
+            })
             .collect()
     };
-    let (b, po, dl) = (pick("none"), pick("pd"), pick("dedicated"));
+    let (b, po, dl) = (
+        pick(StrategyKind::NONE),
+        pick(StrategyKind::PD),
+        pick(StrategyKind::DEDICATED),
+    );
     let panel = |metric: Metric, title: &str, y_label: &str| {
         let mut s = vec![
             series(

@@ -104,8 +104,8 @@ pub(super) fn markdown(
         num(s.warmup_s),
         s.seeds
     );
-    let get = |k: &str, m: Col| {
-        find(cells, &[("strategy", k)])
+    let get = |k: StrategyKind, m: Col| {
+        find(cells, &[("strategy", k.as_str())])
             .and_then(|c| rows.iter().find(|r| r.cell == c && r.metric == m.name()))
     };
     let header: Vec<String> = [
@@ -124,8 +124,7 @@ pub(super) fn markdown(
     .collect();
     let mut trs = Vec::new();
     for k in STRATEGIES {
-        let name = k.as_str();
-        let f = |m: Col, dec: usize| get(name, m).map_or("–".into(), |r| pm(&r.stats, dec));
+        let f = |m: Col, dec: usize| get(k, m).map_or("–".into(), |r| pm(&r.stats, dec));
         trs.push(vec![
             match k {
                 StrategyKind::NONE => "baseline".into(),
@@ -145,8 +144,14 @@ pub(super) fn markdown(
 
     let mut checks = Vec::new();
     if let (Some(dq), Some(gain)) = (
-        get("flow-aware", Col::Derived("discharge_change_pct")),
-        get("flow-aware", Col::Derived("platoon_length_gain")),
+        get(
+            StrategyKind::FLOW_AWARE,
+            Col::Derived("discharge_change_pct"),
+        ),
+        get(
+            StrategyKind::FLOW_AWARE,
+            Col::Derived("platoon_length_gain"),
+        ),
     ) {
         checks.push(Check {
             statement: format!(

@@ -9,13 +9,16 @@
 //! contours (paper Fig. 6) and the lane-by-lane CAV flow ratio and speed upstream of Florin
 //! Rd (Fig. 7); see `sr99_figures.rs`.
 
-use super::{checks_md, find, Check, Done, Experiment, Extra, Part, Report, Results, Settings};
+use super::{
+    checks_md, find, grid, Check, Done, Experiment, Extra, Part, Report, Results, Settings,
+};
 use crate::corridor::{self, Criterion};
 use crate::design::{self, num, Cell, Labels};
 use crate::detectors::Scope;
 use crate::metric::{Field, Metric};
 use crate::paper;
 use crate::runner::Runner;
+use crate::sweep::spec::{Axis, Spec};
 use crate::table::Col;
 use crate::table::{self, fixed, md_table, pm, signed, SummaryRow};
 use crate::Error;
@@ -63,7 +66,11 @@ pub(crate) struct Data {
     pub figure_seed: u64,
 }
 
-/// Strategies run at a penetration.
+/// The grid: `sweeps/sr99.toml`.
+pub const SWEEP: &str = include_str!("../../../../sweeps/sr99.toml");
+
+/// Strategies run at a penetration: the baseline alone without CAVs or with CAVs only (the
+/// sweep file's `[[skip]]`).
 pub fn strategies_at(p: f64) -> &'static [StrategyKind] {
     if p <= 0.0 || p >= 1.0 {
         &STRATEGIES[..1]
@@ -75,8 +82,7 @@ pub fn strategies_at(p: f64) -> &'static [StrategyKind] {
 /// The strategy of a cell, by its `strategy` label (`None` if it has none or names no
 /// registered strategy).
 pub fn strategy_of(cell: &Cell) -> Option<StrategyKind> {
-    let name = cell.labels.get("strategy")?;
-    StrategyKind::all().find(|k| k.as_str() == name)
+    cell.labels.get("strategy")?.parse().ok()
 }
 
 /// How the strategies are named in tables.
@@ -85,15 +91,52 @@ pub fn strategy_name(k: StrategyKind) -> &'static str {
         StrategyKind::NONE => "baseline",
         StrategyKind::PD => "PD",
         StrategyKind::FLOW_AWARE => "Flow-Aware PD",
+        StrategyKind::DEDICATED => "dedicated lane (ours)",
         _ => "?",
     }
 }
 
 pub(super) fn cell_count(s: &Settings) -> usize {
-    s.network_penetrations
-        .iter()
-        .map(|&p| strategies_at(p).len())
-        .sum()
+    spec(NAME, SWEEP, s, |_| 1.0).map_or(0, |x| x.cell_count())
+}
+
+/// A sweep file of SR-99 cells (`sweeps/sr99.toml`, `sweeps/energy-sr99.toml`) with the
+/// settings' penetrations, each at `scale(p)`, in place of its `penetration` bundle, and the
+/// settings' duration if given.
+pub(super) fn spec(
+    name: &str,
+    text: &str,
+    s: &Settings,
+    scale: impl Fn(f64) -> f64,
+) -> Result<Spec, Error> {
+    let mut spec = grid::spec(name, text, s)?;
+    if let Some(d) = s.network_duration_s {
+        grid::fix(&mut spec, "run.duration_s", grid::float(d));
+    }
+    let mut levels = Vec::new();
+    for &p in &s.network_penetrations {
+        if !(0.0..=1.0).contains(&p) {
+            return Err(Error::Other(format!(
+                "a CAV penetration must lie in [0, 1] (found {p})"
+            )));
+        }
+        levels.push(penetration_level(p, scale(p)));
+    }
+    grid::levels(&mut spec, "penetration", levels)?;
+    Ok(spec)
+}
+
+/// A level of the `penetration` bundle.
+pub(super) fn penetration_level(p: f64, scale: f64) -> toml::Value {
+    Axis::bundle(
+        "penetration",
+        vec![vec![
+            ("run.penetration", grid::float(p)),
+            ("network.demand_scale", grid::float(scale)),
+        ]],
+    )
+    .levels
+    .remove(0)
 }
 
 /// Where the demand scales come from.
@@ -189,21 +232,10 @@ pub fn cell(s: &Settings, p: f64, k: StrategyKind, scale: f64) -> Result<Cell, E
     })
 }
 
-/// The cells: per penetration, its strategies at its scale.
+/// The cells: `sweeps/sr99.toml` with the settings' penetrations, each at its scale.
 pub fn cells(s: &Settings) -> Result<Vec<Cell>, Error> {
     let scales = Scales::from_settings(s)?;
-    let mut out = Vec::new();
-    for &p in &s.network_penetrations {
-        if !(0.0..=1.0).contains(&p) {
-            return Err(Error::Other(format!(
-                "a CAV penetration must lie in [0, 1] (found {p})"
-            )));
-        }
-        for &k in strategies_at(p) {
-            out.push(cell(s, p, k, scales.at(p))?);
-        }
-    }
-    Ok(out)
+    grid::cells_of(&spec(NAME, SWEEP, s, |p| scales.at(p))?)
 }
 
 /// The corridor's base demand multiplier: the engine's total scale over the cell's.
@@ -217,8 +249,10 @@ fn is_figure_cell(c: &Cell) -> bool {
     c.labels.get("penetration") == Some(num(FIGURE_PENETRATION).as_str())
 }
 
+const NAME: &str = "sr99";
+
 pub(super) const EXPERIMENT: Experiment = Experiment {
-    name: "sr99",
+    name: NAME,
     title: "SR-99 corridor: baseline, PD lane and Flow-Aware PD lane (paper Table 4, Figs. 6-8)",
     help: "Table 4 and Figs. 6-8 on the SR-99 corridor (4 h from 05:00): baseline, PD and \
            Flow-Aware PD at 20-80 % CAV, the baseline at 0 and 100 %, each penetration at its \

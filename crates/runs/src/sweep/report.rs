@@ -161,10 +161,22 @@ pub fn figures(
         return Ok(Vec::new());
     };
     let n_first = first.levels.len();
-    // Cells are first-axis-major: cell = level * group_count + group.
-    let groups = cells.len() / n_first;
+    // A group: the levels of the other axes; the cell of (first-axis level, group), if it was
+    // not skipped.
+    let combos = spec.combinations();
+    let mut tails: Vec<&[usize]> = Vec::new();
+    for c in &combos {
+        if !tails.contains(&&c[1..]) {
+            tails.push(&c[1..]);
+        }
+    }
+    let groups = tails.len();
+    let cell_at = |l: usize, g: usize| combos.iter().position(|c| c[0] == l && &c[1..] == tails[g]);
     let group_name = |g: usize| -> String {
-        cells[g].labels.0[1..]
+        let Some(c) = (0..n_first).find_map(|l| cell_at(l, g)) else {
+            return String::new();
+        };
+        cells[c].labels.0[1..]
             .iter()
             .map(|(k, v)| format!("{k} = {v}"))
             .collect::<Vec<_>>()
@@ -176,7 +188,7 @@ pub fn figures(
         let m = &*m.name();
         let stem = format!("fig_{m}");
         let title = format!("{} against {}", metric_label(m), first.key);
-        let get = |l: usize, g: usize| row(rows, l * groups + g, m).map(|r| r.stats);
+        let get = |l: usize, g: usize| cell_at(l, g).and_then(|c| row(rows, c, m)).map(|r| r.stats);
         match &xs {
             Some(x) => {
                 let series = (0..groups)

@@ -1,8 +1,9 @@
 //! The sweep file (`SPEC.toml`): which scenario, which seeds, fixed overrides, the axes whose
-//! cartesian product makes the cells, and an optional reference level for paired
-//! differences. Keys under `[set]`, `[axes]` and `[compare]` are the dotted keys of
-//! `platoonsim run --set`; every value is checked by the scenario crate exactly as a `--set`
-//! of it would be (`platoonsim_experiment::sweep::plan`). Every error here names the spec key.
+//! cartesian product makes the cells (less the `[[skip]]`ped ones), and an optional reference
+//! level for paired differences. Keys under `[set]`, `[axes]` and `[compare]` are the dotted
+//! keys of `platoonsim run --set`; every value is checked by the scenario crate exactly as a
+//! `--set` of it would be (`platoonsim_runs::sweep::plan`). Every error here names the spec
+//! key. docs/sweeps.md describes the format.
 //!
 //! ```toml
 //! name = "my-study"                    # optional: the output directory's name (default: file stem)
@@ -13,11 +14,21 @@
 //! "run.duration_s" = 3600
 //! [axes]                               # the cartesian product, first axis outermost
 //! "run.penetration" = [0.2, 0.4]
+//! driver = [                           # a bundle: keys that move together, a level each
+//!     { name = "published", "lane_change.gap_rule" = "published" },
+//!     { name = "safe", "lane_change.gap_rule" = "safe" },
+//! ]
 //! "strategy.kind" = ["none", "pd", "flow-aware"]
+//! [[skip]]                             # cells left out: every key at one of its values
+//! "run.penetration" = 0.2
+//! "strategy.kind" = "flow-aware"
 //! [compare]                            # paired differences against a reference level
 //! "strategy.kind" = "none"
 //! ```
 
+mod axes;
+
+pub use axes::{Axis, Skip};
 use std::path::{Path, PathBuf};
 use toml::{Table, Value};
 
@@ -37,13 +48,6 @@ pub const MAX_RUNS: usize = 100_000;
 
 /// The largest sweep file read (as for scenario files).
 pub const MAX_FILE_BYTES: u64 = 1 << 20;
-
-/// One axis: a dotted scenario key and its levels, in the file's order.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Axis {
-    pub key: String,
-    pub levels: Vec<Value>,
-}
 
 /// A validated sweep file (the scenario keys are checked later, when the cells are built).
 #[derive(Clone, Debug, PartialEq)]
@@ -69,9 +73,14 @@ pub struct Spec {
     /// `[axes]`) in file order; the experiments read it, `platoonsim sweep` labels cells by
     /// their axis keys.
     pub labels: Vec<(String, String)>,
+    /// `[[skip]]`: the cells left out of the product.
+    pub skip: Vec<Skip>,
     /// The file's text, kept in the provenance.
     pub text: String,
 }
+
+/// The `[labels]` key that names the cell's scenario.
+pub const SCENARIO: &str = "scenario";
 
 /// The text of a spec file of at most `max` bytes (`what` names it in the error), with its
 /// origin for messages and its stem (`default_stem` if it has none).
@@ -131,7 +140,7 @@ impl Spec {
         let doc: Table = text
             .parse()
             .map_err(|e: toml::de::Error| err("(syntax)", e.to_string().trim_end().to_string()))?;
-        const KEYS: [&str; 9] = [
+        const KEYS: [&str; 10] = [
             "name",
             "description",
             "scenario",
@@ -141,6 +150,7 @@ impl Spec {
             "axes",
             "compare",
             "labels",
+            "skip",
         ];
         for k in doc.keys() {
             if !KEYS.contains(&k.as_str()) {
@@ -206,45 +216,7 @@ impl Spec {
             }
             Some(v) => return Err(err("set", format!("{v} is not a table of KEY = VALUE"))),
         };
-        let axes = match doc.get("axes") {
-            None => Vec::new(),
-            Some(Value::Table(t)) => {
-                let mut out = Vec::new();
-                for (k, v) in t {
-                    let key = format!("axes.\"{k}\"");
-                    check_key(k).map_err(|m| err(&key, m))?;
-                    if set.iter().any(|(s, _)| s == k) {
-                        return Err(err(
-                            &key,
-                            "is also under [set]; a key is either fixed or an axis".into(),
-                        ));
-                    }
-                    let levels = match v {
-                        Value::Array(a) if !a.is_empty() => a.clone(),
-                        _ => {
-                            return Err(err(&key, format!("{v} is not a non-empty list of levels")))
-                        }
-                    };
-                    for (i, l) in levels.iter().enumerate() {
-                        if levels[..i].iter().any(|m| label(m) == label(l)) {
-                            return Err(err(&key, format!("the level {l} is listed twice")));
-                        }
-                        if matches!(l, Value::Table(_) | Value::Array(_)) {
-                            return Err(err(
-                                &key,
-                                format!("the level {l} is not a number, string or boolean"),
-                            ));
-                        }
-                    }
-                    out.push(Axis {
-                        key: k.clone(),
-                        levels,
-                    });
-                }
-                out
-            }
-            Some(v) => return Err(err("axes", format!("{v} is not a table of KEY = [LEVELS]"))),
-        };
+        let axes = axes::parse(&doc, &set, &err)?;
         let cells = axes
             .iter()
             .try_fold(1usize, |n, a| n.checked_mul(a.levels.len()));
@@ -256,6 +228,10 @@ impl Spec {
                     format!("the sweep would have more than {MAX_RUNS} runs (cells x seeds)"),
                 ))
             }
+        }
+        let skip = axes::parse_skip(&doc, &axes, &err)?;
+        if axes::combinations(&axes, &skip).is_empty() {
+            return Err(err("skip", "the rules leave out every cell".into()));
         }
         let compare = match doc.get("compare") {
             None => None,
@@ -317,15 +293,21 @@ impl Spec {
                 for (name, v) in t {
                     let key = match v {
                         Value::String(k)
-                            if set.iter().any(|(s, _)| s == k)
-                                || axes.iter().any(|a| &a.key == k) =>
+                            if k == SCENARIO
+                                || set.iter().any(|(s, _)| s == k)
+                                || axes
+                                    .iter()
+                                    .any(|a| &a.key == k || a.keys().contains(&k.as_str())) =>
                         {
                             k.clone()
                         }
                         _ => {
                             return Err(err(
                                 &format!("labels.{name}"),
-                                format!("{v}: expected a key of [set] or [axes], as a string"),
+                                format!(
+                                    "{v}: expected, as a string, \"scenario\", a key of [set] or \
+                                     one that an axis sets, or an axis' name"
+                                ),
                             ))
                         }
                     };
@@ -357,13 +339,47 @@ impl Spec {
             compare,
             metrics,
             labels,
+            skip,
             text: text.to_string(),
         })
     }
 
+    /// The level indices of every cell, first axis outermost (last fastest), without the
+    /// skipped ones.
+    pub fn combinations(&self) -> Vec<Vec<usize>> {
+        axes::combinations(&self.axes, &self.skip)
+    }
+
     /// The number of cells (1 without axes).
     pub fn cell_count(&self) -> usize {
-        self.axes.iter().map(|a| a.levels.len()).product()
+        self.combinations().len()
+    }
+
+    /// The scenario keys and values of a cell: the `[set]` entries, then each axis' in axis
+    /// order.
+    pub fn settings(&self, combo: &[usize]) -> Vec<(String, Value)> {
+        let mut out = self.set.clone();
+        for (a, &l) in self.axes.iter().zip(combo) {
+            out.extend(
+                a.members(l)
+                    .into_iter()
+                    .map(|(k, v)| (k.to_string(), v.clone())),
+            );
+        }
+        out
+    }
+
+    /// The text of a `[labels]` key in a cell: the scenario's name for `"scenario"`, a
+    /// `[set]` value, or what an axis gives the key (a level, a bundle level's label or one
+    /// of its values).
+    pub fn label_of(&self, combo: &[usize], key: &str) -> Option<String> {
+        if key == SCENARIO {
+            return Some(self.scenario.clone());
+        }
+        if let Some((_, v)) = self.set.iter().find(|(k, _)| k == key) {
+            return Some(label(v));
+        }
+        axes::value_label(&self.axes, combo, key)
     }
 }
 
@@ -429,9 +445,14 @@ fn seeds(v: Option<&Value>) -> Result<Vec<u64>, String> {
 
 /// A level as it appears in the tables: strings bare, numbers in their shortest form
 /// (`0.5`, `2500`), booleans as `true`/`false`.
+/// A bundle's level is its `name`, or its values joined by ", ".
 pub fn label(v: &Value) -> String {
     match v {
         Value::String(s) => s.clone(),
+        Value::Table(t) => match t.get(axes::NAME) {
+            Some(n) => label(n),
+            None => t.values().map(label).collect::<Vec<_>>().join(", "),
+        },
         Value::Float(f) => format!("{f}"),
         Value::Integer(i) => i.to_string(),
         other => other.to_string(),
@@ -454,105 +475,4 @@ pub fn number(v: &Value) -> Option<f64> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn parse(text: &str) -> Result<Spec, SpecError> {
-        Spec::from_toml(text, "s.toml", "s")
-    }
-
-    #[test]
-    fn a_full_spec() {
-        let s = parse(
-            r#"
-            scenario = "homogeneous"
-            seeds = 3
-            [set]
-            "run.duration_s" = 600
-            [axes]
-            "run.penetration" = [0.2, 0.4]
-            "strategy.kind" = ["none", "pd", "flow-aware"]
-            [compare]
-            "strategy.kind" = "none"
-            "#,
-        )
-        .unwrap();
-        assert_eq!(s.name, "s");
-        assert_eq!(s.seeds, [1, 2, 3]);
-        assert_eq!(s.set, [("run.duration_s".to_string(), Value::Integer(600))]);
-        assert_eq!(s.axes.len(), 2);
-        assert_eq!(s.cell_count(), 6);
-        assert_eq!(s.compare, Some((1, 0)));
-        assert_eq!(label(&s.axes[0].levels[1]), "0.4");
-        assert_eq!(
-            set_arg("strategy.kind", &s.axes[1].levels[2]),
-            "strategy.kind=\"flow-aware\""
-        );
-    }
-
-    #[test]
-    fn labels_name_keys_of_set_or_axes_in_file_order() {
-        let head = "scenario = \"homogeneous\"\nseeds = 1\n[set]\n\"run.penetration\" = 0.5\n\
-                    [axes]\n\"strategy.kind\" = [\"none\", \"pd\"]\n[labels]\n";
-        let s = parse(&format!(
-            "{head}strategy = \"strategy.kind\"\npenetration = \"run.penetration\"\n"
-        ))
-        .unwrap();
-        assert_eq!(
-            s.labels,
-            [
-                ("strategy".to_string(), "strategy.kind".to_string()),
-                ("penetration".to_string(), "run.penetration".to_string())
-            ]
-        );
-        for (bad, key) in [
-            ("demand = \"demand.vph_per_lane\"", "labels.demand"),
-            ("demand = 2", "labels.demand"),
-            ("\"a b\" = \"strategy.kind\"", "labels.a b"),
-        ] {
-            let e = parse(&format!("{head}{bad}\n")).unwrap_err();
-            assert_eq!(e.key, key, "{bad}: {e}");
-        }
-        assert_eq!(parse(head).unwrap().labels, []);
-    }
-
-    #[test]
-    fn errors_name_the_spec_key() {
-        let cases = [
-            ("seeds = 2", "scenario"),
-            ("scenario = \"x\"\nseeds = 0", "seeds"),
-            ("scenario = \"x\"\nseeds = [1, 1]", "seeds"),
-            ("scenario = \"x\"\nseeds = 1\nbogus = 2", "bogus"),
-            (
-                "scenario = \"x\"\nseeds = 1\n[axes]\n\"run.penetration\" = []",
-                "axes.\"run.penetration\"",
-            ),
-            (
-                "scenario = \"x\"\nseeds = 1\n[axes]\n\"a b\" = [1]",
-                "axes.\"a b\"",
-            ),
-            (
-                "scenario = \"x\"\nseeds = 1\n[set]\n\"run.seed\" = 1",
-                "set.\"run.seed\"",
-            ),
-            (
-                "scenario = \"x\"\nseeds = 1\n[axes]\n\"a\" = [1, 1.0]",
-                "axes.\"a\"",
-            ),
-            (
-                "scenario = \"x\"\nseeds = 1\n[axes]\n\"a\" = [1]\n[compare]\n\"b\" = 1",
-                "compare.\"b\"",
-            ),
-            (
-                "scenario = \"x\"\nseeds = 1\n[axes]\n\"a\" = [1]\n[compare]\n\"a\" = 2",
-                "compare.\"a\"",
-            ),
-            ("scenario = \"x\"\nseeds = 1\nname = \"../up\"", "name"),
-        ];
-        for (text, key) in cases {
-            let e = parse(text).unwrap_err();
-            assert_eq!(e.key, key, "{text}: {e}");
-            assert!(e.to_string().contains(key), "{e}");
-        }
-    }
-}
+mod tests;
