@@ -69,14 +69,20 @@ pub(crate) struct Data {
 /// The grid: `sweeps/sr99.toml`.
 pub const SWEEP: &str = include_str!("../../../../sweeps/sr99.toml");
 
-/// Strategies run at a penetration: the baseline alone without CAVs or with CAVs only (the
-/// sweep file's `[[skip]]`).
-pub fn strategies_at(p: f64) -> &'static [StrategyKind] {
-    if p <= 0.0 || p >= 1.0 {
-        &STRATEGIES[..1]
-    } else {
-        &STRATEGIES
-    }
+/// Strategies planned at a penetration, in the order of [`STRATEGIES`]: what the cells hold,
+/// so the sweep file's `[[skip]]` (the baseline alone without CAVs or with CAVs only) is the
+/// one place that says which are run.
+pub fn strategies_at(cells: &[Cell], penetration: &str) -> Vec<StrategyKind> {
+    STRATEGIES
+        .into_iter()
+        .filter(|k| {
+            find(
+                cells,
+                &[("penetration", penetration), ("strategy", k.as_str())],
+            )
+            .is_some()
+        })
+        .collect()
 }
 
 /// The strategy of a cell, by its `strategy` label (`None` if it has none or names no
@@ -420,7 +426,7 @@ pub(super) fn markdown(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> (St
     let pens: Vec<f64> = s.network_penetrations.clone();
     for &p in &pens {
         let ps = num(p);
-        for &k in strategies_at(p) {
+        for k in strategies_at(cells, &ps) {
             let ks = k.as_str();
             let Some(c) = find(cells, &[("penetration", &ps), ("strategy", ks)]) else {
                 continue;
@@ -483,7 +489,7 @@ pub(super) fn markdown(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> (St
     let mid: Vec<f64> = pens
         .iter()
         .copied()
-        .filter(|&p| strategies_at(p).len() > 1)
+        .filter(|&p| strategies_at(cells, &num(p)).len() > 1)
         .collect();
     for &p in &mid {
         let ps = num(p);
@@ -622,7 +628,7 @@ fn plain(cells: &[Cell], rows: &[SummaryRow], pens: &[f64]) -> String {
                 versus(r(StrategyKind::NONE, Metric::AVG_PLATOON_LENGTH.into()), 2)
             ));
         }
-        if strategies_at(p).len() > 1 {
+        if strategies_at(cells, &ps).len() > 1 {
             line.push_str(&format!(
                 ". Against the baseline, PD changes the discharge by {} % (paper {} %) and \
                  Flow-Aware PD by {} % (paper {} %); L̄ by {} % and {} % (paper {} % and {} %)",

@@ -39,6 +39,11 @@ fn cells_follow_the_paper_design() {
         assert_eq!(cell.config.duration_s, 600.0);
     }
     assert_eq!(c[5].config.strategy.kind, StrategyKind::PD);
+    // The tables read which strategies run from the planned cells (the file's `[[skip]]`).
+    assert_eq!(strategies_at(&c, "0"), [StrategyKind::NONE]);
+    assert_eq!(strategies_at(&c, "1"), [StrategyKind::NONE]);
+    assert_eq!(strategies_at(&c, "0.4"), STRATEGIES);
+    assert!(strategies_at(&c, "0.5").is_empty());
 
     // One scale for all, or a table file.
     let fixed = Settings {
