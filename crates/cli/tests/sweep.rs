@@ -1,7 +1,8 @@
 //! `platoonsim sweep` on a corridor of the tests' own (`tests/sweep/ramps.toml`: 3 km, one
 //! on-ramp, one off-ramp, 10 min): issue 21's acceptance sweep (2 penetrations x 3 strategies
 //! x 3 seeds), resume after a kill, shards as separate processes (by flag and by Slurm's
-//! array index) equal to the unsharded sweep byte for byte, and errors that name the spec key.
+//! array index) equal to the unsharded sweep byte for byte, errors that name the spec key, and
+//! a bundle axis with `[[skip]]`ped cells (`tests/sweep/bundle.toml`) through runs, tables and bars.
 
 mod common;
 
@@ -182,6 +183,85 @@ fn sweep_of_a_user_corridor_with_paired_differences() {
     );
     let quiet = sweep(&["--quiet", &spec(), "--out", s(&out)]);
     assert_eq!(stderr(&quiet), "");
+}
+
+/// Bars drawn in an SVG bar chart (their outlines: a black stroke, no fill, non-zero height),
+/// counted in each third of the picture's width: the three levels of the first axis.
+fn bars_per_third(svg: &str) -> [usize; 3] {
+    let attr = |r: &str, name: &str| -> f64 {
+        let at = r.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+        r[at..].split('"').next().unwrap().parse().unwrap()
+    };
+    let rects: Vec<&str> = svg.split("<rect").skip(1).collect();
+    let width = attr(rects[0], "width"); // the background
+    let mut n = [0; 3];
+    for r in &rects[1..] {
+        if r.contains(r##"fill="none" stroke="#000000""##) && attr(r, "height") > 0.0 {
+            n[((3.0 * attr(r, "x") / width) as usize).min(2)] += 1;
+        }
+    }
+    n
+}
+
+#[test]
+fn a_bundle_axis_with_skipped_cells_runs_tabulates_and_plots_only_the_kept_cells() {
+    let dir = scratch("bundle");
+    let out = dir.join("out");
+    let spec = spec_dir().join("bundle.toml");
+    let o = sweep(&["-q", s(&spec), "--out", s(&out)]);
+    assert!(stdout(&o).contains("5 runs (5 computed"), "{}", stdout(&o));
+
+    // A bundle is one column, its level named by its values; skipped cells have no run.
+    let runs = read_csv(&out.join("runs.csv"));
+    let got: Vec<(&str, &str)> = runs
+        .iter()
+        .map(|r| (r["point"].as_str(), r["strategy.kind"].as_str()))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            ("0, published", "none"),
+            ("0.4, safe", "none"),
+            ("0.4, safe", "pd"),
+            ("0.4, safe", "flow-aware"),
+            ("1, safe", "none"),
+        ]
+    );
+    assert!(runs.iter().all(|r| r["collisions"] == "0"));
+
+    // Each level sets both of its keys in the cell's scenario.
+    let prov: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("run.json")).unwrap()).unwrap();
+    let set: Vec<(f64, &str)> = prov["cells"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| {
+            let sc = &c["scenario"];
+            (
+                sc["penetration"].as_f64().unwrap(),
+                sc["lane_change"]["gap_rule"].as_str().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        set,
+        [
+            (0.0, "published"),
+            (0.4, "safe"),
+            (0.4, "safe"),
+            (0.4, "safe"),
+            (1.0, "safe")
+        ]
+    );
+    // The same in the report's tables.
+    let md = std::fs::read_to_string(out.join("summary.md")).unwrap();
+    assert!(md.contains("| 0.4, safe | flow-aware | 1 |"), "{md}");
+    assert!(!md.contains("| 0, published | pd |"), "{md}");
+    // Bars against the bundle's levels, grouped by strategy: one per kept cell with CAVs
+    // (L̄ has no value without them), none for a skipped cell.
+    let svg = std::fs::read_to_string(out.join("fig_avg_platoon_length.svg")).unwrap();
+    assert_eq!(bars_per_third(&svg), [0, 3, 1]);
 }
 
 fn unsharded(dir: &Path) -> (Vec<u8>, Vec<u8>) {
