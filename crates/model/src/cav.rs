@@ -75,6 +75,8 @@
 //! | – | `yield_while_automated` | true | – | spec 6.5 \[D\]: automation answers mandatory yield requests |
 //! | – | `yield_to_organizers` | false | – | \[D\]: … and requests of CAVs joining the PD lane |
 //! | – | `organize_while_automated` | true | – | \[D\]: automation stays on while waiting for a PD-lane gap |
+//! | – | `organize_hold` | narrow | – | \[D\] 6.20: when the waiting automation holds back for the target-lane leader (`off`, `always`, `leader-ahead`, `narrow`) |
+//! | – | `organize_hold_timeout_s` | 10 | s | \[D\] 6.20: longest hold below the creep speed (t_T of spec 9.2) |
 //! | – | `cacc_closing_only_approaching` | true | – | \[D\] 6.21: CACC gap closing only while Δv < 0 |
 //! | – | `organize_regardless_of_speed` | true | – | \[S\] + \[D\] 6.22: no a_ant ≥ 0 test for a PD-lane move |
 //! | – | `cooperative_lane_change` | false | – | \[D\] spec 9.2: cooperative lane changes under automation (`cooperative.rs`) |
@@ -144,6 +146,14 @@ pub struct CavParams {
     /// which under PD turns every CAV outside the PD lane into a manual vehicle
     /// (docs/model-choices.md 6.20).
     pub organize_while_automated: bool,
+    /// With `organize_while_automated`: when the automation holds back for the target-lane
+    /// leader while its driver waits for the gap (`driver::held_back`; docs/model-choices.md
+    /// 6.20). Default `narrow` \[D\].
+    pub organize_hold: OrganizeHold,
+    /// With `organize_hold = "narrow"`: the longest wait (s) below the creep speed during
+    /// which the hold applies; after it the automation drives on until the wait ends, so no
+    /// mutual wait can last. Default 10 s \[D\] (the request lifetime t_T of spec 9.2).
+    pub organize_hold_timeout_s: f64,
     /// The CACC gap-closing sub-mode (spec 3.4, Xiao 2017: weak gains for a smooth approach)
     /// applies only while the follower closes in on its predecessor (Δv < 0). With the gap
     /// above its target and the predecessor not slower (Δv ≥ 0), e.g. a string leaving a
@@ -221,6 +231,8 @@ impl Default for CavParams {
             yield_while_automated: true,
             yield_to_organizers: false,
             organize_while_automated: true,
+            organize_hold: OrganizeHold::Narrow,
+            organize_hold_timeout_s: 10.0,
             cacc_closing_only_approaching: true,
             organize_regardless_of_speed: true,
             cooperative_lane_change: false,
@@ -232,6 +244,36 @@ impl Default for CavParams {
             packet_loss: 0.0,
             beacon_timeout_s: DEFAULT_BEACON_TIMEOUT_S,
             max_automated_decel_mps2: DEFAULT_MAX_AUTOMATED_DECEL_MPS2,
+        }
+    }
+}
+
+/// When the automation of a CAV waiting for a gap toward its organized lane holds back for
+/// the target-lane leader (docs/model-choices.md 6.20; `driver::held_back`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OrganizeHold {
+    /// Never: the automation drives on.
+    Off,
+    /// Whenever the lag gap is acceptable (6.20 as first built).
+    Always,
+    /// Only while the target-lane leader's rear is ahead of the CAV's front (the first fix of
+    /// the standstill deadlock, 2026-12-03).
+    LeaderAhead,
+    /// At or above the creep speed always; below it only with the leader ahead, and for at
+    /// most `organize_hold_timeout_s` of the wait (2026-12-07).
+    #[default]
+    Narrow,
+}
+
+impl OrganizeHold {
+    /// The scenario file's spelling.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            OrganizeHold::Off => "off",
+            OrganizeHold::Always => "always",
+            OrganizeHold::LeaderAhead => "leader-ahead",
+            OrganizeHold::Narrow => "narrow",
         }
     }
 }

@@ -15,13 +15,14 @@
 //! | BLC-Sync, BLC-Slow, discretionary sync | [`blc_target`] | 4.3 |
 //! | the deadlock exceptions to BLC-Slow | [`keeps_pace`] | 4.3 \[D\] |
 //! | a commanded change never brakes for it, and lets a faster follower pass | [`commanded_target`] | \[D\] (sim `command.rs`) |
-//! | automation held back while the driver waits to organize | [`held_back`] | 6.20 `cav.organize_while_automated` \[D\] |
+//! | automation held back while the driver waits to organize | [`held_back`] | 6.20 `cav.organize_while_automated`, `cav.organize_hold` \[D\] |
 //! | the whole before-lane-change step over a neighbourhood view | [`before_lane_change`] | 4.3 |
 //!
 //! | constant | unit | value | meaning |
 //! |---|---|---|---|
 //! | [`CREEP_SPEED_MPS`] | m/s | 2.23 | spec 4.3's 5 mph: BLC-Slow does not stop a vehicle beside faster traffic below it |
 
+use crate::cav::OrganizeHold;
 use crate::human::{self, HumanParams};
 use crate::lanechange::{self as lcm, LaneChangeParams, Side};
 use crate::safegap::{self, SafeDecel};
@@ -185,16 +186,49 @@ pub fn commanded_target(
     }
 }
 
-/// An automated CAV whose driver waits for a gap toward its organized lane: with the lag gap
-/// open and the target-lane leader ahead of it (`leader_ahead`: its rear ahead of the CAV's
-/// front, or no leader), no acceleration beyond what that leader allows (and never braking
-/// for it). A leader alongside (overlapping) is not one to fall in behind by holding back:
-/// the hold would keep the CAV standing beside it for good, and with a neighbour waiting on
-/// the CAV's own lag gap that is a deadlock (docs/model-choices.md 6.20); the CAV drives on.
+/// What an automated CAV whose driver waits for a gap toward its organized lane sees of its
+/// wait (6.20, `cav.organize_hold`): the inputs of [`held_back`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HoldView {
+    /// The lag gap is acceptable (spec 4.3).
+    pub lag_ok: bool,
+    /// The anticipated acceleration behind the target-lane leader (m/s²).
+    pub a_ant: f64,
+    /// The target-lane leader's rear is ahead of the CAV's front, or there is none.
+    pub leader_ahead: bool,
+    /// Own speed (m/s).
+    pub v: f64,
+    /// How long (s) the CAV has waited below [`CREEP_SPEED_MPS`] in this wait.
+    pub waited_slow_s: f64,
+}
+
+/// An automated CAV whose driver waits for a gap toward its organized lane: the driver's
+/// discretionary synchronization of spec 4.3 through the automation, i.e. with the lag gap
+/// open, no acceleration beyond what the target-lane leader allows (`a_ant`), never braking
+/// for it. `hold` says when it applies (docs/model-choices.md 6.20):
+///
+/// | `hold` | applies while the lag gap is acceptable and |
+/// |---|---|
+/// | `Off` | never (the automation drives on) |
+/// | `Always` | always (6.20 as first built; can deadlock at standstill) |
+/// | `LeaderAhead` | the target-lane leader's rear is ahead of the CAV's front (the 2026-12 fix: released beside an overlapping leader at every speed) |
+/// | `Narrow` | at or above the creep speed always; below it only with the leader ahead, and for at most `timeout_s` of waiting below it |
+///
+/// `Narrow` cannot hold a CAV still for more than `timeout_s`: a mutual wait (the target-lane
+/// leader waiting for the CAV's own lag gap) ends when the CAV drives on.
 #[inline]
-pub fn held_back(a_auto: f64, lag_ok: bool, a_ant: f64, leader_ahead: bool) -> f64 {
-    if lag_ok && leader_ahead {
-        a_auto.min(a_ant.max(0.0))
+pub fn held_back(a_auto: f64, hold: OrganizeHold, w: &HoldView, timeout_s: f64) -> f64 {
+    let applies = w.lag_ok
+        && match hold {
+            OrganizeHold::Off => false,
+            OrganizeHold::Always => true,
+            OrganizeHold::LeaderAhead => w.leader_ahead,
+            OrganizeHold::Narrow => {
+                w.v >= CREEP_SPEED_MPS || (w.leader_ahead && w.waited_slow_s < timeout_s)
+            }
+        };
+    if applies {
+        a_auto.min(w.a_ant.max(0.0))
     } else {
         a_auto
     }
@@ -456,13 +490,75 @@ mod tests {
         assert!(!keeps_pace(false, 1.0, 2.0, true), "a slower follower");
     }
 
+    fn hold(lag_ok: bool, a_ant: f64, leader_ahead: bool, v: f64, waited: f64) -> HoldView {
+        HoldView {
+            lag_ok,
+            a_ant,
+            leader_ahead,
+            v,
+            waited_slow_s: waited,
+        }
+    }
+
     #[test]
     fn automation_holds_back_for_the_target_lane_without_braking() {
-        assert_eq!(held_back(1.0, true, 0.5, true), 0.5);
-        assert_eq!(held_back(1.0, true, -2.0, true), 0.0);
-        assert_eq!(held_back(1.0, false, -2.0, true), 1.0);
-        // A target-lane leader alongside does not hold it (the 6.20 deadlock).
-        assert_eq!(held_back(1.0, true, -2.0, false), 1.0);
+        use OrganizeHold::*;
+        for h in [Always, LeaderAhead, Narrow] {
+            assert_eq!(
+                held_back(1.0, h, &hold(true, 0.5, true, 20.0, 0.0), 10.0),
+                0.5
+            );
+            assert_eq!(
+                held_back(1.0, h, &hold(true, -2.0, true, 20.0, 0.0), 10.0),
+                0.0
+            );
+            // Never braking for it, and no hold with the lag gap closed.
+            assert_eq!(
+                held_back(-1.0, h, &hold(true, -2.0, true, 20.0, 0.0), 10.0),
+                -1.0
+            );
+            assert_eq!(
+                held_back(1.0, h, &hold(false, -2.0, true, 20.0, 0.0), 10.0),
+                1.0
+            );
+        }
+        assert_eq!(
+            held_back(1.0, Off, &hold(true, -2.0, true, 20.0, 0.0), 10.0),
+            1.0
+        );
+    }
+
+    #[test]
+    fn the_narrow_hold_is_released_only_near_standstill() {
+        use OrganizeHold::*;
+        // A target-lane leader alongside at speed: held, as first built (`Always`); the
+        // 2026-12 fix (`LeaderAhead`) released it at every speed.
+        let alongside = hold(true, -2.0, false, 10.0, 0.0);
+        assert_eq!(held_back(1.0, Always, &alongside, 10.0), 0.0);
+        assert_eq!(held_back(1.0, LeaderAhead, &alongside, 10.0), 1.0);
+        assert_eq!(held_back(1.0, Narrow, &alongside, 10.0), 0.0);
+        // Below the creep speed, beside it: released.
+        let creeping = hold(true, -2.0, false, 1.0, 0.0);
+        assert_eq!(held_back(1.0, Narrow, &creeping, 10.0), 1.0);
+        assert_eq!(held_back(1.0, Always, &creeping, 10.0), 0.0);
+        // Below the creep speed with the leader ahead: held until the timeout, then not.
+        assert_eq!(
+            held_back(1.0, Narrow, &hold(true, -2.0, true, 0.0, 9.9), 10.0),
+            0.0
+        );
+        assert_eq!(
+            held_back(1.0, Narrow, &hold(true, -2.0, true, 0.0, 10.0), 10.0),
+            1.0
+        );
+        assert_eq!(
+            held_back(1.0, Always, &hold(true, -2.0, true, 0.0, 99.0), 10.0),
+            0.0
+        );
+        // At speed the timeout does not apply.
+        assert_eq!(
+            held_back(1.0, Narrow, &hold(true, -2.0, true, 5.0, 99.0), 10.0),
+            0.0
+        );
     }
 
     /// A driver at 20 m/s wanting to move right: its lane clear ahead, a target-lane leader

@@ -49,6 +49,9 @@ pub fn to_raw(config: &Config, description: Option<String>) -> RawScenario {
     };
     let is_network = network.is_some();
     RawScenario {
+        // Every behaviour key is written out, so the file needs no preset (`show` names the
+        // one it ran under).
+        model: Default::default(),
         name: Some(config.name.clone()),
         description,
         run: RawRun {

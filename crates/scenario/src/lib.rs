@@ -46,6 +46,7 @@ pub mod limits;
 pub mod network;
 pub mod overrides;
 mod pen_table;
+pub mod preset;
 pub mod raw;
 pub mod sweep_spec;
 pub mod tables;
@@ -54,6 +55,7 @@ pub mod validate;
 
 pub use error::{Problem, ScenarioError, TableError};
 pub use overrides::{demand_scale_set, Overrides, StrategyKind};
+pub use preset::Preset;
 pub use raw::RawScenario;
 
 use platoonsim_sim::Config;
@@ -271,9 +273,29 @@ pub fn raw_from_toml(
             limit: limits::MAX_FILE_BYTES,
         });
     }
+    Ok(raw_and_preset(text, origin, overrides)?.0)
+}
+
+/// [`raw_from_toml`], and what `model.preset` filled in (the preset acts after the overrides,
+/// on the keys that neither the file nor an override sets).
+pub fn raw_and_preset(
+    text: &str,
+    origin: &str,
+    overrides: &Overrides,
+) -> Result<(RawScenario, preset::Applied), ScenarioError> {
     let mut doc = raw::parse_document(text, origin)?;
     overrides.apply(&mut doc)?;
-    raw::from_document(&doc, origin)
+    let applied = preset::apply(&mut doc, origin)?;
+    Ok((raw::from_document(&doc, origin)?, applied))
+}
+
+/// The preset a scenario with these overrides runs under, and the keys it fills.
+pub fn preset_of(
+    name_or_path: &str,
+    overrides: &Overrides,
+) -> Result<preset::Applied, ScenarioError> {
+    let source = resolve(name_or_path)?;
+    Ok(raw_and_preset(&source.text, &source.origin, overrides)?.1)
 }
 
 /// The description of a scenario (the file's `description` key), if it has one.

@@ -28,6 +28,10 @@ pub struct RawScenario {
     /// Free text, shown by `platoonsim scenarios`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub description: Option<String>,
+    /// `[model]`: the preset the behaviour keys default to (`preset.rs`); written only when
+    /// set.
+    #[serde(skip_serializing_if = "RawModel::is_empty")]
+    pub model: RawModel,
     pub run: RawRun,
     pub road: RawRoad,
     /// A freeway corridor with ramps (issue 4); without it the road is homogeneous.
@@ -46,6 +50,21 @@ pub struct RawScenario {
     /// Fuel and electricity per vehicle (docs/energy.md); written only when not the default.
     #[serde(skip_serializing_if = "EnergyParams::is_default")]
     pub energy: EnergyParams,
+}
+
+/// `[model]`: `preset = "paper" | "platform"` (`preset.rs`; applied to the document before
+/// this level reads it).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RawModel {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub preset: Option<crate::preset::Preset>,
+}
+
+impl RawModel {
+    pub fn is_empty(&self) -> bool {
+        self.preset.is_none()
+    }
 }
 
 /// `[run]`: seed, step, duration, warm-up, CAV share. All optional.

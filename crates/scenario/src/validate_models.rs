@@ -257,6 +257,14 @@ pub(super) fn check_cav(c: &mut Checker, p: &CavParams) {
         p.cooperative_timeout_s > 0.0 && p.cooperative_timeout_s <= 600.0,
         "must be in (0, 600] s",
     );
+    // 6.20: the hold's timeout is a positive time of at most 10 min (0 would be `off` below
+    // the creep speed: say so with the key instead).
+    c.value(
+        "cav.organize_hold_timeout_s",
+        p.organize_hold_timeout_s,
+        p.organize_hold_timeout_s > 0.0 && p.organize_hold_timeout_s <= 600.0,
+        "must be in (0, 600] s",
+    );
     // spec 9.3: the automation's realism.
     for (f, v) in [
         ("cav.actuator_lag_s", p.actuator_lag_s),

@@ -304,8 +304,18 @@ impl View<'_> {
             if g.lead_ok && g.lag_ok {
                 return blc;
             }
-            let held = Some((g.lag_ok, g.a_ant, g.target_ahead));
-            let mut a = self.automated_decision(s, v, nb, leader, wall, held);
+            let held = driver::HoldView {
+                lag_ok: g.lag_ok,
+                a_ant: g.a_ant,
+                leader_ahead: g.target_ahead,
+                v: v.v,
+                waited_slow_s: f64::from(v.hold_wait) * self.clock.dt,
+            };
+            let mut a = self.automated_decision(s, v, nb, leader, wall, Some(held));
+            // The wait goes on; below the creep speed it counts toward the hold's timeout.
+            a.auto = a
+                .auto
+                .union(AutoFlags::waiting(v.v < driver::CREEP_SPEED_MPS));
             if a.mode == Mode::Cf {
                 a.mode = Mode::Blc {
                     side: d.side,
@@ -322,8 +332,9 @@ impl View<'_> {
     /// An automated CAV's decision: ACC / CACC / speed regulation (spec 3). With the spec 6.5
     /// flag the automation also answers a mandatory yield request it agrees to: it follows the
     /// requester as a virtual leader as a yielding driver would (spec 4.5), without leaving
-    /// automation [D]. `held`: (lag gap acceptable, a_ant, target-lane leader ahead) of a CAV waiting for a PD-lane gap
-    /// (`driver::held_back`). Then the demand goes through the actuators (spec 9.3).
+    /// automation [D]. `held`: what a CAV waiting for a PD-lane gap sees of its wait
+    /// (`driver::held_back`, `cav.organize_hold`). Then the demand goes through the actuators
+    /// (spec 9.3).
     // Inlined, with `cav_control`, into the decide loop: as two calls, the leader view, the
     // 40-byte `Decision` and what `decide_one` had loaded already (the sensed record, the
     // desired speed) crossed two call boundaries, about 105 instructions per automated CAV
@@ -336,7 +347,7 @@ impl View<'_> {
         nb: &Neighbours,
         leader: Option<Leader>,
         wall: bool,
-        held: Option<(bool, f64, bool)>,
+        held: Option<driver::HoldView>,
     ) -> Decision {
         let mut d = self.cav_control(s, v, leader, wall);
         if self.cfg.cav.yield_while_automated {
@@ -357,8 +368,9 @@ impl View<'_> {
                 };
             }
         }
-        if let Some((lag_ok, a_ant, ahead)) = held {
-            d.accel = driver::held_back(d.accel, lag_ok, a_ant, ahead);
+        if let Some(w) = held {
+            let p = &self.cfg.cav;
+            d.accel = driver::held_back(d.accel, p.organize_hold, &w, p.organize_hold_timeout_s);
         }
         self.actuate(v, &mut d);
         d

@@ -206,6 +206,7 @@ pub(crate) fn create(cfg: &Config, id: u64, x: f64, t: f64, origin: u32) -> Vehi
             origin,
             planned_exit: exit,
         },
+        hold_wait: 0,
         stats: Stats {
             entered_step: NEVER,
             conflict_step: NEVER,

@@ -99,7 +99,8 @@ pub(crate) fn move_vehicles(
             veh.cacc.family = d.family;
             veh.cacc.regime = d.regime;
             veh.cacc.time_gap_s = d.time_gap;
-            // spec 9.3: AEB interventions and CACC fallbacks, as episodes (rare: one branch).
+            // spec 9.3: AEB interventions and CACC fallbacks, as episodes, and the organizing
+            // wait of 6.20 (rare: one branch).
             if !d.auto.union(veh.cacc.auto).is_none() {
                 let (now, was) = (d.auto, veh.cacc.auto);
                 if in_window {
@@ -108,6 +109,11 @@ pub(crate) fn move_vehicles(
                     }
                     *cacc_fallbacks += u64::from(now.degraded() && !was.degraded());
                 }
+                veh.hold_wait = if now.in_wait() {
+                    veh.hold_wait.saturating_add(u32::from(now.wait_slow()))
+                } else {
+                    0
+                };
                 veh.cacc.auto = now;
             }
             if d.takeover {

@@ -103,6 +103,10 @@ pub(crate) struct Vehicle {
     pub lcs: LaneChangeState,
     /// Where it came from and where it leaves.
     pub route: Route,
+    /// Steps an automated CAV has waited below the creep speed for a gap toward its organized
+    /// lane, in the current wait (0 outside one; `cav.organize_hold`, 6.20). In the padding
+    /// between the route and the driver.
+    pub hold_wait: u32,
     /// The driver's drawn parameters and random stream.
     pub driver: Driver,
     /// Bookkeeping for the statistics, the safety measures and the observers; the driving
@@ -149,6 +153,10 @@ impl AutoFlags {
     pub const NONE: AutoFlags = AutoFlags(0);
     const AEB: u8 = 1;
     const FALLBACK: u8 = 2;
+    /// The driver waits for a gap toward its organized lane under automation (6.20).
+    const WAIT: u8 = 4;
+    /// … below the creep speed: the step counts toward `cav.organize_hold_timeout_s`.
+    const WAIT_SLOW: u8 = 8;
 
     /// `aeb`: the automation's demand exceeded `cav.max_automated_decel_mps2` and AEB applied
     /// it; `fallback`: no V2V beacon from the CAV leader within `cav.beacon_timeout_s`, ACC.
@@ -169,7 +177,25 @@ impl AutoFlags {
         self.0 & Self::FALLBACK != 0
     }
 
-    /// Neither.
+    /// The organizing wait of 6.20, and whether the CAV is below the creep speed in it.
+    #[inline]
+    pub(crate) fn waiting(slow: bool) -> AutoFlags {
+        AutoFlags(Self::WAIT | (u8::from(slow) * Self::WAIT_SLOW))
+    }
+
+    /// In the organizing wait of 6.20.
+    #[inline]
+    pub(crate) fn in_wait(self) -> bool {
+        self.0 & Self::WAIT != 0
+    }
+
+    /// In it below the creep speed.
+    #[inline]
+    pub(crate) fn wait_slow(self) -> bool {
+        self.0 & Self::WAIT_SLOW != 0
+    }
+
+    /// None of the flags.
     #[inline]
     pub fn is_none(self) -> bool {
         self.0 == 0
@@ -320,6 +346,7 @@ mod tests {
         assert_eq!(offset_of!(Vehicle, lcs) + size_of::<LaneChangeState>(), 128);
         // Then the route and the driver, body length first.
         assert_eq!(offset_of!(Vehicle, route), 128);
+        assert_eq!(offset_of!(Vehicle, hold_wait), 140);
         assert_eq!(offset_of!(Vehicle, driver.human.length_m), 144);
         assert_eq!(offset_of!(HumanParams, length_m), 0);
         // The bookkeeping is cold: last, after the random stream, in the padding of the last

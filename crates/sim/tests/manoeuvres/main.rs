@@ -7,5 +7,6 @@ mod commands;
 mod common;
 mod following;
 mod lane_changes;
+mod organize;
 mod platoons;
 mod ramps;
