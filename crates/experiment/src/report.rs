@@ -15,6 +15,7 @@ use crate::safety;
 use crate::table::md_table;
 use crate::{Error, VERSION};
 pub use platoonsim_runs::page::{base64, html, Anchors};
+use platoonsim_scenario::Preset;
 use std::path::{Path, PathBuf};
 
 /// Where and when the report was made (the header's provenance).
@@ -193,7 +194,7 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
         for c in &o.checks {
             glance.push(vec![
                 verdict(c.passed).to_string(),
-                o.name.as_str().to_string(),
+                rel_dir(o),
                 c.statement.clone(),
             ]);
         }
@@ -204,40 +205,39 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
     ));
     md.push('\n');
 
+    // The paper's model first (issue 43), then the engine's rules over it, then the
+    // platform's defaults; within each, the homogeneous road, SR-99, beyond the paper.
+    let paper = |o: &&ExperimentOutput| o.settings.preset == Preset::Paper;
+    let rules = |o: &&ExperimentOutput| o.name.part == Part::Rules;
     let mut n = 0;
-    let beyond = |o: &&ExperimentOutput| o.name.part == Part::Beyond;
-    for o in input
-        .outputs
-        .iter()
-        .filter(|o| !is_network(o) && !beyond(o))
-    {
-        n += 1;
-        md.push_str(&format!("## {n}. {}\n\n", o.name.title()));
-        md.push_str(&format!(
-            "Why these figures differ from the paper's: `{NOTEBOOK}` in the repository \
-             (where each figure stands against the paper's, and why).\n\n"
-        ));
-        md.push_str(&section(o, 1));
-    }
-    let network: Vec<&ExperimentOutput> = input.outputs.iter().filter(|o| is_network(o)).collect();
-    if !network.is_empty() {
-        n += 1;
-        md.push_str(&format!(
-            "## {n}. SR-99 corridor (paper Table 4, Figs. 6-8)\n\n{}\n\nWhy these figures differ \
-             from the paper's: `{NOTEBOOK_SR99}` in the repository; how the corridor and its \
-             demand were built: `docs/sr99-data.md`.\n\n",
-            input.network_note.trim()
-        ));
-        for o in network {
-            md.push_str(&format!("### {}\n\n", o.name.title()));
-            md.push_str(&section(o, 2));
+    let groups: [(&str, Vec<&ExperimentOutput>); 3] = [
+        (
+            "Under the paper's model (`model.preset = \"paper\"`)",
+            input.outputs.iter().filter(paper).collect(),
+        ),
+        (
+            "Every engine rule beyond the paper, as a sensitivity",
+            input
+                .outputs
+                .iter()
+                .filter(|o| !paper(o) && rules(o))
+                .collect(),
+        ),
+        (
+            "Under the platform's defaults (`model.preset = \"platform\"`)",
+            input
+                .outputs
+                .iter()
+                .filter(|o| !paper(o) && !rules(o))
+                .collect(),
+        ),
+    ];
+    for (title, outputs) in groups {
+        if outputs.is_empty() {
+            continue;
         }
-    }
-    // Beyond the paper (issue 23's energy), after the paper's experiments.
-    for o in input.outputs.iter().filter(beyond) {
-        n += 1;
-        md.push_str(&format!("## {n}. {}\n\n", o.name.title()));
-        md.push_str(&section(o, 1));
+        md.push_str(&format!("## {title}\n\n{}\n\n", group_note(title)));
+        sections(&mut md, &mut n, &outputs, input.network_note);
     }
 
     md.push_str("## Run time\n\n");
@@ -256,7 +256,7 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
         .iter()
         .map(|o| {
             vec![
-                o.name.as_str().to_string(),
+                rel_dir(o),
                 o.outcomes.len().to_string(),
                 o.computed.to_string(),
                 o.reused.to_string(),
@@ -283,9 +283,69 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
     format!("{head}## Contents\n\n{toc}\n{md}")
 }
 
+/// What a group of sections runs under, for the sentence below its heading.
+fn group_note(title: &str) -> &'static str {
+    if title.contains("paper's model") {
+        "These sections run the paper's rules as published (docs/model-choices.md, \"The two \
+         presets\"): the published gap rule, the PATH organization rule (a CAV is in manual \
+         control from its lane-change desire on), the spec's CACC law, no cooperative or \
+         automated yielding; with only the engine rules without which the model cannot run. \
+         Where a figure misses the paper's, the difference is this model's, not a tuning."
+    } else if title.contains("engine rule") {
+        "Each row switches one of the engine's rules on over the paper's model; the last row \
+         is the platform's defaults, the model of the sections after this one."
+    } else {
+        "These sections run the engine's defaults: the paper's model with the documented \
+         extensions that are on by default (the safe gap rule, automated organization with \
+         the narrow hold, 6.21, 6.22, automated yielding; docs/model-choices.md)."
+    }
+}
+
+/// One numbered section per homogeneous-road experiment, one for the SR-99 experiments, then
+/// one per experiment beyond the paper, at `###`.
+fn sections(md: &mut String, n: &mut usize, outputs: &[&ExperimentOutput], network_note: &str) {
+    let beyond = |o: &&&ExperimentOutput| o.name.part == Part::Beyond;
+    for o in outputs.iter().filter(|o| !is_network(o) && !beyond(o)) {
+        *n += 1;
+        md.push_str(&format!("### {n}. {}\n\n", o.name.title()));
+        md.push_str(&format!(
+            "Why these figures differ from the paper's: `{NOTEBOOK}` in the repository \
+             (where each figure stands against the paper's, and why).\n\n"
+        ));
+        md.push_str(&section(o, 2));
+    }
+    let network: Vec<&&ExperimentOutput> = outputs.iter().filter(|o| is_network(o)).collect();
+    if !network.is_empty() {
+        *n += 1;
+        md.push_str(&format!(
+            "### {n}. SR-99 corridor (paper Table 4, Figs. 6-8)\n\n{}\n\nWhy these figures \
+             differ from the paper's: `{NOTEBOOK_SR99}` in the repository; how the corridor and \
+             its demand were built: `docs/sr99-data.md`.\n\n",
+            network_note.trim()
+        ));
+        for o in network {
+            md.push_str(&format!("#### {}\n\n", o.name.title()));
+            md.push_str(&section(o, 3));
+        }
+    }
+    for o in outputs.iter().filter(beyond) {
+        *n += 1;
+        md.push_str(&format!("### {n}. {}\n\n", o.name.title()));
+        md.push_str(&section(o, 2));
+    }
+}
+
+/// The directory of an output relative to the report's (`paper/NAME` under the paper preset).
+fn rel_dir(o: &ExperimentOutput) -> String {
+    match o.settings.preset {
+        Preset::Paper => format!("{}/{}", Preset::Paper.as_str(), o.name.as_str()),
+        Preset::Platform => o.name.as_str().to_string(),
+    }
+}
+
 /// [`mark_verdicts`] on the sections (the glance table has its symbols already).
 fn mark_verdicts_outside_glance(md: &str) -> String {
-    match md.find("\n## 1. ") {
+    match md.find("\n### 1. ").and_then(|i| md[..i].rfind("\n## ")) {
         Some(i) => format!("{}{}", &md[..i], mark_verdicts(&md[i..])),
         None => md.to_string(),
     }
@@ -326,7 +386,7 @@ pub fn collisions_warning(outputs: &[ExperimentOutput]) -> String {
 fn section(o: &ExperimentOutput, depth: usize) -> String {
     let mut md = format!(
         "Files: `{0}/summary.md`, `{0}/summary.csv`, `{0}/runs.csv`, `{0}/run.json`.\n\n",
-        o.name.as_str()
+        rel_dir(o)
     );
     let mut body = o.body.clone();
     for _ in 0..depth {
@@ -337,7 +397,7 @@ fn section(o: &ExperimentOutput, depth: usize) -> String {
         md.push('\n');
     } else {
         md.push_str(&format!("\n{} Figures\n\n", "#".repeat(depth + 2)));
-        md.push_str(&o.figures_md(&format!("{}/", o.name.as_str())));
+        md.push_str(&o.figures_md(&format!("{}/", rel_dir(o))));
     }
     md
 }

@@ -60,7 +60,7 @@ fn plan(name: ExperimentName, s: &Settings, mode: &str) -> Vec<String> {
     // The report may fail on the stand-in results (figures from the sample's detectors); the
     // plan is what was executed.
     let _ = run_experiment_with(name, &s, &exec);
-    let runs = dir.join(name.as_str()).join("runs");
+    let runs = s.dir(name.as_str()).join("runs");
     let mut lines: Vec<String> = seen
         .into_inner()
         .unwrap()
@@ -102,7 +102,11 @@ fn digests(quick: bool) -> Vec<String> {
             std::fs::write(PathBuf::from(d).join(file), &text).unwrap();
         }
         out.push(format!(
-            "{} {} {:016x}",
+            "{}{} {} {:016x}",
+            match s.preset {
+                platoonsim_scenario::Preset::Paper => "paper/",
+                platoonsim_scenario::Preset::Platform => "",
+            },
             name.as_str(),
             lines.len(),
             fnv1a64(text.as_bytes())
@@ -116,13 +120,18 @@ fn quick_reproduction_plan() {
     assert_eq!(
         digests(true),
         [
-            "capacity 39 4d13742e725aa17c",
-            "sensitivity 36 72a07cd459279008",
-            "flow-aware 9 fcdb085b09f6591c",
-            "sr99 4 7b41a918945eecf6",
-            "sr99-demand 2 365522bbf6eb889f",
-            "behaviour 72 3dfbc4421bea3ac1",
-            "energy 24 c7422b683d636c42",
+            "paper/capacity 39 f3df5a7e1513c5ce",
+            "paper/sensitivity 36 1fbe460ab42ed925",
+            "paper/flow-aware 9 30715a9eeb9fa934",
+            "paper/sr99 4 e6bca14317dab161",
+            "rules 120 cf142fb181002263",
+            "capacity 39 56db8bfc74032312",
+            "sensitivity 36 1c935a31a905be8b",
+            "flow-aware 9 526a846cf2e3d272",
+            "sr99 4 7fc0903a30ffdc2b",
+            "sr99-demand 2 07e1eb48c2d8430e",
+            "behaviour 72 f3c127a23bf241d6",
+            "energy 24 2d5aef480aa4a689",
         ]
     );
 }
@@ -132,13 +141,18 @@ fn full_reproduction_plan() {
     assert_eq!(
         digests(false),
         [
-            "capacity 130 a649c199c86f319f",
-            "sensitivity 120 5cbea58485e593be",
-            "flow-aware 30 25e175a335d98657",
-            "sr99 140 d64fbbbb3961fdbf",
-            "sr99-demand 660 79db514cd35b6a50",
-            "behaviour 240 64fab4fb56e4640d",
-            "energy 320 c68ed4954d2bfb1c",
+            "paper/capacity 130 078c1abdd16832f8",
+            "paper/sensitivity 120 9617a566e08978f3",
+            "paper/flow-aware 30 26dad0a8007f971d",
+            "paper/sr99 140 df8da88e97317e08",
+            "rules 400 a1b179e003cc030a",
+            "capacity 130 77e2a54f739b7bf7",
+            "sensitivity 120 836202743ca09cf3",
+            "flow-aware 30 619161a2f1b4bf11",
+            "sr99 140 c67b6b186da61594",
+            "sr99-demand 660 299a8a0da3730ad0",
+            "behaviour 240 93b0ab5e28fce65c",
+            "energy 320 183e2835dfa67eb5",
         ]
     );
 }
@@ -155,5 +169,5 @@ fn calibrate_flow_aware_plan() {
         lines.len(),
         fnv1a64(lines.join("\n").as_bytes())
     );
-    assert_eq!(d, "756 016880d51a7fef13");
+    assert_eq!(d, "756 e9da5ad186ba3bb3");
 }

@@ -79,6 +79,12 @@ pub struct ExperimentArgs {
     #[command(flatten)]
     pub network: NetworkArgs,
 
+    /// The model the behaviour keys default to (`model.preset`, docs/model-choices.md):
+    /// paper (the paper's rules as published; writes to OUT/paper/NAME/) or platform (the
+    /// engine's defaults).
+    #[arg(long, value_enum, default_value = "platform")]
+    pub preset: PresetArg,
+
     /// Format of the tables runs and summary: csv, or parquet (typed columns, compressed).
     #[arg(long, value_enum, default_value = "csv")]
     pub format: crate::tables::FormatArg,
@@ -155,4 +161,23 @@ pub struct ReproduceArgs {
     /// Simulated time of the SR-99 runs (tests only; the paper's: 14400 s).
     #[arg(long, value_name = "S", hide = true)]
     pub network_duration: Option<f64>,
+}
+
+/// `--preset`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum PresetArg {
+    /// The paper's rules as published.
+    Paper,
+    /// The engine's defaults.
+    #[default]
+    Platform,
+}
+
+impl PresetArg {
+    pub fn preset(self) -> platoonsim_scenario::Preset {
+        match self {
+            PresetArg::Paper => platoonsim_scenario::Preset::Paper,
+            PresetArg::Platform => platoonsim_scenario::Preset::Platform,
+        }
+    }
 }

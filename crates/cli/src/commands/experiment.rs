@@ -39,11 +39,12 @@ pub fn experiment(args: &ExperimentArgs, quiet: bool) -> Result<()> {
     s.speed_thresholds = args.speed_thresholds.clone();
     s.tolerance_pct = args.tolerance;
     s.format = args.format.table();
+    s.preset = args.preset.preset();
     network(&mut s, &args.network, name)?;
     if args.quick {
         (name.quick)(&mut s);
     }
-    let _lock = crate::out_lock::lock(&s.out.join(name.as_str()), crate::out_lock::Share::Alone)?;
+    let _lock = crate::out_lock::lock(&s.dir(name.as_str()), crate::out_lock::Share::Alone)?;
     let out = run_experiment(name, &s).with_context(|| format!("experiment {name} failed"))?;
     crate::stdout::print(&describe(&out))?;
     if let Some(p) = &s.write_table {

@@ -94,10 +94,10 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
             for &q in &s.flow_thresholds {
                 for &v in &s.speed_thresholds {
                     let mut pt = point(s, p, d, StrategyKind::FLOW_AWARE);
-                    pt.set = vec![
+                    pt.set.extend([
                         format!("strategy.flow_threshold_vphpl={q}"),
                         format!("strategy.speed_threshold_kmh={v}"),
-                    ];
+                    ]);
                     let mut c = cell(&[], pt)?;
                     c.labels.0.push(("flow_threshold_vphpl".into(), num(q)));
                     c.labels.0.push(("speed_threshold_kmh".into(), num(v)));

@@ -11,6 +11,7 @@ use crate::design::Cell;
 use crate::sweep::plan;
 use crate::sweep::spec::{Axis, Spec};
 use crate::{Error, Labels};
+use platoonsim_scenario::preset;
 use toml::Value;
 
 /// The sweep file of a grid experiment, parsed (it is part of the binary: a failure is a
@@ -23,6 +24,13 @@ pub(crate) fn spec(name: &str, text: &str, s: &Settings) -> Result<Spec, Error> 
             "run.warmup_s" => *v = Value::Float(s.warmup_s),
             _ => {}
         }
+    }
+    if s.preset != Settings::default().preset {
+        fix(
+            &mut spec,
+            preset::KEY,
+            Value::String(s.preset.as_str().into()),
+        );
     }
     Ok(spec)
 }

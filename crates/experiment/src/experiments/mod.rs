@@ -17,6 +17,7 @@ pub mod energy;
 mod figures;
 mod flow_aware;
 mod grid;
+mod rules;
 mod sensitivity;
 pub mod sr99;
 pub mod sr99_demand;
@@ -30,7 +31,7 @@ use crate::table::{self, SummaryRow};
 use crate::{Error, VERSION};
 pub(crate) use platoonsim_runs::table::metric_label;
 pub use platoonsim_runs::Figure;
-use platoonsim_scenario::StrategyKind;
+use platoonsim_scenario::{Preset, StrategyKind};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -47,6 +48,9 @@ pub enum Part {
     Road,
     /// The SR-99 corridor, with its own seeds (`--quick`: fewer penetrations, no search).
     Network,
+    /// The engine's rules as sensitivities over the paper's model (after the paper's
+    /// experiments under it).
+    Rules,
     /// Beyond the paper, last.
     Beyond,
     None,
@@ -144,10 +148,11 @@ impl std::fmt::Display for Experiment {
 pub type ExperimentName = &'static Experiment;
 
 /// Every experiment, in the order of `reproduce` (within its parts) and of `--help`.
-pub const EXPERIMENTS: [&Experiment; 8] = [
+pub const EXPERIMENTS: [&Experiment; 9] = [
     &capacity::EXPERIMENT,
     &sensitivity::EXPERIMENT,
     &flow_aware::EXPERIMENT,
+    &rules::EXPERIMENT,
     &calibrate::EXPERIMENT,
     &sr99::EXPERIMENT,
     &sr99_demand::EXPERIMENT,
@@ -172,7 +177,9 @@ pub const QUICK_NETWORK_SEEDS: u32 = 1;
 /// The experiments of `reproduce` with their settings: `base` (its seeds, duration, output,
 /// …) for the homogeneous road; on SR-99 `network_seeds` (or 10; 1 with `quick`) and
 /// `network_duration_s`, which the parts after it share for their SR-99 cells; then each
-/// row's quick changes.
+/// row's quick changes. The paper's model comes first (issue 43): the homogeneous road's
+/// experiments and `sr99` under `model.preset = "paper"`, then the engine's rules as
+/// sensitivities over it; then every part under the platform's defaults.
 pub fn reproduction(
     base: &Settings,
     quick: bool,
@@ -180,22 +187,33 @@ pub fn reproduction(
     network_duration_s: Option<f64>,
 ) -> Vec<(ExperimentName, Settings)> {
     let network_seeds = network_seeds.unwrap_or(if quick { QUICK_NETWORK_SEEDS } else { 10 });
+    let settings = |e: ExperimentName, preset: Preset| {
+        let mut s = base.clone();
+        s.preset = preset;
+        if e.part == Part::Network || e.part == Part::Beyond {
+            s.network_seeds = Some(network_seeds);
+            s.network_duration_s = network_duration_s;
+        }
+        if e.part == Part::Network {
+            s.seeds = network_seeds;
+            s.network_seeds = None;
+        }
+        if quick {
+            (e.quick)(&mut s);
+        }
+        (e, s)
+    };
+    let of = |part: Part| EXPERIMENTS.iter().copied().filter(move |e| e.part == part);
     let mut out = Vec::new();
+    for e in of(Part::Road).chain(of(Part::Network).filter(|e| e.name == sr99::NAME)) {
+        out.push(settings(e, Preset::Paper));
+    }
+    for e in of(Part::Rules) {
+        out.push(settings(e, Preset::Platform));
+    }
     for part in [Part::Road, Part::Network, Part::Beyond] {
-        for e in EXPERIMENTS.iter().copied().filter(|e| e.part == part) {
-            let mut s = base.clone();
-            if part != Part::Road {
-                s.network_seeds = Some(network_seeds);
-                s.network_duration_s = network_duration_s;
-            }
-            if part == Part::Network {
-                s.seeds = network_seeds;
-                s.network_seeds = None;
-            }
-            if quick {
-                (e.quick)(&mut s);
-            }
-            out.push((e, s));
+        for e in of(part) {
+            out.push(settings(e, Preset::Platform));
         }
     }
     out
@@ -252,6 +270,10 @@ pub struct Settings {
     pub energy_demands: Vec<f64>,
     /// Seeds per cell on SR-99 in `energy` (`None`: `seeds`).
     pub network_seeds: Option<u32>,
+    /// The model the runs' behaviour keys default to (`model.preset`; docs/model-choices.md):
+    /// under `paper` every cell gets `model.preset = "paper"` and the experiment writes to
+    /// `<out>/paper/<name>/`.
+    pub preset: Preset,
     /// `runs` and `summary` as CSV or Parquet.
     pub format: crate::columnar::Format,
     /// The command line, for the provenance.
@@ -283,9 +305,33 @@ impl Default for Settings {
             write_table: None,
             energy_demands: sensitivity::DEMANDS.to_vec(),
             network_seeds: None,
+            preset: Preset::Platform,
             format: crate::columnar::Format::Csv,
             arguments: Vec::new(),
         }
+    }
+}
+
+impl Settings {
+    /// Where the experiment `name` writes: `<out>/<name>/`, under the paper preset
+    /// `<out>/paper/<name>/`.
+    pub fn dir(&self, name: &str) -> PathBuf {
+        match self.preset {
+            Preset::Platform => self.out.join(name),
+            Preset::Paper => self.out.join(Preset::Paper.as_str()).join(name),
+        }
+    }
+
+    /// The `--set` that gives a cell this preset (none for the default, `platform`, so that
+    /// the cells and their keys stay as they were).
+    pub fn preset_set(&self) -> Option<String> {
+        (self.preset != Preset::Platform).then(|| {
+            format!(
+                "{}={}",
+                platoonsim_scenario::preset::KEY,
+                self.preset.as_str()
+            )
+        })
     }
 }
 
@@ -386,7 +432,7 @@ pub fn run_experiment_with(
         return Err(Error::Other("at least one seed is needed".into()));
     }
     let start = Instant::now();
-    let dir = settings.out.join(name.as_str());
+    let dir = settings.dir(name.as_str());
     std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
     let seeds = design::seeds(settings.seeds);
     let bar = runner::bar(name.total_runs(settings), settings.progress, name.as_str());
@@ -401,7 +447,7 @@ pub fn run_experiment_with(
     runner.reuse_from = name
         .reuse_from
         .iter()
-        .map(|other| settings.out.join(other).join("runs"))
+        .map(|other| settings.dir(other).join("runs"))
         .collect();
     let done = (name.run)(settings, &runner, &seeds);
     bar.finish_and_clear();
@@ -569,7 +615,7 @@ pub(crate) fn point(s: &Settings, penetration: f64, demand: f64, strategy: Strat
         strategy,
         duration_s: s.duration_s,
         warmup_s: s.warmup_s,
-        set: Vec::new(),
+        set: s.preset_set().into_iter().collect(),
     }
 }
 

@@ -221,7 +221,9 @@ pub fn config(s: &Settings, p: f64, k: StrategyKind, scale: f64) -> Result<Confi
         seed: Some(1),
         strategy: Some(k),
         duration_s: s.network_duration_s,
-        set: vec![demand_scale_set(scale)],
+        set: std::iter::once(demand_scale_set(scale))
+            .chain(s.preset_set())
+            .collect(),
         ..Overrides::default()
     };
     Ok(load_with(SCENARIO, &o)?)
@@ -255,7 +257,7 @@ fn is_figure_cell(c: &Cell) -> bool {
     c.labels.get("penetration") == Some(num(FIGURE_PENETRATION).as_str())
 }
 
-const NAME: &str = "sr99";
+pub(crate) const NAME: &str = "sr99";
 
 pub(super) const EXPERIMENT: Experiment = Experiment {
     name: NAME,
