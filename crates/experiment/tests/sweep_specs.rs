@@ -129,3 +129,26 @@ fn flow_aware_spec_gives_the_experiments_runs() {
         ],
     );
 }
+
+/// `sweeps/flow-aware-sr99.toml`, the corridor's own threshold calibration (issue 43): one
+/// baseline per penetration and every (rho_q, rho_v) pair of Flow-Aware, 84 cells, each at its
+/// penetration's demand scale with its thresholds.
+#[test]
+fn the_sr99_threshold_calibration_plans_one_baseline_and_every_pair_per_penetration() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../sweeps/flow-aware-sr99.toml");
+    let spec = Spec::from_file(&path).unwrap();
+    let cells = sweep::plan::cells(&spec).unwrap();
+    assert_eq!(cells.len(), 4 * (1 + 5 * 4));
+    let baselines: Vec<_> = cells
+        .iter()
+        .filter(|c| c.config.strategy.kind.as_str() == "none")
+        .map(|c| c.config.penetration)
+        .collect();
+    assert_eq!(baselines, [0.2, 0.4, 0.6, 0.8]);
+    let pairs: std::collections::BTreeSet<(u64, u64)> = cells
+        .iter()
+        .filter_map(|c| c.config.strategy.thresholds.as_ref())
+        .map(|t| (t.flow_threshold_vphpl as u64, t.speed_threshold_kmh as u64))
+        .collect();
+    assert_eq!(pairs.len(), 20);
+}
