@@ -175,3 +175,49 @@ fn a_corridor_of_ones_own_gets_no_sr99_scale_and_no_thresholds() {
     }
     assert!(!dir.join("o").exists());
 }
+
+/// `model.preset = "paper"` (issue 43): `show` names the preset and marks the keys it set,
+/// among them the published gap rule and the PATH organization rule; a key given with `--set`
+/// wins over the preset and is not marked; the shown file runs as the scenario with the preset
+/// (PD at 2,500 veh/h/lane, where the paper's rules matter).
+#[test]
+fn show_names_the_paper_preset_and_marks_what_it_set() {
+    let o = platoonsim(&[
+        "show",
+        "homogeneous",
+        "--set",
+        "model.preset=paper",
+        "--set",
+        "cav.cacc_closing_only_approaching=true",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8(o.stdout).unwrap();
+    for line in [
+        "[model]\npreset = \"paper\"",
+        "\ngap_rule = \"published\"  # model.preset = \"paper\"\n",
+        "\norganize_while_automated = false  # model.preset = \"paper\"\n",
+        "\nyield_while_automated = false  # model.preset = \"paper\"\n",
+        "\ncacc_closing_only_approaching = true\n",
+    ] {
+        assert!(text.contains(line), "{line:?} missing:\n{text}");
+    }
+    let platform = platoonsim(&["show", "homogeneous"]);
+    let platform = String::from_utf8(platform.stdout).unwrap();
+    assert!(platform.contains("[model]\npreset = \"platform\""));
+    assert!(platform.contains("\ngap_rule = \"safe\"\n"));
+    assert!(!platform.contains("# model.preset"));
+    shown_file_runs_as_the_scenario(
+        "paper-preset",
+        "homogeneous",
+        &[
+            "--set",
+            "model.preset=paper",
+            "--strategy",
+            "pd",
+            "--duration",
+            "900",
+            "--warmup",
+            "300",
+        ],
+    );
+}
