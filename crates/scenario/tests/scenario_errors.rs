@@ -436,6 +436,26 @@ fn other_ranges() {
             "cav.max_automated_decel_mps2 = -5: must be > 0 m/s² (a braking magnitude, positive)",
         ),
         (
+            "cav.cacc_field_gains=[0, 0.7]",
+            "cav.cacc_field_gains = [0, 0.7]: must be [k_p > 0 (1/s²), k_d >= 0 (1/s)]",
+        ),
+        (
+            "cav.cacc_feedforward=1.5",
+            "cav.cacc_feedforward = 1.5: must be in [0, 1] (0 = no feed-forward, 1 = the predecessor's whole acceleration)",
+        ),
+        (
+            "cav.envelope_speeds_mps=[20, 5]",
+            "cav.envelope_speeds_mps = [20, 5]: must be [low, high] with 0 <= low < high (m/s)",
+        ),
+        (
+            "cav.envelope_decel_mps2=[12, 3.5]",
+            "cav.envelope_decel_mps2 = [12, 3.5]: must be [at low speed, at high speed], both > 0 m/s², at most cav.emergency_decel_mps2 = 9",
+        ),
+        (
+            "cav.envelope_jerk_mps3=[5, 0]",
+            "cav.envelope_jerk_mps3 = [5, 0]: must be [at low speed, at high speed], both > 0 m/s³",
+        ),
+        (
             "lane_change.safe_follower_decel_mps2=-3",
             "lane_change.safe_follower_decel_mps2 = -3: must be > 0 m/s² (a deceleration, written positive)",
         ),

@@ -107,6 +107,9 @@ pub(crate) fn move_vehicles(
                         safety.counts.count(Counted::AebInterventions, veh.kind);
                     }
                     *cacc_fallbacks += u64::from(now.degraded() && !was.degraded());
+                    if now.takeover() && !was.takeover() {
+                        safety.counts.count(Counted::TakeoverRequests, veh.kind);
+                    }
                 }
                 veh.cacc.auto = now;
             }
