@@ -232,7 +232,12 @@ fn runs() -> Vec<(&'static str, Vec<String>)> {
     // take-over request fields (all 0 under that law).
     let spec: Vec<(&'static str, Vec<String>)> = runs
         .iter()
-        .zip(["homogeneous_spec", "homogeneous_pd_spec", "sr99_spec", "lane_drop_spec"])
+        .zip([
+            "homogeneous_spec",
+            "homogeneous_pd_spec",
+            "sr99_spec",
+            "lane_drop_spec",
+        ])
         .map(|((_, a), name)| {
             let mut a = a.clone();
             a.extend(["--set".to_string(), "cav.cacc_law=spec".to_string()]);

@@ -14,8 +14,8 @@
 //! (the disturbance). Vehicles are 4 m long.
 
 use platoonsim_model::cav::{
-    actuate, actuate_field, cacc_by_law, cacc_equilibrium_gap, envelope,
-    finalize, lag_gain, ramp_time_gap, CaccLaw, CavParams, Family,
+    actuate, actuate_field, cacc_by_law, cacc_equilibrium_gap, cut_in_time_gap, envelope, finalize,
+    lag_gain, ramp_time_gap, CaccLaw, CavParams, Family,
 };
 use platoonsim_model::safety::braking_limited;
 use platoonsim_model::Leader;
@@ -64,7 +64,13 @@ fn params(law: CaccLaw, lag: f64) -> CavParams {
 
 /// A string of `cars` (leader first, positions descending) with time gap `tg` under `p`; the
 /// leader's acceleration is `lead(t, v)`; `steps` steps.
-fn simulate(p: &CavParams, mut cars: Vec<Car>, tg: f64, lead: &dyn Fn(f64, f64) -> f64, steps: usize) -> Trace {
+fn simulate(
+    p: &CavParams,
+    mut cars: Vec<Car>,
+    tg: f64,
+    lead: &dyn Fn(f64, f64) -> f64,
+    steps: usize,
+) -> Trace {
     let gain = lag_gain(DT, p.actuator_lag_s);
     let n = cars.len();
     let v0: Vec<f64> = cars.iter().map(|c| c.v).collect();
@@ -171,7 +177,13 @@ fn worst_ratio(tr: &Trace) -> f64 {
 
 fn dip_run(law: CaccLaw, lag: f64, tg: f64, decel: f64, secs: f64) -> Trace {
     let p = params(law, lag);
-    simulate(&p, string(&p, 10, 25.0, tg), tg, &dip(decel, secs, 25.0), 600)
+    simulate(
+        &p,
+        string(&p, 10, 25.0, tg),
+        tg,
+        &dip(decel, secs, 25.0),
+        600,
+    )
 }
 
 // ---------------------------------------------------------------- string stability
@@ -244,3 +256,175 @@ fn print_string_tables() {
     }
 }
 
+// ---------------------------------------------------------------- manoeuvres
+
+fn max_decel(t: &Trace) -> f64 {
+    t.max_decel[1..].iter().copied().fold(0.0, f64::max)
+}
+
+/// A follower at 30 m/s finds a standing queue at the sensor range (250 m): `lag` s of lag.
+fn approach(law: CaccLaw, lag: f64) -> Trace {
+    let p = params(law, lag);
+    let cars = vec![
+        Car {
+            x: 5000.0,
+            v: 0.0,
+            a: 0.0,
+            family: Family::Gap,
+            tg: 0.6,
+        },
+        Car {
+            x: 5000.0 - LEN - 250.0,
+            v: 30.0,
+            a: 0.0,
+            family: Family::Speed,
+            tg: 0.6,
+        },
+    ];
+    simulate(&p, cars, 0.6, &|_, _| 0.0, 600)
+}
+
+/// The field law starts braking at the sensor range at the constant deceleration that stops
+/// it in time (30²/(2·248.5) = 1.81 m/s², a little more at the end) and stops behind the
+/// queue; the published law closes in at speed and brakes later and harder (3.5 m/s² without
+/// lag, 2.8 m/s² with 0.3 s).
+#[test]
+fn approach_to_a_standing_queue_is_early_and_comfortable() {
+    for lag in [0.0, 0.3] {
+        let f = approach(CaccLaw::Field, lag);
+        assert!(max_decel(&f) < 2.2, "lag {lag}: {}", max_decel(&f));
+        assert_eq!((f.aeb_steps, f.tor_episodes), (0, 0));
+        let end = f.gap.last().unwrap()[0];
+        // Stopped at s_min = 1.5 m (within 1 cm; 1.500 without lag, 1.502 with).
+        assert!(
+            f.min_gap > 1.5 - 1e-6 && (end - 1.5).abs() < 0.01,
+            "{} {end}",
+            f.min_gap
+        );
+        assert!(f.v.last().unwrap()[1] < 0.001, "{:?}", f.v.last());
+        let s = approach(CaccLaw::Spec, lag);
+        assert!(max_decel(&s) > 2.7, "lag {lag}: {}", max_decel(&s));
+    }
+}
+
+/// A CAV cuts in 13 m ahead of a CACC follower at 25 m/s (both at 25 m/s; the follower's own
+/// gap is 0.6·25 + 1.5 = 16.5 m). The field law resets its gap reference to the actual gap
+/// (time gap 0.46 s) and reopens it at the transition rate (0.06 s/s): it hardly brakes and is
+/// back at its own gap in some 15 s. The published law brakes at once (collision avoidance,
+/// e = −3.5 m).
+#[test]
+fn a_cut_in_resets_the_gap_reference_and_reopens_it() {
+    let run = |law: CaccLaw| {
+        let p = params(law, 0.3);
+        let tg = cut_in_time_gap(&p, 0.6, 13.0, 25.0);
+        let cars = vec![
+            Car {
+                x: 5000.0,
+                v: 25.0,
+                a: 0.0,
+                family: Family::Gap,
+                tg: 0.6,
+            },
+            Car {
+                x: 5000.0 - LEN - 13.0,
+                v: 25.0,
+                a: 0.0,
+                family: Family::Gap,
+                tg,
+            },
+        ];
+        (tg, simulate(&p, cars, 0.6, &|_, _| 0.0, 400))
+    };
+    let (tg, f) = run(CaccLaw::Field);
+    assert!((tg - 11.5 / 25.0).abs() < 1e-12, "{tg}");
+    assert!(max_decel(&f) < 0.5, "{}", max_decel(&f));
+    // Reopened: within 0.5 m of 16.5 m after 20 s, never below the cut-in gap.
+    assert!((f.gap[200][0] - 16.5).abs() < 0.5, "{}", f.gap[200][0]);
+    assert!(f.min_gap > 12.99, "{}", f.min_gap);
+    let (tg, s) = run(CaccLaw::Spec);
+    assert_eq!(tg, 0.6);
+    assert!(max_decel(&s) > 2.0 * max_decel(&f), "{}", max_decel(&s));
+}
+
+/// A leader braking at 4 m/s² to a stop from 25 m/s, 10 vehicles at 0.6 s with 0.3 s of lag:
+/// the envelope (3.5 m/s² at speed) is not enough, the followers ask their drivers to take
+/// over, and near standstill AEB brakes them (to b_e): no collision, but AEB under both laws,
+/// under a third as many AEB steps under the field law as under the published one.
+#[test]
+fn a_leader_braking_at_4_to_a_stop() {
+    let f = dip_run(CaccLaw::Field, 0.3, 0.6, 4.0, 6.25);
+    let s = dip_run(CaccLaw::Spec, 0.3, 0.6, 4.0, 6.25);
+    assert!(
+        f.min_gap > 1.5 && s.min_gap > 1.5,
+        "{} {}",
+        f.min_gap,
+        s.min_gap
+    );
+    assert!(f.tor_episodes > 0);
+    assert!(
+        f.aeb_steps > 0 && 3 * f.aeb_steps < s.aeb_steps,
+        "{} {}",
+        f.aeb_steps,
+        s.aeb_steps
+    );
+}
+
+/// A stop-and-go wave: the leader brakes at 2 m/s² from 25 to 5 m/s, holds 10 s, accelerates
+/// at 1 m/s² back. Field law, 0.6 s, 0.3 s lag: no take-over request, nobody brakes more than
+/// 0.05 m/s² harder than the leader, but the dip is not strictly damped: each follower
+/// undershoots the 5 m/s plateau a little (vehicle 10: 0.35 m/s below it, growth ≤ 0.4 % per
+/// vehicle); the published law grows it more than twice as fast.
+fn stop_and_go(law: CaccLaw) -> Trace {
+    let p = params(law, 0.3);
+    let lead = |t: f64, v: f64| {
+        if (2.0..12.0).contains(&t) {
+            -2.0
+        } else if (12.0..22.0).contains(&t) {
+            0.0
+        } else if t >= 22.0 && v < 25.0 - 1e-9 {
+            (1.0f64).min((25.0 - v) / DT)
+        } else {
+            0.0
+        }
+    };
+    simulate(&p, string(&p, 10, 25.0, 0.6), 0.6, &lead, 900)
+}
+
+#[test]
+fn a_stop_and_go_wave_through_a_string() {
+    let f = stop_and_go(CaccLaw::Field);
+    assert!(worst_ratio(&f) <= 1.004, "{:?}", f.peak_dev);
+    assert!(max_decel(&f) <= 2.05, "{}", max_decel(&f));
+    assert_eq!((f.aeb_steps, f.tor_episodes), (0, 0));
+    let s = stop_and_go(CaccLaw::Spec);
+    assert!(
+        worst_ratio(&s) - 1.0 > 2.0 * (worst_ratio(&f) - 1.0),
+        "{:?}",
+        s.peak_dev
+    );
+}
+
+#[test]
+#[ignore = "prints the manoeuvre table of docs/cacc-field.md"]
+fn print_manoeuvres() {
+    println!(
+        "| manoeuvre | law | largest deceleration | smallest gap | worst ratio | TOR | AEB steps |"
+    );
+    let row = |name: &str, law: CaccLaw, t: &Trace| {
+        println!(
+            "| {name} | {} | {:.2} | {:.2} | {:.3} | {} | {} |",
+            law.as_str(),
+            max_decel(t),
+            t.min_gap,
+            worst_ratio(t),
+            t.tor_episodes,
+            t.aeb_steps
+        );
+    };
+    for law in [CaccLaw::Spec, CaccLaw::Field] {
+        row("approach 30 m/s → queue, lag 0", law, &approach(law, 0.0));
+        row("approach, lag 0.3", law, &approach(law, 0.3));
+        row("leader −4 to stop", law, &dip_run(law, 0.3, 0.6, 4.0, 6.25));
+        row("stop-and-go", law, &stop_and_go(law));
+    }
+}

@@ -198,12 +198,8 @@ fn try_change(
                 f.mode = Mode::Cf;
             }
         } else {
-            f.cacc.time_gap_s = platoonsim_model::cav::cut_in_time_gap(
-                &cfg.cav,
-                f.cacc.time_gap_s,
-                gap,
-                f.v,
-            );
+            f.cacc.time_gap_s =
+                platoonsim_model::cav::cut_in_time_gap(&cfg.cav, f.cacc.time_gap_s, gap, f.v);
         }
     }
 }
