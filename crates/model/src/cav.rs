@@ -3,7 +3,9 @@
 //!
 //! Papers: Milanés & Shladover (2014) ACC/CACC laws; operating modes and gains of Xiao,
 //! Wang & van Arem (2017) as implemented in Eclipse SUMO's ACC/CACC models; PATH/Liu et al.
-//! (2018) as used by the seed paper. Equations (g = net gap, Δv = v_l − v):
+//! (2018) as used by the seed paper; for the field form, Ploeg, Scheepers, van Nunen, van de
+//! Wouw & Nijmeijer (2011), "Design and experimental evaluation of cooperative adaptive cruise
+//! control", IEEE ITSC, and Naus et al. (2010), IEEE TVT 59(9); ISO 15622:2018. Equations (g = net gap, Δv = v_l − v):
 //!
 //! ```text
 //! speed regulation (3.2): a = k0 (v_F − v)
@@ -85,6 +87,31 @@
 //! | p | `packet_loss` | 0 | – | spec 9.3: share of lost beacons, per follower and step |
 //! | T_b | `beacon_timeout_s` | 0.5 | s | spec 9.3 \[D\]: 5 beacons at 10 Hz, then ACC (Ploeg 2015) |
 //! | D_auto | `max_automated_decel_mps2` | 5.0 | m/s² (positive) | spec 9.3: ISO 15622 \[R\]; harder = AEB |
+//! | – | `cacc_law` | field | – | `field` (below) or `spec` (spec 3.4 and 9.3 as above, bit for bit) |
+//! | k_p, k_d | `cacc_field_gains` | 0.2, 0.7 | 1/s², 1/s | Ploeg et al. 2011 (field-tested at 0.7 s) |
+//! | k_ff | `cacc_feedforward` | 1.0 | – | Ploeg et al. 2011; Naus et al. 2010 |
+//! | v_lo, v_hi | `envelope_speeds_mps` | 5, 20 | m/s | ISO 15622:2018 \[R\] |
+//! | D(v) | `envelope_decel_mps2` | 5.0, 3.5 | m/s² (positive) | ISO 15622:2018 \[R\]: 5 below 5 m/s, 3.5 above 20 m/s |
+//! | J(v) | `envelope_jerk_mps3` | 5.0, 2.5 | m/s³ (positive) | ISO 15622:2018 \[R\]: 5 below 5 m/s, 2.5 above 20 m/s |
+//!
+//! The field form (`cacc_law = "field"`, default; docs/cacc-field.md):
+//!
+//! ```text
+//! CACC:       a = k_ff a_p + k_p e + k_d ė,  e = g − t_C v − s_min,  ė = Δv − t_C a
+//!             (a_p: the predecessor's acceleration from its beacon; Ploeg et al. 2011, the
+//!             static form of their controller, with the vehicle's own lag τ_a as the
+//!             low-level loop); families and regimes labelled as in spec 3.4
+//! approach:   a ≤ a_kin = −(v − v_l)² / (2 (g − s_min)) while v > v_l (CACC and ACC): the
+//!             constant deceleration that matches the leader's speed at s_min, applied from
+//!             the moment it binds (a standing queue at 250 m from 30 m/s: 1.8 m/s²)
+//! envelope:   a_cmd = max(a_req, −D(v)); a = max(lag(a_cmd), min(a_real, 0) − J(v) Δt);
+//!             D, J linear in v between v_lo and v_hi (ISO 15622); a_req < −D: take-over
+//!             request (counted); a_req < −D_auto: AEB (UN R152), as in spec 9.3 (counted)
+//! cut-in:     on a cut-in or a ramp merge ahead of an automated CAV its effective time gap
+//!             becomes min(t_eff, max(τ_r, (g − s_min)/v)) (the actual gap; v ≥ 1 m/s), and the
+//!             spec 3.5 transition reopens it at `time_gap_ramp_per_s`; the safe gap rule and
+//!             ramp insertion judge the follower by its law after this reset
+//! ```
 //!
 //! Yielding through the automation (spec 4.5 applied to an automated CAV, \[D\]):
 //! a = min(a_auto, max(a_virtual, b_c)), a_virtual = the driver's relaxed car-following
