@@ -14,8 +14,9 @@
 //! (the disturbance). Vehicles are 4 m long.
 
 use platoonsim_model::cav::{
-    actuate, actuate_field, cacc_by_law, cacc_equilibrium_gap, cut_in_time_gap, envelope, finalize,
-    lag_gain, ramp_time_gap, CaccLaw, CavParams, Family,
+    acc, acc_by_law, actuate, actuate_field, approach_accel, cacc, cacc_by_law,
+    cacc_equilibrium_gap, cut_in_time_gap, envelope, field_cacc, finalize, lag_gain, ramp_time_gap,
+    CaccLaw, CavMode, CavParams, Family,
 };
 use platoonsim_model::safety::braking_limited;
 use platoonsim_model::Leader;
@@ -184,6 +185,124 @@ fn dip_run(law: CaccLaw, lag: f64, tg: f64, decel: f64, secs: f64) -> Trace {
         &dip(decel, secs, 25.0),
         600,
     )
+}
+
+// ---------------------------------------------------------------- the pure laws
+
+#[test]
+fn the_field_law_is_feed_forward_plus_pd_on_the_spacing_error() {
+    let p = CavParams::default();
+    assert_eq!(p.cacc_law, CaccLaw::Field);
+    let l = Leader {
+        gap_m: 20.0,
+        v_mps: 24.0,
+    };
+    // e = 20 − 0.6·25 − 1.5 = 3.5, ė = −1 − 0.6·0.5 = −1.3; a = −1 + 0.2·3.5 + 0.7·(−1.3),
+    // above the approach bound −1/(2·18.5).
+    let c = field_cacc(&p, 25.0, 0.5, -1.0, 30.0, l, 0.6, Family::Gap);
+    assert!((c.accel - (-1.0 + 0.7 - 0.91)).abs() < 1e-12, "{}", c.accel);
+    assert_eq!((c.mode, c.family), (CavMode::GapClosing, Family::Gap));
+    // The dispatcher: the field law, or the published one bit for bit.
+    assert_eq!(
+        cacc_by_law(&p, 25.0, 0.5, -1.0, 30.0, l, 0.6, Family::Gap),
+        c
+    );
+    let spec = CavParams {
+        cacc_law: CaccLaw::Spec,
+        ..p.clone()
+    };
+    assert_eq!(
+        cacc_by_law(&spec, 25.0, 0.5, -1.0, 30.0, l, 0.6, Family::Gap),
+        cacc(&spec, 25.0, 0.5, 30.0, l, 0.6, Family::Gap)
+    );
+    assert_eq!(
+        acc_by_law(&spec, 25.0, 30.0, Some(l), 1.1, Family::Gap),
+        acc(&spec, 25.0, 30.0, Some(l), 1.1, Family::Gap)
+    );
+}
+
+#[test]
+fn the_approach_bound_is_the_constant_deceleration_to_the_leaders_speed() {
+    let p = CavParams::default();
+    let standing = Leader {
+        gap_m: 251.5,
+        v_mps: 0.0,
+    };
+    assert!((approach_accel(&p, 30.0, standing) - (-900.0 / 500.0)).abs() < 1e-12);
+    let slower = Leader {
+        gap_m: 51.5,
+        v_mps: 20.0,
+    };
+    assert!((approach_accel(&p, 30.0, slower) - (-1.0)).abs() < 1e-12);
+    assert_eq!(approach_accel(&p, 20.0, slower), f64::INFINITY);
+    // It caps the ACC too under the field law (here cruising, 0, at 200 m behind a leader
+    // 5 m/s slower: −25/397), not under the published one.
+    let far = Leader {
+        gap_m: 200.0,
+        v_mps: 25.0,
+    };
+    let a = acc_by_law(&p, 30.0, 30.0, Some(far), 1.1, Family::Speed).accel;
+    assert!((a - (-25.0 / 397.0)).abs() < 1e-12, "{a}");
+    let spec = CavParams {
+        cacc_law: CaccLaw::Spec,
+        ..p
+    };
+    assert_eq!(
+        acc_by_law(&spec, 30.0, 30.0, Some(far), 1.1, Family::Speed).accel,
+        0.0
+    );
+}
+
+#[test]
+fn the_envelope_bounds_deceleration_and_jerk_by_speed() {
+    let p = CavParams::default();
+    assert_eq!(envelope(&p, 0.0), (5.0, 5.0));
+    assert_eq!(envelope(&p, 5.0), (5.0, 5.0));
+    assert_eq!(envelope(&p, 12.5), (4.25, 3.75));
+    assert_eq!(envelope(&p, 30.0), (3.5, 2.5));
+    let env = envelope(&p, 30.0);
+    // Within the envelope, no lag, braking building up slowly enough: the demand itself.
+    assert_eq!(
+        actuate_field(-1.0, -1.2, 1.0, 5.0, env, 0.1),
+        (-1.2, false, false)
+    );
+    // Braking builds up at most at J: from −1 at most to −1.25 in a step.
+    assert_eq!(
+        actuate_field(-1.0, -3.0, 1.0, 5.0, env, 0.1),
+        (-1.25, false, false)
+    );
+    // Releasing is free; accelerating is not bounded by the jerk bound.
+    assert_eq!(
+        actuate_field(-3.0, 1.0, 1.0, 5.0, env, 0.1),
+        (1.0, false, false)
+    );
+    // Beyond D: a take-over request, braking at D (here reached already).
+    assert_eq!(
+        actuate_field(-3.5, -4.5, 1.0, 5.0, env, 0.1),
+        (-3.5, false, true)
+    );
+    // Beyond D_auto: AEB applies the demand.
+    assert_eq!(
+        actuate_field(-3.5, -7.0, 1.0, 5.0, env, 0.1),
+        (-7.0, true, false)
+    );
+}
+
+#[test]
+fn a_cut_in_resets_the_reference_to_the_actual_gap() {
+    let p = CavParams::default();
+    // (13 − 1.5)/25 = 0.46 s, below the 0.6 s reference.
+    assert!((cut_in_time_gap(&p, 0.6, 13.0, 25.0) - 0.46).abs() < 1e-12);
+    // Never below τ_r = 0.4 s, never above the reference, nothing below 1 m/s.
+    assert_eq!(cut_in_time_gap(&p, 0.6, 5.0, 25.0), 0.4);
+    assert_eq!(cut_in_time_gap(&p, 0.6, 40.0, 25.0), 0.6);
+    assert_eq!(cut_in_time_gap(&p, 0.6, 2.0, 0.5), 0.6);
+    // Under the published law: unchanged.
+    let spec = CavParams {
+        cacc_law: CaccLaw::Spec,
+        ..p
+    };
+    assert_eq!(cut_in_time_gap(&spec, 0.6, 13.0, 25.0), 0.6);
 }
 
 // ---------------------------------------------------------------- string stability
