@@ -93,6 +93,7 @@
 //! | v_lo, v_hi | `envelope_speeds_mps` | 5, 20 | m/s | ISO 15622:2018 \[R\] |
 //! | D(v) | `envelope_decel_mps2` | 5.0, 3.5 | m/s² (positive) | ISO 15622:2018 \[R\]: 5 below 5 m/s, 3.5 above 20 m/s |
 //! | J(v) | `envelope_jerk_mps3` | 5.0, 2.5 | m/s³ (positive) | ISO 15622:2018 \[R\]: 5 below 5 m/s, 2.5 above 20 m/s |
+//! | τ_ll | `field_low_level_lag_s` | 0.3 | s | \[D\] between Ploeg et al. 2011 (0.1 s) and Plexe (0.5 s) |
 //!
 //! The field form (`cacc_law = "field"`, default; docs/cacc-field.md):
 //!
@@ -101,9 +102,10 @@
 //!             (a_p: the predecessor's acceleration from its beacon; Ploeg et al. 2011, the
 //!             static form of their controller, with the vehicle's own lag τ_a as the
 //!             low-level loop); families and regimes labelled as in spec 3.4
-//! approach:   a ≤ a_kin = −(v − v_l)² / (2 (g − s_min)) while v > v_l (CACC and ACC): the
-//!             constant deceleration that matches the leader's speed at s_min, applied from
-//!             the moment it binds (a standing queue at 250 m from 30 m/s: 1.8 m/s²)
+//! approach:   a ≤ a_kin = −(v − v_l)² / (2 (g − s_min)) while v > v_l and a_kin ≤ −0.5 m/s²
+//!             \[D\] (CACC and ACC): the constant deceleration that matches the leader's speed
+//!             at s_min (a standing queue at 250 m from 30 m/s: 1.8 m/s²)
+//! lag:        the demand is tracked with the lag max(τ_a, τ_ll) (the car's low-level loop)
 //! envelope:   a_cmd = max(a_req, −D(v)); a = max(lag(a_cmd), min(a_real, 0) − J(v) Δt);
 //!             D, J linear in v between v_lo and v_hi (ISO 15622); a_req < −D: take-over
 //!             request (counted); a_req < −D_auto: AEB (UN R152), as in spec 9.3 (counted)
@@ -237,6 +239,20 @@ pub struct CavParams {
     /// (J_low, J_high) in m/s³ (positive): the largest rate at which automatic braking
     /// builds up, at v_low and v_high (ISO 15622:2018).
     pub envelope_jerk_mps3: [f64; 2],
+    /// τ_ll (s): the lag of the car's low-level loop that tracks the field law's demand; under
+    /// the field law the actuation lags by max(`actuator_lag_s`, τ_ll) (docs/cacc-field.md).
+    pub field_low_level_lag_s: f64,
+}
+
+impl CavParams {
+    /// The lag (s) with which the automation's demand is realized: `actuator_lag_s`, under the
+    /// field law at least `field_low_level_lag_s`.
+    pub fn effective_lag_s(&self) -> f64 {
+        match self.cacc_law {
+            CaccLaw::Spec => self.actuator_lag_s,
+            CaccLaw::Field => self.actuator_lag_s.max(self.field_low_level_lag_s),
+        }
+    }
 }
 
 /// Which CACC law automated CAVs run (`cav.cacc_law`).
@@ -306,6 +322,7 @@ impl Default for CavParams {
             envelope_speeds_mps: [5.0, 20.0],
             envelope_decel_mps2: [5.0, 3.5],
             envelope_jerk_mps3: [5.0, 2.5],
+            field_low_level_lag_s: 0.3,
         }
     }
 }
@@ -668,11 +685,17 @@ pub fn draw_time_gap(p: &CavParams, u: f64) -> f64 {
     last_gap
 }
 
+/// The deceleration (m/s², positive) from which on the kinematic approach binds
+/// ([`approach_accel`]) \[D\]: below it the gap law alone closes the gap, so a follower a
+/// little faster than a distant leader still closes up (docs/cacc-field.md).
+pub const APPROACH_ONSET_MPS2: f64 = 0.5;
+
 /// The kinematic approach of the field law (docs/cacc-field.md): the constant acceleration
 /// that brings speed v down to the leader's (constant) v_l within the gap beyond s_min, from
 /// the relative motion: −(v − v_l)² / (2 (g − s_min)) (for a standing leader the stopping
-/// deceleration v²/(2 (g − s_min))); +∞ (no constraint) when the follower is not faster. The
-/// gap beyond s_min is taken as at least 0.1 m (inside it the safety override governs).
+/// deceleration v²/(2 (g − s_min))), once it reaches [`APPROACH_ONSET_MPS2`]; +∞ (no
+/// constraint) before, or when the follower is not faster. The gap beyond s_min is taken as at
+/// least 0.1 m (inside it the safety override governs).
 #[inline]
 pub fn approach_accel(p: &CavParams, v: f64, leader: Leader) -> f64 {
     let (v, v_l) = (v.max(0.0), leader.v_mps.max(0.0));
@@ -680,7 +703,12 @@ pub fn approach_accel(p: &CavParams, v: f64, leader: Leader) -> f64 {
         return f64::INFINITY;
     }
     let dv = v - v_l;
-    -(dv * dv) / (2.0 * (leader.gap_m - p.standstill_gap_m).max(0.1))
+    let a = -(dv * dv) / (2.0 * (leader.gap_m - p.standstill_gap_m).max(0.1));
+    if a <= -APPROACH_ONSET_MPS2 {
+        a
+    } else {
+        f64::INFINITY
+    }
 }
 
 /// The field form of the CACC (`cav.cacc_law = "field"`; docs/cacc-field.md): Ploeg et al.

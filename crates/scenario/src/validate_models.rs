@@ -262,6 +262,7 @@ pub(super) fn check_cav(c: &mut Checker, p: &CavParams) {
         ("cav.actuator_lag_s", p.actuator_lag_s),
         ("cav.comm_delay_s", p.comm_delay_s),
         ("cav.beacon_timeout_s", p.beacon_timeout_s),
+        ("cav.field_low_level_lag_s", p.field_low_level_lag_s),
     ] {
         c.value(
             f,

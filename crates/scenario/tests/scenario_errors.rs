@@ -436,6 +436,10 @@ fn other_ranges() {
             "cav.max_automated_decel_mps2 = -5: must be > 0 m/s² (a braking magnitude, positive)",
         ),
         (
+            "cav.field_low_level_lag_s=-0.3",
+            "cav.field_low_level_lag_s = -0.3: must be in [0, 10] s",
+        ),
+        (
             "cav.cacc_field_gains=[0, 0.7]",
             "cav.cacc_field_gains = [0, 0.7]: must be [k_p > 0 (1/s²), k_d >= 0 (1/s)]",
         ),

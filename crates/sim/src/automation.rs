@@ -19,7 +19,7 @@ use platoonsim_model::cav;
 /// The per-run constants of the automation's realism, and the broadcast log.
 #[derive(Clone, Debug)]
 pub(crate) struct Automation {
-    /// 1 − e^{−Δt/τ_a} (`cav::lag_gain`); 1 without lag.
+    /// 1 − e^{−Δt/τ} (`cav::lag_gain`), τ = `CavParams::effective_lag_s`; 1 without lag.
     pub lag_gain: f64,
     /// D_auto (m/s², positive).
     pub bound: f64,
@@ -61,7 +61,7 @@ impl Automation {
         let beacons = (delay_steps > 0 || p.packet_loss > 0.0)
             .then(|| Beacons::new(cfg.seed, delay_steps, p.packet_loss, cfg));
         Automation {
-            lag_gain: cav::lag_gain(cfg.dt_s, p.actuator_lag_s),
+            lag_gain: cav::lag_gain(cfg.dt_s, p.effective_lag_s()),
             bound: p.max_automated_decel_mps2,
             beacons,
         }

@@ -505,7 +505,8 @@ mod tests {
                 "brakings_at_limit",
                 "rear_end_conflicts",
                 "lane_change_conflicts",
-                "aeb_interventions"
+                "aeb_interventions",
+                "takeover_requests"
             ]
         );
     }
