@@ -116,13 +116,13 @@ fn quick_reproduction_plan() {
     assert_eq!(
         digests(true),
         [
-            "capacity 39 4d13742e725aa17c",
-            "sensitivity 36 72a07cd459279008",
-            "flow-aware 9 fcdb085b09f6591c",
-            "sr99 4 7b41a918945eecf6",
-            "sr99-demand 2 365522bbf6eb889f",
-            "behaviour 72 3dfbc4421bea3ac1",
-            "energy 24 c7422b683d636c42",
+            "capacity 39 b8579715b24cdb77",
+            "sensitivity 36 e42bca1ea3af7e33",
+            "flow-aware 9 070223160194711d",
+            "sr99 4 cf87a8e6b5ac4fa3",
+            "sr99-demand 2 ced607acea4fef66",
+            "behaviour 72 6e88d77ed62bdc1c",
+            "energy 24 0df2c29932c93201",
         ]
     );
 }
@@ -132,13 +132,13 @@ fn full_reproduction_plan() {
     assert_eq!(
         digests(false),
         [
-            "capacity 130 a649c199c86f319f",
-            "sensitivity 120 5cbea58485e593be",
-            "flow-aware 30 25e175a335d98657",
-            "sr99 140 d64fbbbb3961fdbf",
-            "sr99-demand 660 79db514cd35b6a50",
-            "behaviour 240 64fab4fb56e4640d",
-            "energy 320 c68ed4954d2bfb1c",
+            "capacity 130 40cf6852f74a1550",
+            "sensitivity 120 301c1f55a43d68fc",
+            "flow-aware 30 a693b8d1eaab77e1",
+            "sr99 140 2b97444796996581",
+            "sr99-demand 660 007170cb60744442",
+            "behaviour 240 ee684a09af534fb0",
+            "energy 320 3e11f0c81f2ab5a0",
         ]
     );
 }
@@ -155,5 +155,5 @@ fn calibrate_flow_aware_plan() {
         lines.len(),
         fnv1a64(lines.join("\n").as_bytes())
     );
-    assert_eq!(d, "756 016880d51a7fef13");
+    assert_eq!(d, "756 5f2eff8e07b40b7d");
 }
