@@ -307,12 +307,14 @@ pub(super) fn check_cav(c: &mut Checker, p: &CavParams) {
             "must be [low, high] with 0 <= low < high (m/s)",
         );
     }
+    // The envelope's deceleration is bounded like b_e (about 1.2 g, above any tyre's grip).
+    let top_decel = platoonsim_model::safety::MAX_EMERGENCY_DECEL_MPS2;
     for (f, g, unit, top) in [
         (
             "cav.envelope_decel_mps2",
             p.envelope_decel_mps2,
             "m/s²",
-            p.emergency_decel_mps2,
+            top_decel,
         ),
         (
             "cav.envelope_jerk_mps3",
@@ -323,7 +325,7 @@ pub(super) fn check_cav(c: &mut Checker, p: &CavParams) {
     ] {
         if !(g[0] > 0.0 && g[1] > 0.0 && g[0] <= top && g[1] <= top) {
             let bound = if top.is_finite() {
-                format!(", at most cav.emergency_decel_mps2 = {}", num(top))
+                format!(", at most {} (about 1.2 g)", num(top))
             } else {
                 String::new()
             };

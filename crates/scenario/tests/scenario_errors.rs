@@ -452,8 +452,8 @@ fn other_ranges() {
             "cav.envelope_speeds_mps = [20, 5]: must be [low, high] with 0 <= low < high (m/s)",
         ),
         (
-            "cav.envelope_decel_mps2=[12, 3.5]",
-            "cav.envelope_decel_mps2 = [12, 3.5]: must be [at low speed, at high speed], both > 0 m/s², at most cav.emergency_decel_mps2 = 9",
+            "cav.envelope_decel_mps2=[12.5, 3.5]",
+            "cav.envelope_decel_mps2 = [12.5, 3.5]: must be [at low speed, at high speed], both > 0 m/s², at most 12 (about 1.2 g)",
         ),
         (
             "cav.envelope_jerk_mps3=[5, 0]",
