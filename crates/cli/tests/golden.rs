@@ -1,6 +1,6 @@
 //! Golden digests (issue 18 item 7): "outputs bit-identical" checked by CI, not by hand.
 //!
-//! Four short runs of the `platoonsim` binary, each with the defaults of its scenario
+//! Eight short runs of the `platoonsim` binary, each with the defaults of its scenario
 //! otherwise:
 //!
 //! | name | command |
@@ -9,6 +9,7 @@
 //! | `homogeneous_pd` | the same with `--strategy pd` |
 //! | `sr99` | `platoonsim run sr99 --duration 900` (05:00-05:15, 0 % CAV) |
 //! | `lane_drop` | `platoonsim run crates/scenario/scenarios/lane_drop.toml --duration 600 --warmup 120` (50 % CAV) |
+//! | `<name>_spec` | each of the four with `--set cav.cacc_law=spec` (the published CACC law) |
 //!
 //! For each, two FNV-1a 64-bit digests: `summary.json` without `wall_seconds` (parsed, the key
 //! removed, written back canonically: keys sorted, no white space, numbers as serde_json
@@ -203,7 +204,7 @@ struct Digest {
 /// The golden runs: name and arguments after `run`.
 fn runs() -> Vec<(&'static str, Vec<String>)> {
     let v = |a: &[&str]| a.iter().map(|s| s.to_string()).collect::<Vec<_>>();
-    vec![
+    let mut runs = vec![
         (
             "homogeneous",
             v(&["homogeneous", "--duration", "600", "--warmup", "120"]),
@@ -225,7 +226,26 @@ fn runs() -> Vec<(&'static str, Vec<String>)> {
             "lane_drop",
             v(&[&lane_drop_path(), "--duration", "600", "--warmup", "120"]),
         ),
-    ]
+    ];
+    // The same runs under the published CACC law (`cav.cacc_law = "spec"`): their digests
+    // are those of the engine before the field law, bit for bit, but for summary.json's
+    // take-over request fields (all 0 under that law).
+    let spec: Vec<(&'static str, Vec<String>)> = runs
+        .iter()
+        .zip([
+            "homogeneous_spec",
+            "homogeneous_pd_spec",
+            "sr99_spec",
+            "lane_drop_spec",
+        ])
+        .map(|((_, a), name)| {
+            let mut a = a.clone();
+            a.extend(["--set".to_string(), "cav.cacc_law=spec".to_string()]);
+            (name, a)
+        })
+        .collect();
+    runs.extend(spec);
+    runs
 }
 
 /// Run every golden run (two at a time) and digest its files.

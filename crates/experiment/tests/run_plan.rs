@@ -120,18 +120,18 @@ fn quick_reproduction_plan() {
     assert_eq!(
         digests(true),
         [
-            "paper/capacity 39 f3df5a7e1513c5ce",
-            "paper/sensitivity 36 1fbe460ab42ed925",
-            "paper/flow-aware 9 30715a9eeb9fa934",
-            "paper/sr99 4 e6bca14317dab161",
-            "rules 120 cf142fb181002263",
-            "capacity 39 56db8bfc74032312",
-            "sensitivity 36 1c935a31a905be8b",
-            "flow-aware 9 526a846cf2e3d272",
-            "sr99 4 7fc0903a30ffdc2b",
-            "sr99-demand 2 07e1eb48c2d8430e",
-            "behaviour 72 f3c127a23bf241d6",
-            "energy 24 2d5aef480aa4a689",
+            "paper/capacity 39 ed06e69e5cd2d42c",
+            "paper/sensitivity 36 1d49b419486be7a2",
+            "paper/flow-aware 9 5de774217094744d",
+            "paper/sr99 4 32f23341d1efc830",
+            "rules 132 97d31656907f977f",
+            "capacity 39 396e8a06dd34aa88",
+            "sensitivity 36 6c2846ebcdded4e2",
+            "flow-aware 9 04672a019d734710",
+            "sr99 4 07733fae2d894fdf",
+            "sr99-demand 2 6f0b19c0557c0d35",
+            "behaviour 72 183fbfb21483514b",
+            "energy 24 c0d69109d0e4ee15",
         ]
     );
 }
@@ -141,18 +141,18 @@ fn full_reproduction_plan() {
     assert_eq!(
         digests(false),
         [
-            "paper/capacity 130 078c1abdd16832f8",
-            "paper/sensitivity 120 9617a566e08978f3",
-            "paper/flow-aware 30 26dad0a8007f971d",
-            "paper/sr99 140 df8da88e97317e08",
-            "rules 400 a1b179e003cc030a",
-            "capacity 130 77e2a54f739b7bf7",
-            "sensitivity 120 836202743ca09cf3",
-            "flow-aware 30 619161a2f1b4bf11",
-            "sr99 140 c67b6b186da61594",
-            "sr99-demand 660 299a8a0da3730ad0",
-            "behaviour 240 93b0ab5e28fce65c",
-            "energy 320 183e2835dfa67eb5",
+            "paper/capacity 130 292e7a33012165e5",
+            "paper/sensitivity 120 c2a5d10a59d8b2d2",
+            "paper/flow-aware 30 cc349612d6dd6e56",
+            "paper/sr99 140 a4bbbe30905a8fa3",
+            "rules 440 f6ce2f108717d5fc",
+            "capacity 130 7760193f3e325a2b",
+            "sensitivity 120 5e9e923c1f0c8a37",
+            "flow-aware 30 8ed6de6a70a240e4",
+            "sr99 140 0a08661a0780cfd3",
+            "sr99-demand 660 677be20f4e8d9637",
+            "behaviour 240 b51f94e919b2937d",
+            "energy 320 497e6099b990a98f",
         ]
     );
 }
@@ -169,5 +169,5 @@ fn calibrate_flow_aware_plan() {
         lines.len(),
         fnv1a64(lines.join("\n").as_bytes())
     );
-    assert_eq!(d, "756 e9da5ad186ba3bb3");
+    assert_eq!(d, "756 801c388f273c49b9");
 }

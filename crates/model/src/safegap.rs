@@ -121,11 +121,15 @@ pub struct AutomatedFollower {
     pub family: Family,
     /// The changer is a CAV (CACC) or not (ACC).
     pub changer_is_cav: bool,
+    /// The changer's acceleration, as its beacon carries it (the field law's feed-forward;
+    /// read only for a CAV changer under `cav.cacc_law = "field"`).
+    pub a_pred: f64,
 }
 
 /// The acceleration an automated CAV's controller would apply (spec 3.9: ACC behind a
 /// non-CAV, CACC behind a CAV, the safety override and the limits) with `changer` as its new
-/// leader, over a step `dt`.
+/// leader, over a step `dt`, under `p.cacc_law` (under the field law the caller passes the
+/// time gap after the cut-in reset, `cav::cut_in_time_gap`).
 pub fn automated_follower_accel(
     p: &CavParams,
     f: &AutomatedFollower,
@@ -138,9 +142,9 @@ pub fn automated_follower_accel(
         Some(l) => {
             let tg = cav::ramp_time_gap(p, f.time_gap_s, f.target_gap_s, dt);
             if f.changer_is_cav {
-                cav::cacc(p, f.v, f.a, f.v_des, l, tg, f.family).accel
+                cav::cacc_by_law(p, f.v, f.a, f.a_pred, f.v_des, l, tg, f.family).accel
             } else {
-                cav::acc(p, f.v, f.v_des, Some(l), tg, f.family).accel
+                cav::acc_by_law(p, f.v, f.v_des, Some(l), tg, f.family).accel
             }
         }
     };
@@ -217,6 +221,7 @@ mod tests {
             target_gap_s: 1.1,
             family: Family::Gap,
             changer_is_cav: false,
+            a_pred: 0.0,
         };
         let near = Leader {
             gap_m: 15.0,

@@ -3,7 +3,7 @@
 //!
 //! | preset | the behaviour keys default to |
 //! |---|---|
-//! | `platform` (default) | the engine's defaults: the paper's model with every documented extension that is on by default (the safe gap rule, automated organization with the narrow hold, 6.21, 6.22, automated yielding) |
+//! | `platform` (default) | the engine's defaults: the paper's model with every documented extension that is on by default (the safe gap rule, automated organization with the narrow hold, the field form of the CACC, 6.21, 6.22, automated yielding) |
 //! | `paper` | the paper's rules as published: the published gap rule, the PATH organization rule (manual from the desire on), the spec's CACC law, no cooperative or automated yielding, no CACC realism; plus only the engine rules without which the model cannot run (listed in docs/model-choices.md with their measured effect) |
 //!
 //! A preset only fills keys the scenario leaves out: a key written in the file or given with
@@ -65,7 +65,9 @@ fn paper() -> Vec<(&'static str, Value)> {
         // Spec 3.1, the PATH rule: a CAV is in manual control from the moment a lane-change
         // desire arises, the organizing desire included (6.20 off).
         ("cav.organize_while_automated", Value::Boolean(false)),
-        // Spec 3.4 as written: gap closing whenever the gap is above target (6.21 off).
+        // The spec's CACC law (spec 3.4, 9.3), not its field form (docs/cacc-field.md) …
+        ("cav.cacc_law", s("spec")),
+        // … as written: gap closing whenever the gap is above target (6.21 off).
         ("cav.cacc_closing_only_approaching", Value::Boolean(false)),
         // Spec 4.3 as written: the move toward the PD lane keeps a_ant >= 0 (6.22 off).
         ("cav.organize_regardless_of_speed", Value::Boolean(false)),

@@ -270,6 +270,7 @@ pub(super) fn check_cav(c: &mut Checker, p: &CavParams) {
         ("cav.actuator_lag_s", p.actuator_lag_s),
         ("cav.comm_delay_s", p.comm_delay_s),
         ("cav.beacon_timeout_s", p.beacon_timeout_s),
+        ("cav.field_low_level_lag_s", p.field_low_level_lag_s),
     ] {
         c.value(
             f,
@@ -290,6 +291,59 @@ pub(super) fn check_cav(c: &mut Checker, p: &CavParams) {
         p.max_automated_decel_mps2 > 0.0,
         "must be > 0 m/s² (a braking magnitude, positive)",
     );
+    // The field CACC law (docs/cacc-field.md): gains and feed-forward non-negative, the
+    // ISO 15622 envelope positive, its speeds ordered, its deceleration within b_e.
+    let [kp, kd] = p.cacc_field_gains;
+    if !(kp > 0.0 && kd >= 0.0) {
+        c.push(
+            "cav.cacc_field_gains",
+            pair(p.cacc_field_gains),
+            "must be [k_p > 0 (1/s²), k_d >= 0 (1/s)]",
+        );
+    }
+    c.value(
+        "cav.cacc_feedforward",
+        p.cacc_feedforward,
+        (0.0..=1.0).contains(&p.cacc_feedforward),
+        "must be in [0, 1] (0 = no feed-forward, 1 = the predecessor's whole acceleration)",
+    );
+    let sp = p.envelope_speeds_mps;
+    if !(sp[0] >= 0.0 && sp[0] < sp[1]) {
+        c.push(
+            "cav.envelope_speeds_mps",
+            pair(sp),
+            "must be [low, high] with 0 <= low < high (m/s)",
+        );
+    }
+    // The envelope's deceleration is bounded like b_e (about 1.2 g, above any tyre's grip).
+    let top_decel = platoonsim_model::safety::MAX_EMERGENCY_DECEL_MPS2;
+    for (f, g, unit, top) in [
+        (
+            "cav.envelope_decel_mps2",
+            p.envelope_decel_mps2,
+            "m/s²",
+            top_decel,
+        ),
+        (
+            "cav.envelope_jerk_mps3",
+            p.envelope_jerk_mps3,
+            "m/s³",
+            f64::INFINITY,
+        ),
+    ] {
+        if !(g[0] > 0.0 && g[1] > 0.0 && g[0] <= top && g[1] <= top) {
+            let bound = if top.is_finite() {
+                format!(", at most {} (about 1.2 g)", num(top))
+            } else {
+                String::new()
+            };
+            c.push(
+                f,
+                pair(g),
+                format!("must be [at low speed, at high speed], both > 0 {unit}{bound}"),
+            );
+        }
+    }
 
     let shares = &p.time_gap_shares;
     let text = || {

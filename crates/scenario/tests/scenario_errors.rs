@@ -24,7 +24,7 @@ fn unknown_top_level_key() {
     assert_eq!(path, "colour");
     assert!(
         msg.starts_with(
-            "unknown key 'colour' at the top level; allowed keys: name, description, run"
+            "unknown key 'colour' at the top level; allowed keys: name, description, model, run"
         ),
         "{msg}"
     );
@@ -434,6 +434,30 @@ fn other_ranges() {
         (
             "cav.max_automated_decel_mps2=-5",
             "cav.max_automated_decel_mps2 = -5: must be > 0 m/s² (a braking magnitude, positive)",
+        ),
+        (
+            "cav.field_low_level_lag_s=-0.3",
+            "cav.field_low_level_lag_s = -0.3: must be in [0, 10] s",
+        ),
+        (
+            "cav.cacc_field_gains=[0, 0.7]",
+            "cav.cacc_field_gains = [0, 0.7]: must be [k_p > 0 (1/s²), k_d >= 0 (1/s)]",
+        ),
+        (
+            "cav.cacc_feedforward=1.5",
+            "cav.cacc_feedforward = 1.5: must be in [0, 1] (0 = no feed-forward, 1 = the predecessor's whole acceleration)",
+        ),
+        (
+            "cav.envelope_speeds_mps=[20, 5]",
+            "cav.envelope_speeds_mps = [20, 5]: must be [low, high] with 0 <= low < high (m/s)",
+        ),
+        (
+            "cav.envelope_decel_mps2=[12.5, 3.5]",
+            "cav.envelope_decel_mps2 = [12.5, 3.5]: must be [at low speed, at high speed], both > 0 m/s², at most 12 (about 1.2 g)",
+        ),
+        (
+            "cav.envelope_jerk_mps3=[5, 0]",
+            "cav.envelope_jerk_mps3 = [5, 0]: must be [at low speed, at high speed], both > 0 m/s³",
         ),
         (
             "lane_change.safe_follower_decel_mps2=-3",

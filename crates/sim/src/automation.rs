@@ -4,7 +4,7 @@
 //! `broadcast_step`); this module holds their per-run constants and the broadcast log.
 //!
 //! The broadcast log keeps, per vehicle slot, the speeds the vehicle broadcast in the last
-//! `depth` = d + T_b + 1 steps (d the delay, T_b the timeout, in steps), as a ring indexed by
+//! `depth` = d + T_b + 2 steps (d the delay, T_b the timeout, in steps), as a ring indexed by
 //! step: a follower that last received a beacon `age` steps ago reads its leader's speed of
 //! step k − age − d. It exists only when the delay or the loss is on; otherwise the CACC law
 //! reads the leader's current speed, as before. Rows are filled with the vehicle's speed when
@@ -19,7 +19,7 @@ use platoonsim_model::cav;
 /// The per-run constants of the automation's realism, and the broadcast log.
 #[derive(Clone, Debug)]
 pub(crate) struct Automation {
-    /// 1 − e^{−Δt/τ_a} (`cav::lag_gain`); 1 without lag.
+    /// 1 − e^{−Δt/τ} (`cav::lag_gain`), τ = `CavParams::effective_lag_s`; 1 without lag.
     pub lag_gain: f64,
     /// D_auto (m/s², positive).
     pub bound: f64,
@@ -47,7 +47,8 @@ pub(crate) struct Beacons {
     pub loss: f64,
     /// The scenario seed (the loss draws' stream, `rng::Purpose::Beacons`).
     pub seed: u64,
-    /// Entries per slot: delay + timeout + 1.
+    /// Entries per slot: delay + timeout + 2 (one more than the oldest speed read, for the
+    /// acceleration of the field law).
     depth: usize,
     /// Slot-major: `log[s·depth + step mod depth]` is the speed slot s broadcast at `step`.
     log: Vec<f64>,
@@ -60,7 +61,7 @@ impl Automation {
         let beacons = (delay_steps > 0 || p.packet_loss > 0.0)
             .then(|| Beacons::new(cfg.seed, delay_steps, p.packet_loss, cfg));
         Automation {
-            lag_gain: cav::lag_gain(cfg.dt_s, p.actuator_lag_s),
+            lag_gain: cav::lag_gain(cfg.dt_s, p.effective_lag_s()),
             bound: p.max_automated_decel_mps2,
             beacons,
         }
@@ -75,7 +76,7 @@ impl Beacons {
             timeout_steps,
             loss,
             seed,
-            depth: (delay_steps + timeout_steps + 1) as usize,
+            depth: (delay_steps + timeout_steps + 2) as usize,
             log: Vec::new(),
         }
     }
@@ -90,6 +91,22 @@ impl Beacons {
         }
         let k = cav::broadcast_step(step, age, self.delay_steps);
         Some(self.log[leader as usize * self.depth + (k % self.depth as u64) as usize])
+    }
+
+    /// The leader's acceleration that the same beacon carries (field law): the change of its
+    /// broadcast speed into step k − age − d, (v(k) − v(k−1))/Δt; 0 past the timeout.
+    #[inline]
+    pub fn received_accel(&self, age: u32, leader: u32, step: u64, dt: f64) -> f64 {
+        if !cav::beacon_held(age, self.timeout_steps) {
+            return 0.0;
+        }
+        let k = cav::broadcast_step(step, age, self.delay_steps);
+        if k == 0 {
+            return 0.0;
+        }
+        let row = leader as usize * self.depth;
+        let d = self.depth as u64;
+        (self.log[row + (k % d) as usize] - self.log[row + ((k - 1) % d) as usize]) / dt
     }
 
     /// This step's receptions (spec 9.3), before the sense phase: each CAV's beacon age is 0

@@ -13,7 +13,7 @@ use crate::state::Decision;
 use crate::state::{Clock, Control, RoadState, Scratch, Traffic};
 use crate::state::{Neighbours, Sensed, NONE};
 use crate::vehicle::{AutoFlags, Mode, Relaxation, Vehicle};
-use platoonsim_model::cav::{self, Family};
+use platoonsim_model::cav::{self, CaccLaw, Family};
 use platoonsim_model::driver;
 use platoonsim_model::human;
 use platoonsim_model::lanechange::{self as lcm, Side};
@@ -23,7 +23,7 @@ use platoonsim_model::{Leader, Relax};
 mod commands;
 mod cooperate;
 mod safe_gaps;
-pub(crate) use safe_gaps::{follower_accel_after, safe_decel};
+pub(crate) use safe_gaps::{automated_follower_after, follower_accel_after, safe_decel};
 
 /// Gap acceptance toward the target lane (spec 4.3) and the anticipated acceleration behind
 /// the target-lane leader.
@@ -380,13 +380,33 @@ impl View<'_> {
     /// `cav.max_automated_decel_mps2` (beyond it AEB applies the demand and the decision says
     /// so) and lagged by `cav.actuator_lag_s` from the acceleration realized in the last step.
     /// Both off (no lag, demand within the bound): `d` unchanged.
+    /// Under the field law (`cav.cacc_law`) the demand first goes through the ISO 15622
+    /// envelope (deceleration and jerk bounds by speed); a demand beyond its deceleration is a
+    /// take-over request, flagged (`cav::actuate_field`).
     #[inline]
     fn actuate(&self, v: &Vehicle, d: &mut Decision) {
         let auto = &self.traffic.auto;
-        let (a, aeb) = cav::actuate(v.a, d.accel, auto.lag_gain, auto.bound);
+        let p = &self.cfg.cav;
+        let (a, aeb, tor) = match p.cacc_law {
+            CaccLaw::Spec => {
+                let (a, aeb) = cav::actuate(v.a, d.accel, auto.lag_gain, auto.bound);
+                (a, aeb, false)
+            }
+            CaccLaw::Field => cav::actuate_field(
+                v.a,
+                d.accel,
+                auto.lag_gain,
+                auto.bound,
+                cav::envelope(p, v.v),
+                self.clock.dt,
+            ),
+        };
         d.accel = a;
         if aeb {
             d.auto = d.auto.union(AutoFlags::new(true, false));
+        }
+        if tor {
+            d.auto = d.auto.union(AutoFlags::TAKEOVER);
         }
     }
 
@@ -403,11 +423,26 @@ impl View<'_> {
         // (spec 9.3; `None` when they timed out: ACC on the radar alone, a fallback), without
         // delay and loss the leader's current speed.
         let cav_ahead = !wall && self.is_cav(ld);
+        // The field law also reads the leader's acceleration from the same beacon (its
+        // realized acceleration of the last step, or the speed change between two broadcasts).
+        let field = p.cacc_law == CaccLaw::Field;
+        let mut a_pred = 0.0;
         let known = match (leader, &self.traffic.auto.beacons) {
-            (Some(l), None) if cav_ahead => Some(l),
+            (Some(l), None) if cav_ahead => {
+                if field {
+                    a_pred = self.traffic.vehicles[ld as usize].a;
+                }
+                Some(l)
+            }
             (Some(l), Some(b)) if cav_ahead => b
                 .received_speed(v.cacc.beacon_age, ld, self.clock.step)
-                .map(|v_mps| Leader { v_mps, ..l }),
+                .map(|v_mps| {
+                    if field {
+                        a_pred =
+                            b.received_accel(v.cacc.beacon_age, ld, self.clock.step, self.clock.dt);
+                    }
+                    Leader { v_mps, ..l }
+                }),
             _ => None,
         };
         let fallback = cav_ahead && leader.is_some() && known.is_none();
@@ -424,11 +459,11 @@ impl View<'_> {
                     v.cacc.gap_s
                 };
                 time_gap = cav::ramp_time_gap(p, time_gap, target, self.clock.dt);
-                cav::cacc(p, v.v, v.a, v_des, known, time_gap, v.cacc.family)
+                cav::cacc_by_law(p, v.v, v.a, a_pred, v_des, known, time_gap, v.cacc.family)
             }
             (Some(l), None) => {
                 time_gap = cav::ramp_time_gap(p, time_gap, p.acc_time_gap_s, self.clock.dt);
-                cav::acc(p, v.v, v_des, Some(l), time_gap, v.cacc.family)
+                cav::acc_by_law(p, v.v, v_des, Some(l), time_gap, v.cacc.family)
             }
         };
         Decision {

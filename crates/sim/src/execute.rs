@@ -186,14 +186,20 @@ fn try_change(
             cooperative,
         });
     }
-    // The new follower relaxes (RCF), unless it is an automated CAV (spec 4.6).
+    // The new follower relaxes (RCF), unless it is an automated CAV (spec 4.6); under the
+    // field law an automated one resets its gap reference to the actual gap and reopens it
+    // (`cav::cut_in_time_gap`; docs/cacc-field.md).
     if tf != NONE {
+        let gap = traffic.vehicles[s as usize].rear() - traffic.vehicles[tf as usize].x;
         let f = &mut traffic.vehicles[tf as usize];
         if !f.automated() {
             f.lcs.relax = Relaxation::since(step + 1);
             if matches!(f.mode, Mode::Ycf { .. }) {
                 f.mode = Mode::Cf;
             }
+        } else {
+            f.cacc.time_gap_s =
+                platoonsim_model::cav::cut_in_time_gap(&cfg.cav, f.cacc.time_gap_s, gap, f.v);
         }
     }
 }

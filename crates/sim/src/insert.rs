@@ -24,7 +24,7 @@ use crate::vehicle::{
     AutoFlags, CaccState, Driver, Kind, LaneChangeState, Mode, ModeLabel, Relaxation, Route, Stats,
     Vehicle, NEVER, NO_EXIT,
 };
-use platoonsim_model::cav::{self, Family};
+use platoonsim_model::cav::{self, CaccLaw, Family};
 use platoonsim_model::human::{self, HUMAN_DRAWS};
 use platoonsim_model::lanechange::LC_DRAWS;
 use platoonsim_model::{Leader, Relax};
@@ -393,8 +393,8 @@ impl Inserting<'_> {
         let Some(speed) = self.insertion_speed_at(head, x, ld, wall, v_max) else {
             return;
         };
-        if let Some(f) = fo {
-            let f = &self.traffic.vehicles[f as usize];
+        if let Some(fs) = fo {
+            let f = &self.traffic.vehicles[fs as usize];
             let gap = x - head.driver.human.length_m - f.x;
             if gap <= 0.0 {
                 return;
@@ -403,13 +403,27 @@ impl Inserting<'_> {
                 gap_m: gap,
                 v_mps: speed,
             };
-            let a = human::target_accel(
-                &f.driver.human,
-                f.v,
-                f.driver.human.desired_speed,
-                Some(view),
-                Relax::NONE,
-            );
+            // An automated follower under the field law is judged by its own handling of the
+            // insertion (its controller after the cut-in reset, as the safe gap rule judges
+            // it); every other follower by the human model, as before.
+            let a = if f.automated() && self.cfg.cav.cacc_law == CaccLaw::Field {
+                crate::decide::automated_follower_after(
+                    self.cfg,
+                    self.clock.dt,
+                    f,
+                    f.driver.human.desired_speed,
+                    head,
+                    view,
+                )
+            } else {
+                human::target_accel(
+                    &f.driver.human,
+                    f.v,
+                    f.driver.human.desired_speed,
+                    Some(view),
+                    Relax::NONE,
+                )
+            };
             if a < f.driver.human.comfort_decel {
                 return;
             }
@@ -421,7 +435,16 @@ impl Inserting<'_> {
         if let Some(d) = self.detectors.entry_of_ramp[r] {
             self.detectors.list[d].count_exit(speed, veh.is_cav());
         }
+        let len = veh.driver.human.length_m;
         self.place(veh, lane, x, speed, j);
+        // The automated follower resets its gap reference to the actual gap (field law).
+        if let Some(fs) = fo {
+            let f = &mut self.traffic.vehicles[fs as usize];
+            if f.automated() {
+                f.cacc.time_gap_s =
+                    cav::cut_in_time_gap(&self.cfg.cav, f.cacc.time_gap_s, x - len - f.x, f.v);
+            }
+        }
     }
 
     /// Put a vehicle on the road at list index `at` of `lane`.

@@ -108,6 +108,9 @@ pub(crate) fn move_vehicles(
                         safety.counts.count(Counted::AebInterventions, veh.kind);
                     }
                     *cacc_fallbacks += u64::from(now.degraded() && !was.degraded());
+                    if now.takeover() && !was.takeover() {
+                        safety.counts.count(Counted::TakeoverRequests, veh.kind);
+                    }
                 }
                 veh.hold_wait = if now.in_wait() {
                     veh.hold_wait.saturating_add(u32::from(now.wait_slow()))

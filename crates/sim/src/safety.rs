@@ -64,17 +64,21 @@ pub enum Counted {
     /// AEB interventions (spec 9.3): episodes in which an automated CAV needed harder braking
     /// than `cav.max_automated_decel_mps2` and the emergency system applied it.
     AebInterventions,
+    /// Take-over requests (field CACC law, docs/cacc-field.md): episodes in which an automated
+    /// CAV's demand exceeded the ISO 15622 deceleration envelope (short of AEB).
+    TakeoverRequests,
 }
 
 impl Counted {
     /// Every counted measure, in output order.
-    pub const ALL: [Counted; 6] = [
+    pub const ALL: [Counted; 7] = [
         Counted::HardBrakings,
         Counted::SevereBrakings,
         Counted::BrakingsAtLimit,
         Counted::RearEndConflicts,
         Counted::LaneChangeConflicts,
         Counted::AebInterventions,
+        Counted::TakeoverRequests,
     ];
 
     /// The measure's name in the outputs (`summary.json`, the CSVs).
@@ -86,6 +90,7 @@ impl Counted {
             Counted::RearEndConflicts => "rear_end_conflicts",
             Counted::LaneChangeConflicts => "lane_change_conflicts",
             Counted::AebInterventions => "aeb_interventions",
+            Counted::TakeoverRequests => "takeover_requests",
         }
     }
 }
@@ -500,7 +505,8 @@ mod tests {
                 "brakings_at_limit",
                 "rear_end_conflicts",
                 "lane_change_conflicts",
-                "aeb_interventions"
+                "aeb_interventions",
+                "takeover_requests"
             ]
         );
     }

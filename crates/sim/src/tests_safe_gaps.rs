@@ -1,22 +1,32 @@
 //! Engine tests of the safe gap rule (spec 9.1) on hand-placed vehicles
 //! (`insert::place_for_test`): a cut-in the safe rule refuses and the published rule accepts,
-//! and the new follower's braking after a change the safe rule accepts.
+//! and the new follower's braking after a change the safe rule accepts. The CAV followers of
+//! the first two tests run the published CACC law (`cav.cacc_law = "spec"`), whose steady-state
+//! law brakes hard behind a cut-in; the third test shows the field law's follower, which resets
+//! its gap reference (docs/cacc-field.md).
 
 use crate::command::Command;
 use crate::insert::place_for_test;
 use crate::vehicle::Kind;
 use crate::{Config, Simulation};
+use platoonsim_model::cav::CaccLaw;
 use platoonsim_model::lanechange::Side;
 use platoonsim_model::safegap::GapRule;
 
 /// An empty three-lane road (no arrivals) under `rule`; both safe bounds at 3 m/s², so that a
-/// commanded change (mandatory, γ = 1) is held to b_safe too.
-fn empty_road(rule: GapRule) -> Simulation {
+/// commanded change (mandatory, γ = 1) is held to b_safe too; CAVs under `law`.
+fn empty_road_law(rule: GapRule, law: CaccLaw) -> Simulation {
     let mut cfg = Config::homogeneous(0.0, 0.0, 600.0, 0.0, 1);
+    cfg.cav.cacc_law = law;
     cfg.lane_change.gap_rule = rule;
     cfg.lane_change.safe_follower_decel_mps2 = 3.0;
     cfg.lane_change.mandatory_safe_decel_mps2 = 3.0;
     Simulation::new(cfg).unwrap()
+}
+
+/// [`empty_road_law`] under the published CACC law.
+fn empty_road(rule: GapRule) -> Simulation {
+    empty_road_law(rule, CaccLaw::Spec)
 }
 
 fn find(sim: &Simulation, id: u64) -> crate::VehicleView<'_> {
@@ -112,5 +122,30 @@ fn the_follower_brakes_no_harder_than_b_safe_after_a_safe_cut_in() {
             a_pub < -3.0,
             "{kind:?}: published: the follower brakes at {a_pub}"
         );
+    }
+}
+
+/// Under the field law the automated follower takes the cut-ins within the ISO 15622
+/// envelope at its speed (3.5 m/s² above 20 m/s: no take-over request). The safe rule judges
+/// the follower's demand at the change, by its law after the gap reset: it lets the 30 m
+/// cut-in (a human changer 4 m/s slower) in at once, where under the published law it waits 13 s,
+/// and the braking the follower then builds up exceeds b_safe = 3 a little (3.26 m/s²).
+/// Measured (largest braking, field / spec): safe 30 m 3.26 / 0.00 (spec: no cut-in), published
+/// 35 m 1.95 / 3.19, safe 35 m 2.50 / 1.89.
+#[test]
+fn a_field_law_follower_takes_the_cut_ins_within_the_envelope() {
+    for (rule, gap, at) in [
+        (GapRule::Safe, 30.0, 0),
+        (GapRule::Published, 35.0, 0),
+        (GapRule::Safe, 35.0, 2),
+    ] {
+        let mut sim = empty_road_law(rule, CaccLaw::Field);
+        let c = place_for_test(&mut sim, Kind::Human, 0, 2000.0, 26.0);
+        let f = place_for_test(&mut sim, Kind::Cav, 1, 2000.0 - 4.0 - gap, 30.0);
+        sim.command(c, Command::ChangeLane { side: Side::Left })
+            .unwrap();
+        let (a, when) = follower_braking(&mut sim, c, f, 300);
+        assert_eq!(when, Some(at), "{rule:?} {gap}");
+        assert!(a >= -3.5, "{rule:?} {gap}: the follower brakes at {a}");
     }
 }

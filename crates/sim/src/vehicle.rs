@@ -144,7 +144,8 @@ pub(crate) struct CaccState {
     pub beacon_age: u32,
 }
 
-/// What the automation's realism did to a CAV in a step (spec 9.3), as bit flags in one byte
+/// What the automation's realism did to a CAV in a step (spec 9.3; the take-over request of
+/// the field law), as bit flags in one byte
 /// (the decision and the vehicle carry it; one test per vehicle and step).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct AutoFlags(u8);
@@ -153,10 +154,11 @@ impl AutoFlags {
     pub const NONE: AutoFlags = AutoFlags(0);
     const AEB: u8 = 1;
     const FALLBACK: u8 = 2;
+    const TOR: u8 = 4;
     /// The driver waits for a gap toward its organized lane under automation (6.20).
-    const WAIT: u8 = 4;
+    const WAIT: u8 = 8;
     /// … below the creep speed: the step counts toward `cav.organize_hold_timeout_s`.
-    const WAIT_SLOW: u8 = 8;
+    const WAIT_SLOW: u8 = 16;
 
     /// `aeb`: the automation's demand exceeded `cav.max_automated_decel_mps2` and AEB applied
     /// it; `fallback`: no V2V beacon from the CAV leader within `cav.beacon_timeout_s`, ACC.
@@ -193,6 +195,15 @@ impl AutoFlags {
     #[inline]
     pub(crate) fn wait_slow(self) -> bool {
         self.0 & Self::WAIT_SLOW != 0
+    }
+
+    /// A take-over request (field law): the demand exceeded the ISO 15622 envelope.
+    pub const TAKEOVER: AutoFlags = AutoFlags(Self::TOR);
+
+    /// The automation asked its driver to take over (field law).
+    #[inline]
+    pub fn takeover(self) -> bool {
+        self.0 & Self::TOR != 0
     }
 
     /// None of the flags.

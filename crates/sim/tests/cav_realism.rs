@@ -172,8 +172,11 @@ fn with_every_option_off_the_bound_only_relabels_braking() {
     // gives the same run except for the count. Mixed traffic with PD at 2,500 veh/h/lane under
     // the published gap rule (spec 4.3), where the CAVs' safety override does brake beyond
     // 5 m/s² after cut-ins (the safe rule of spec 9.1 prevents those cut-ins).
+    // The published CACC law (spec 9.3's actuation): under the field law the bound also
+    // separates AEB from the take-over requests of the envelope (docs/cacc-field.md).
     let mut base = Config::homogeneous(0.5, 2500.0, 1800.0, 0.0, 1).with_pd();
     base.lane_change.gap_rule = platoonsim_model::safegap::GapRule::Published;
+    base.cav.cacc_law = platoonsim_model::cav::CaccLaw::Spec;
     let mut loose = base.clone();
     loose.cav.max_automated_decel_mps2 = 100.0;
     let a = strip_wall(run(&base, None).unwrap());

@@ -11,6 +11,7 @@
 //! | `closing-only-approaching` | `cav.cacc_closing_only_approaching` | 6.21 |
 //! | `organize-regardless-of-speed` | `cav.organize_regardless_of_speed` | 6.22 |
 //! | `cooperative` | `cav.cooperative_lane_change` | spec 9.2 |
+//! | `field-cacc` | `cav.cacc_law = "field"` | docs/cacc-field.md |
 //! | `platform` | `model.preset = "platform"` | |
 //!
 //! Per seed pair with the same variant's baseline: ΔQ = 100 (Q_PO − Q_B) / Q_B
@@ -35,7 +36,7 @@ pub const PENETRATION: f64 = 0.5;
 pub const STRATEGIES: [StrategyKind; 2] = [StrategyKind::NONE, StrategyKind::PD];
 
 /// The variants in the sweep file's order, with what each switches on.
-pub const VARIANTS: [(&str, &str); 10] = [
+pub const VARIANTS: [(&str, &str); 11] = [
     ("paper", "the paper's model (`model.preset = \"paper\"`)"),
     ("safe-gaps", "+ the safe gap rule (spec 9.1)"),
     (
@@ -63,6 +64,10 @@ pub const VARIANTS: [(&str, &str); 10] = [
         "+ no a_ant ≥ 0 test for the PD move (6.22)",
     ),
     ("cooperative", "+ cooperative lane changes (spec 9.2)"),
+    (
+        "field-cacc",
+        "+ the field form of the CACC (docs/cacc-field.md)",
+    ),
     ("platform", "all of the platform's defaults"),
 ];
 
@@ -229,6 +234,7 @@ mod tests {
         assert!(!paper.cav.cacc_closing_only_approaching);
         assert!(!paper.cav.organize_regardless_of_speed);
         assert!(!paper.cav.yield_while_automated);
+        assert_eq!(paper.cav.cacc_law, platoonsim_model::cav::CaccLaw::Spec);
         for (i, (variant, _)) in VARIANTS.iter().enumerate() {
             // The first demand's baseline of each variant.
             let c = &cells[i * STRATEGIES.len()];
@@ -245,6 +251,7 @@ mod tests {
                 "closing-only-approaching" => back.cav.cacc_closing_only_approaching = false,
                 "organize-regardless-of-speed" => back.cav.organize_regardless_of_speed = false,
                 "cooperative" => back.cav.cooperative_lane_change = false,
+                "field-cacc" => back.cav.cacc_law = platoonsim_model::cav::CaccLaw::Spec,
                 "platform" => continue,
                 other => panic!("unknown variant {other}"),
             }

@@ -9,7 +9,7 @@ use crate::state::RoadState;
 use crate::state::Sensed;
 use crate::vehicle::Vehicle;
 use platoonsim_model::safegap::{self, AutomatedFollower, GapRule, SafeDecel};
-use platoonsim_model::Leader;
+use platoonsim_model::{cav, Leader};
 
 /// The safe rule's decelerations (spec 9.1), `None` under the published rule.
 #[inline]
@@ -25,7 +25,8 @@ pub(crate) fn safe_decel(cfg: &Config) -> Option<SafeDecel> {
 /// own law with the changer `c` cut in ahead of it at `changer` (net gap, speed), spec 9.1:
 /// a human driver (or a CAV driven by hand) by the human model relaxed as after a cut-in (the
 /// engine relaxes it, `execute.rs`); an automated CAV by its ACC or CACC controller with its
-/// limits, not relaxed (spec 4.6). Shared by the decide phase and the re-check at execution.
+/// limits, not relaxed (spec 4.6); under the field law (`cav.cacc_law`) after its cut-in reset.
+/// Shared by the decide phase, the re-check at execution and ramp insertion (`insert.rs`).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn follower_accel_after(
     cfg: &Config,
@@ -41,6 +42,19 @@ pub(crate) fn follower_accel_after(
     if !f.automated() {
         return safegap::human_follower_accel(&f.driver.human, &f.driver.lc, f.v, v_des, changer);
     }
+    automated_follower_after(cfg, dt, f, v_des, c, changer)
+}
+
+/// [`follower_accel_after`] for an automated follower `f` with desired speed `v_des` (ramp
+/// insertion calls it directly: a vehicle placed in the same phase has no sensed record).
+pub(crate) fn automated_follower_after(
+    cfg: &Config,
+    dt: f64,
+    f: &Vehicle,
+    v_des: f64,
+    c: &Vehicle,
+    changer: Leader,
+) -> f64 {
     let p = &cfg.cav;
     let changer_is_cav = c.is_cav();
     // The sense phase's link test (sense.rs): a CAV within the 2 s band joins the changer's
@@ -55,16 +69,20 @@ pub(crate) fn follower_accel_after(
     } else {
         p.inter_platoon_gap_s
     };
+    // Under the field law the follower handles the cut-in by resetting its gap reference to
+    // the actual gap (`cav::cut_in_time_gap`, as `execute.rs` does when the change happens)
+    // and reads the changer's acceleration from its beacon.
     safegap::automated_follower_accel(
         p,
         &AutomatedFollower {
             v: f.v,
             a: f.a,
             v_des,
-            time_gap_s: f.cacc.time_gap_s,
+            time_gap_s: cav::cut_in_time_gap(p, f.cacc.time_gap_s, changer.gap_m, f.v),
             target_gap_s,
             family: f.cacc.family,
             changer_is_cav,
+            a_pred: if changer_is_cav { c.a } else { 0.0 },
         },
         changer,
         dt,
