@@ -1,0 +1,112 @@
+//! Issue 48 item 2: the importer's cost grows linearly with the network (D1-D4). The networks
+//! are made here as `scripts/sumo_scale.py` makes them; docs/import.md ("Scaling") has the
+//! benchmark of 10⁴ to 10⁶ elements. The bounds are generous (the imports take 0.1-0.3 s in a
+//! release build); main's importer took 277 s for the 10,000-edge chain and 49 s for the
+//! 40,000 connections.
+
+use platoonsim_import::sumo::{from_texts, Options};
+use std::fmt::Write;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// A motorway of `n` edges of `len` m with `lanes` lanes, each lane connected to the next
+/// edge's same lane, or to all its lanes with `fanout`.
+fn chain(n: usize, lanes: usize, len: f64, fanout: bool) -> String {
+    let mut s = String::from("<net version=\"1.20\">\n");
+    for k in 0..n {
+        writeln!(
+            s,
+            "  <edge id=\"e{k}\" from=\"n{k}\" to=\"n{}\" type=\"highway.motorway\">",
+            k + 1
+        )
+        .unwrap();
+        for i in 0..lanes {
+            writeln!(
+                s,
+                "    <lane id=\"e{k}_{i}\" index=\"{i}\" speed=\"33.33\" length=\"{len}\"/>"
+            )
+            .unwrap();
+        }
+        s.push_str("  </edge>\n");
+    }
+    for k in 0..n.saturating_sub(1) {
+        for i in 0..lanes {
+            for j in 0..lanes {
+                if fanout || i == j {
+                    writeln!(s, "  <connection from=\"e{k}\" to=\"e{}\" fromLane=\"{i}\" toLane=\"{j}\" dir=\"s\"/>", k + 1).unwrap();
+                }
+            }
+        }
+    }
+    s.push_str("</net>\n");
+    s
+}
+
+fn opts(mainline: Option<Vec<String>>) -> Options {
+    Options {
+        net: PathBuf::from("scale.net.xml"),
+        routes: vec![PathBuf::from("scale.rou.xml")],
+        additional: Vec::new(),
+        mainline,
+        edge_detectors: false,
+        interval_s: None,
+        duration_s: None,
+        name: Some("scale".into()),
+    }
+}
+
+fn routes(last: usize) -> Vec<(PathBuf, String)> {
+    vec![(
+        PathBuf::from("scale.rou.xml"),
+        format!(
+            "<routes><flow id=\"f\" begin=\"0\" end=\"3600\" vehsPerHour=\"1800\" from=\"e0\" \
+             to=\"e{last}\"/></routes>"
+        ),
+    )]
+}
+
+#[test]
+fn a_chain_of_10000_edges_with_a_routed_flow_imports_in_seconds() {
+    // D3: the corridor was cubic in mainline edges (crossings and chain membership scanned
+    // the chain per connection), the router scanned every connection per trip.
+    let n = 10_000;
+    let net = chain(n, 2, 1.0, false);
+    let started = Instant::now();
+    let imported = from_texts(&opts(None), &net, &routes(n - 1), &[]).unwrap();
+    let found = started.elapsed().as_secs_f64();
+    assert!(
+        imported.toml.contains("mainline_vph = [1800.0]"),
+        "{}",
+        &imported.toml[..2000]
+    );
+    // The mainline given by hand: the list's duplicate check was quadratic too.
+    let ids: Vec<String> = (0..n).map(|k| format!("e{k}")).collect();
+    let given = from_texts(&opts(Some(ids)), &net, &routes(n - 1), &[]).unwrap();
+    assert_eq!(given.toml, imported.toml);
+    let total = started.elapsed().as_secs_f64();
+    assert!(total < 10.0, "found in {found:.2} s, both in {total:.2} s");
+}
+
+#[test]
+fn forty_thousand_connections_import_in_seconds() {
+    // D2: a line number counted from the file's start for every connection.
+    let net = chain(2_501, 4, 10.0, true);
+    assert_eq!(net.matches("<connection").count(), 40_000);
+    let started = Instant::now();
+    from_texts(&opts(None), &net, &routes(2_500), &[]).unwrap();
+    let s = started.elapsed().as_secs_f64();
+    assert!(s < 10.0, "{s:.2} s");
+}
+
+#[test]
+fn a_corridor_longer_than_a_scenario_may_be_is_refused_early() {
+    let net = chain(3_000, 1, 100.0, false);
+    let e = from_texts(&opts(None), &net, &[], &[])
+        .unwrap_err()
+        .to_string();
+    assert_eq!(
+        e,
+        "not a corridor: the mainline (3000 edges from \"e0\" to \"e2999\") is 300000 m long; a \
+         corridor may be at most 200000 m (docs/robustness.md): give a shorter one with --mainline"
+    );
+}
