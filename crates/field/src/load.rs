@@ -106,6 +106,10 @@ pub fn load(files: &[PathBuf]) -> Result<Vec<Obs>, FieldError> {
         };
         origin.extend(std::iter::repeat_n(k, obs.len()));
         all.extend(obs);
+        // Each reader bounds its own file; the load as a whole is bounded the same way.
+        if all.len() > crate::MAX_ROWS {
+            return Err(crate::tidy::too_many(path, 0, "rows", crate::MAX_ROWS));
+        }
     }
     check_overlaps(files, &all, &origin)?;
     Ok(all)

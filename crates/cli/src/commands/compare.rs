@@ -109,6 +109,14 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
             some_names(&fit.field_only_stations)
         );
     }
+    if let Some(x) = eval.objective().filter(|x| !x.is_finite()) {
+        // Never a result file with a NaN fit (issue 48 D5); the readers' ranges should make
+        // this unreachable.
+        bail!(
+            "the fit's objective is {x}: a field or simulated value is not a finite number in \
+             range; nothing written"
+        );
+    }
     if !fit.sim_only_stations.is_empty() {
         errln!(
             "note: {} simulated detector(s) without field data, not compared: {}",
