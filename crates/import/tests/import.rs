@@ -254,3 +254,85 @@ fn gzip_networks_read_as_plain_ones() {
     .unwrap();
     assert_eq!(doc(&a.toml)["network"], doc(&b.toml)["network"]);
 }
+
+#[test]
+fn demand_never_disappears_silently() {
+    // Issue 48 D7: a routeDistribution with zero-sum probabilities or no routes dropped its
+    // flow (2,400 of 3,000 veh/h) without a note. D8: a vType with a NaN, 0 or negative
+    // length, accel, decel or maxSpeed was left out of the mean but kept its demand weight.
+    let dir = tmp("demand");
+    let net = write(&dir, "c.net.xml", NET);
+    let err = |name: &str, routes: &str| {
+        let r = write(&dir, name, routes);
+        import(&Options {
+            net: net.clone(),
+            routes: vec![r],
+            ..Options::default()
+        })
+        .unwrap_err()
+        .to_string()
+        .replace(&format!("{}/", dir.display()), "")
+    };
+    let flow = r#"<flow id="f" route="d" begin="0" end="3600" vehsPerHour="2400"/>"#;
+    let e = err(
+        "zero.rou.xml",
+        &format!(
+            r#"<routes>
+<routeDistribution id="d"><route id="a" edges="m1 m2 m3 m4" probability="0"/><route id="b" edges="m1 m2 m3 off" probability="0"/></routeDistribution>
+{flow}</routes>"#
+        ),
+    );
+    assert_eq!(
+        e,
+        "zero.rou.xml:2: <routeDistribution id=\"d\"> has probabilities that sum to 0: some route \
+         needs a probability > 0; its demand would be lost"
+    );
+    let e = err(
+        "empty.rou.xml",
+        &format!("<routes>\n<routeDistribution id=\"d\"/>\n{flow}</routes>"),
+    );
+    assert_eq!(
+        e,
+        "empty.rou.xml:2: <routeDistribution id=\"d\"> has no <route>: a distribution needs at \
+         least one route; its demand would be lost"
+    );
+    // Inside a flow, and a vTypeDistribution.
+    let e = err(
+        "inline.rou.xml",
+        "<routes><flow id=\"g\" begin=\"0\" end=\"60\" vehsPerHour=\"600\">\n<routeDistribution>\
+         <route edges=\"m1 m2\" probability=\"0\"/></routeDistribution></flow></routes>",
+    );
+    assert!(
+        e.starts_with("inline.rou.xml:2: <routeDistribution> has probabilities that sum to 0"),
+        "{e}"
+    );
+    let e = err(
+        "types.rou.xml",
+        "<routes>\n<vTypeDistribution id=\"t\"/></routes>",
+    );
+    assert!(
+        e.contains("<vTypeDistribution id=\"t\"> has no <vType>"),
+        "{e}"
+    );
+    for (attr, value) in [
+        ("length", "nan"),
+        ("accel", "0"),
+        ("decel", "-4.5"),
+        ("maxSpeed", "inf"),
+        ("length", "1e300"),
+    ] {
+        let e = err(
+            "v.rou.xml",
+            &format!(
+                "<routes>\n<vType id=\"car\" {attr}=\"{value}\"/>\n<flow id=\"f\" type=\"car\" \
+                 from=\"m1\" to=\"m4\" begin=\"0\" end=\"60\" vehsPerHour=\"600\"/></routes>"
+            ),
+        );
+        assert!(
+            e.starts_with(&format!(
+                "v.rou.xml:2: <vType id=\"car\"> attribute {attr}=\"{value}\": must be a number in (0, "
+            )),
+            "{e}"
+        );
+    }
+}
