@@ -42,7 +42,10 @@ pub fn sniff(path: &Path) -> Result<Format, FieldError> {
         });
     }
     let line = String::from_utf8_lossy(&first);
-    let line = line.trim_end_matches(['\n', '\r']);
+    // A UTF-8 byte order mark (spreadsheets write one) is not part of the first field.
+    let line = line
+        .trim_start_matches('\u{feff}')
+        .trim_end_matches(['\n', '\r']);
     let fields: Vec<&str> = line
         .split(',')
         .map(|f| f.trim().trim_matches('"'))

@@ -317,3 +317,11 @@ fn implausible_pems_counts_and_speeds_are_refused() {
         assert_names(&e, &["d.txt", "line 1", name, value]);
     }
 }
+
+#[test]
+fn a_byte_order_mark_is_read_past_in_pems_files_too() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "bom.txt", format!("\u{feff}{ROWS}").as_bytes());
+    let rows = platoonsim_field::load::load(&[path]).unwrap();
+    assert_eq!(rows.len(), 3);
+}

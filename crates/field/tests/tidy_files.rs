@@ -265,3 +265,14 @@ fn a_load_holds_at_most_max_stations() {
     let path = write(dir.path(), "fewer.csv", &fewer);
     assert_eq!(load::load(&[path]).unwrap().len(), 20_000);
 }
+
+#[test]
+fn a_byte_order_mark_is_read_past() {
+    // Issue 48 D16: a file saved by a spreadsheet with a UTF-8 BOM was refused.
+    let dir = tempfile::tempdir().unwrap();
+    let text = "\u{feff}station,time,flow_vph,speed_kmh,occupancy\na,07:00,100,90,0.1\na,07:05,100,90,0.1\n";
+    let path = write(dir.path(), "bom.csv", text);
+    let rows = load::load(&[path]).unwrap();
+    assert_eq!(rows.len(), 2);
+    assert_eq!(rows[0].station, "a");
+}

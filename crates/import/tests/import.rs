@@ -84,6 +84,11 @@ fn a_corridor_with_its_demand_and_loops() {
     let out = import(&opts).unwrap();
     let d = doc(&out.toml);
     assert_eq!(d["name"].as_str(), Some("c"));
+    // The file's name, not where the importing user kept it (issue 48).
+    assert_eq!(
+        d["description"].as_str(),
+        Some("Imported from SUMO: 4 edges of c.net.xml (2762 m), 1 on-ramps, 1 off-ramps")
+    );
     let net = d["network"].as_table().unwrap();
     // 1000 + 4 + 250 + 4 + 1000 + 4 + 500
     assert_eq!(net["end_m"].as_float(), Some(2762.0));

@@ -341,7 +341,12 @@ pub fn from_texts(
     let description = format!(
         "Imported from SUMO: {} edges of {} ({:.0} m), {} on-ramps, {} off-ramps",
         c.chain.len(),
-        opts.net.display(),
+        // The file's name only: the description travels with the scenario (an absolute path
+        // told where the importing user kept their files).
+        opts.net.file_name().map_or_else(
+            || opts.net.display().to_string(),
+            |n| n.to_string_lossy().into_owned()
+        ),
         c.length,
         c.on_ramps.len(),
         c.off_ramps.len()

@@ -152,6 +152,16 @@ pub fn read(path: &Path) -> Result<Net, ImportError> {
 
 pub fn parse(path: &Path, text: &str) -> Result<Net, ImportError> {
     let doc = xml::parse(path, text)?;
+    if doc.root_element().has_tag_name("osm") {
+        return Err(ImportError::Invalid {
+            path: path.to_path_buf(),
+            line: Some(doc.text_pos_at(doc.root_element().range().start).row),
+            what: "an OpenStreetMap file (<osm>)".into(),
+            problem: "import sumo reads SUMO networks: convert it with netconvert first, \
+                      e.g. scripts/osm_to_corridor.sh (docs/import.md, \"From OpenStreetMap\")"
+                .into(),
+        });
+    }
     let root = xml::root(path, &doc, &["net"], "SUMO network (.net.xml)")?;
     let mut net = Net::default();
     // Internal lanes: id → length, and the connections that go on from one (internal

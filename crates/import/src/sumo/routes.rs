@@ -55,12 +55,18 @@ pub fn time(s: &str) -> Option<f64> {
         return None;
     }
     let mut t = 0.0;
-    for (p, m) in parts.iter().zip(&mult[4 - parts.len()..]) {
+    for (i, (p, m)) in parts.iter().zip(&mult[4 - parts.len()..]).enumerate() {
         let v: f64 = p.parse().ok()?;
         if !v.is_finite() || v < 0.0 {
             return None;
         }
-        t += v * m;
+        // After the first part, a clock: hours below 24, minutes and seconds below 60
+        // (`99:99:99` was 4 days of seconds; issue 48 D16).
+        let unit = *m;
+        if i > 0 && ((unit == 3_600.0 && v >= 24.0) || (unit < 3_600.0 && v >= 60.0)) {
+            return None;
+        }
+        t += v * unit;
     }
     Some(t)
 }
@@ -424,5 +430,28 @@ mod tests {
         assert_eq!(time("1:0:0:0"), Some(86_400.0));
         assert_eq!(time("-3"), None);
         assert_eq!(time("soon"), None);
+        // Issue 48 D16: a clock's minutes and seconds are below 60, its hours (after days)
+        // below 24; the first part may be any size.
+        assert_eq!(time("99:99:99"), None);
+        assert_eq!(time("1:60:00"), None);
+        assert_eq!(time("1:24:00:00"), None);
+        assert_eq!(time("25:59:59.5"), Some(25.0 * 3600.0 + 59.0 * 60.0 + 59.5));
+        assert_eq!(time("1:23:59:59"), Some(86_400.0 + 86_399.0));
+    }
+
+    #[test]
+    fn an_openstreetmap_file_points_to_netconvert() {
+        let e = super::super::net::parse(
+            std::path::Path::new("x.osm"),
+            "<?xml version='1.0'?>\n<osm version=\"0.6\"><node id=\"1\" lat=\"0\" lon=\"0\"/></osm>",
+        )
+        .unwrap_err()
+        .to_string();
+        assert_eq!(
+            e,
+            "x.osm:2: an OpenStreetMap file (<osm>): import sumo reads SUMO networks: convert it \
+             with netconvert first, e.g. scripts/osm_to_corridor.sh (docs/import.md, \"From \
+             OpenStreetMap\")"
+        );
     }
 }
