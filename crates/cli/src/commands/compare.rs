@@ -81,6 +81,31 @@ pub fn field_data(
         }
         _ => Vec::new(),
     };
+    if let Some(table) = &args.stations {
+        // A table of other stations placed nothing and silently changed the result (issue 48):
+        // it must place at least one station of the field files; the others are noted.
+        let field: std::collections::BTreeSet<&str> =
+            obs.iter().map(|o| o.station.as_str()).collect();
+        let (matched, unmatched): (Vec<&Placed>, Vec<&Placed>) = places
+            .iter()
+            .partition(|p| field.contains(p.station.as_str()));
+        let ids = |v: &[&Placed]| -> Vec<String> { v.iter().map(|p| p.station.clone()).collect() };
+        if matched.is_empty() {
+            bail!(
+                "--stations {}: none of its stations ({}) is in the field files (stations {})",
+                table.display(),
+                some_names(&ids(&unmatched)),
+                some_names(&field.iter().map(|s| s.to_string()).collect::<Vec<_>>())
+            );
+        }
+        if !unmatched.is_empty() {
+            notes.push(format!(
+                "{} station(s) of --stations not in the field files, not placed: {}.",
+                unmatched.len(),
+                some_names(&ids(&unmatched))
+            ));
+        }
+    }
     Ok((obs, places, notes))
 }
 
