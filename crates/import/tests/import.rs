@@ -341,3 +341,47 @@ fn demand_never_disappears_silently() {
         );
     }
 }
+
+#[test]
+fn ordinary_loops_import() {
+    // Issue 48 D15: a loop at pos 0 and a loop whose id is an edge's (with --edge-detectors)
+    // made scenarios that validation refused, with messages about keys the importer wrote.
+    let dir = tmp("loops");
+    let net = write(&dir, "c.net.xml", NET);
+    let add = write(
+        &dir,
+        "l.add.xml",
+        r#"<additional><inductionLoop id="L0" lane="m1_0" pos="0" freq="300" file="x"/>
+<inductionLoop id="m3" lane="m3_0" pos="-1" freq="300" file="x"/></additional>"#,
+    );
+    let out = import(&Options {
+        net,
+        additional: vec![add],
+        edge_detectors: true,
+        ..Options::default()
+    })
+    .unwrap();
+    let d = doc(&out.toml);
+    let dets: Vec<(String, f64)> = d["detectors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| {
+            (
+                t["name"].as_str().unwrap().to_string(),
+                t["position_m"].as_float().unwrap(),
+            )
+        })
+        .collect();
+    assert!(dets.contains(&("L0".into(), 1.0)), "{dets:?}");
+    assert!(dets.iter().any(|(n, _)| n == "m3"), "{dets:?}");
+    assert!(dets.iter().any(|(n, _)| n == "m3_end"), "{dets:?}");
+    platoonsim_scenario::from_toml_in(
+        &out.toml,
+        "loops.toml",
+        "imported",
+        &platoonsim_scenario::Overrides::default(),
+        None,
+    )
+    .unwrap();
+}

@@ -269,13 +269,41 @@ pub fn from_texts(
                 };
                 (
                     corridor::sanitize(&net.edges[e].id),
-                    (end - before).max(c.start[k]),
+                    additional::inside((end - before).max(c.start[k]), c.length),
                 )
             })
             .collect()
     } else {
         Vec::new()
     };
+    // An edge detector is named by its edge, a loop by its id: SUMO allows a loop and an edge
+    // of one id, a scenario not two detectors of one name (issue 48 D15).
+    let mut edge_detectors = edge_detectors;
+    let mut renamed = Vec::new();
+    {
+        let mut taken: std::collections::HashSet<String> =
+            placed.mainline.iter().map(|p| p.name.clone()).collect();
+        for (name, _) in edge_detectors.iter_mut() {
+            if taken.contains(name.as_str()) {
+                let mut n = 1;
+                let mut new = format!("{name}_end");
+                while taken.contains(&new) {
+                    n += 1;
+                    new = format!("{name}_end{n}");
+                }
+                renamed.push(format!("{name} -> {new}"));
+                *name = new;
+            }
+            taken.insert(name.clone());
+        }
+    }
+    if !renamed.is_empty() {
+        notes.reduce(format!(
+            "{} edge detector(s) renamed, a loop has the edge's id: {}",
+            renamed.len(),
+            renamed.join(", ")
+        ));
+    }
 
     // Speed limits: the ramps' as ramp_speed_kmh (their median), the mainline's as a cap when
     // it is one value.
