@@ -13,6 +13,7 @@ pub mod net;
 mod router;
 pub mod routes;
 pub mod scenario;
+pub mod synth;
 #[cfg(test)]
 mod testnet;
 pub mod vtypes;
