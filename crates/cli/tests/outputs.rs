@@ -71,13 +71,16 @@ fn run(out: &Path) -> std::process::Output {
     ])
 }
 
+/// Makes a special file at a path; false if it may not.
+type Maker = fn(&Path) -> bool;
+
 #[test]
 fn run_never_removes_or_replaces_a_fifo_a_device_or_a_link_at_any_of_its_names() {
     let dir = scratch("run_special");
     let may_mknod = mknod_null(&dir.join("probe"));
     for (i, name) in RUN_FILES.iter().enumerate() {
         // A FIFO (and a device): refused before the simulation, naming the file, left alone.
-        let mut specials: Vec<(&str, fn(&Path) -> bool)> = vec![("FIFO", |p| {
+        let mut specials: Vec<(&str, Maker)> = vec![("FIFO", |p| {
             mkfifo(p);
             true
         })];
