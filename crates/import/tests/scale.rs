@@ -120,3 +120,24 @@ fn structured_networks_never_panic_and_what_is_accepted_validates() {
     let s = started.elapsed().as_secs_f64();
     assert!(s < 20.0, "{s:.1} s");
 }
+
+#[test]
+fn edge_detectors_on_a_long_chain_are_refused_at_once() {
+    // Found by the fuzz target sumo_shapes (its first seed, a 10,000-edge chain with
+    // --edge-detectors): validation of 10,000 detectors was quadratic, past libFuzzer's 10 s
+    // in the instrumented build.
+    let net = chain(10_000, 2, 1.0, false);
+    let mut o = opts(None);
+    o.edge_detectors = true;
+    let started = Instant::now();
+    let e = from_texts(&o, &net, &routes(9_999), &[])
+        .unwrap_err()
+        .to_string();
+    assert_eq!(
+        e,
+        "--edge-detectors given: the mainline has 10000 edges (and 0 loop detectors): a detector per \
+         edge would be more than the 1000 a scenario may have; leave the flag out or give a \
+         shorter --mainline"
+    );
+    assert!(started.elapsed().as_secs_f64() < 5.0);
+}

@@ -256,6 +256,20 @@ pub fn from_texts(
     for (tag, n) in other_add {
         notes.drop(format!("{n} {tag} elements of the additional files"));
     }
+    let max = platoonsim_scenario::limits::MAX_DETECTORS;
+    if opts.edge_detectors && c.chain.len() + placed.mainline.len() > max {
+        return Err(ImportError::Flag {
+            flag: "--edge-detectors",
+            value: "given".into(),
+            problem: format!(
+                "the mainline has {} edges (and {} loop detectors): a detector per edge would \
+                 be more than the {max} a scenario may have; leave the flag out or give a \
+                 shorter --mainline",
+                c.chain.len(),
+                placed.mainline.len()
+            ),
+        });
+    }
     let edge_detectors: Vec<(String, f64)> = if opts.edge_detectors {
         c.chain
             .iter()
