@@ -14,7 +14,7 @@ cd "$(dirname "$0")/../fuzz"
 budget=${1:-3}
 [ $# -gt 0 ] && shift
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(scenario set_value sweep_spec run_files pems sumo)
+[ ${#targets[@]} -eq 0 ] && targets=(scenario set_value sweep_spec run_files pems sumo sumo_shapes)
 case "$budget" in
     runs=*) limit=(-runs="${budget#runs=}") ;;
     *) limit=(-max_total_time="$budget") ;;

@@ -8,6 +8,8 @@
 //! readers, the viewer's and the field data's readers, the SUMO importer, and the atomic
 //! writer's refusal of special files.
 
+pub mod output;
+
 use std::fs;
 use std::io::{self, Read};
 use std::path::Path;

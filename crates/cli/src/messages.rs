@@ -96,20 +96,100 @@ pub fn check_experiment_duration(
     Ok((duration, warmup))
 }
 
+/// The longest message written to stderr (characters); a longer one keeps its start and end.
+pub const MAX_MESSAGE_CHARS: usize = 4_000;
+
+/// Whether `c` would change what a terminal shows beyond itself: a control character other
+/// than a line break or a tab, or a bidirectional formatting character (which reorders the
+/// text around it: U+061C, U+200E-U+200F, U+202A-U+202E, U+2066-U+2069).
+fn unsafe_char(c: char) -> bool {
+    (c.is_control() && c != '\n' && c != '\t')
+        || matches!(c, '\u{061c}' | '\u{200e}' | '\u{200f}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}')
+}
+
+/// Text for a terminal (every line the commands print goes through it): control and
+/// bidirectional characters written as escapes (`\u{202e}`), and at most `max` characters, a
+/// longer text keeping its first and last part around a note of what was left out (a 10 MB id
+/// in an error printed 20 MB; issue 48 D10, D11).
+pub fn terminal(text: &str, max: usize) -> std::borrow::Cow<'_, str> {
+    let n = text.chars().count();
+    if n <= max && !text.chars().any(unsafe_char) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let escape = |s: &mut String, part: &str| {
+        for c in part.chars() {
+            if unsafe_char(c) {
+                s.extend(c.escape_unicode());
+            } else {
+                s.push(c);
+            }
+        }
+    };
+    let mut out = String::with_capacity(text.len().min(max.saturating_mul(4)) + 16);
+    if n <= max {
+        escape(&mut out, text);
+    } else {
+        let head: usize = text.chars().take(max * 3 / 4).map(char::len_utf8).sum();
+        let tail_chars = max / 4;
+        let tail: usize = text
+            .chars()
+            .rev()
+            .take(tail_chars)
+            .map(char::len_utf8)
+            .sum();
+        escape(&mut out, &text[..head]);
+        out.push_str(&format!(
+            " […{} characters left out…] ",
+            n - max * 3 / 4 - tail_chars
+        ));
+        escape(&mut out, &text[text.len() - tail..]);
+    }
+    std::borrow::Cow::Owned(out)
+}
+
 /// `text` with its control characters written as escapes (`\u{1b}`), for names from a file
 /// printed to a terminal: an escape sequence in a scenario name must not clear the screen or
 /// set the window title (issue 35 item 8).
 pub fn printable(text: &str) -> std::borrow::Cow<'_, str> {
-    if !text.chars().any(char::is_control) {
+    let escaped = |c: char| c.is_control() || unsafe_char(c);
+    if !text.chars().any(escaped) {
         return std::borrow::Cow::Borrowed(text);
     }
     let mut out = String::with_capacity(text.len() + 8);
     for c in text.chars() {
-        if c.is_control() {
+        if escaped(c) {
             out.extend(c.escape_unicode());
         } else {
             out.push(c);
         }
     }
     std::borrow::Cow::Owned(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn terminal_text_is_escaped_and_bounded() {
+        // Issue 48 D10: control and bidirectional characters were printed raw.
+        assert_eq!(
+            terminal("a\u{202e}b\u{1b}[2J\nc\td", 100),
+            "a\\u{202e}b\\u{1b}[2J\nc\td"
+        );
+        assert_eq!(printable("x\u{2066}y\nz"), "x\\u{2066}y\\u{a}z");
+        // D11: a 10 MB id gave a 20 MB error.
+        let long = format!("error: edge \"{}\" unknown", "e".repeat(10_000_000));
+        let t = terminal(&long, MAX_MESSAGE_CHARS);
+        assert!(t.chars().count() < MAX_MESSAGE_CHARS + 60, "{}", t.len());
+        assert!(t.starts_with("error: edge \"eee") && t.ends_with("eee\" unknown"));
+        assert!(t.contains(&format!(
+            " […{} characters left out…] ",
+            long.len() - 3_000 - 1_000
+        )));
+        assert!(matches!(
+            terminal("plain", 10),
+            std::borrow::Cow::Borrowed(_)
+        ));
+    }
 }

@@ -42,7 +42,12 @@ pub fn lock(dir: &Path, share: Share) -> Result<OutLock> {
         Share::Shard => FileExt::try_lock_shared(&file),
     };
     match tried {
-        Ok(()) => Ok(OutLock { _file: file }),
+        Ok(()) => {
+            // An existing directory that cannot take a new file fails here, before any work
+            // (it used to fail only when the results were written).
+            crate::atomic::check_writable_dir(dir)?;
+            Ok(OutLock { _file: file })
+        }
         Err(TryLockError::WouldBlock) => bail!(
             "another platoonsim process is writing {}: wait for it to end or choose another \
              --out (only the shards of one sweep or calibration, --shard I/N, may write a \

@@ -30,6 +30,7 @@ impl StdoutError {
 /// Write `text` to standard output and flush it, so that a write error surfaces here (not
 /// later, when the buffer is dropped, where it would be lost).
 pub fn print(text: &str) -> Result<(), StdoutError> {
+    let text = crate::messages::terminal(text, usize::MAX);
     let mut out = std::io::stdout().lock();
     out.write_all(text.as_bytes())
         .and_then(|()| out.flush())
@@ -48,7 +49,11 @@ macro_rules! outln {
 macro_rules! errln {
     ($($arg:tt)*) => {{
         use std::io::Write as _;
-        let _ = writeln!(std::io::stderr(), $($arg)*);
+        // Escaped and bounded: names and values in messages come from files (issue 48 D10,
+        // D11).
+        let text = format!($($arg)*);
+        let text = $crate::messages::terminal(&text, $crate::messages::MAX_MESSAGE_CHARS);
+        let _ = writeln!(std::io::stderr(), "{text}");
     }};
 }
 

@@ -347,3 +347,27 @@ fn a_syntax_error_quotes_a_long_line_cut_short() {
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).len() < 1000, "{} bytes", stderr(&o).len());
 }
+
+#[test]
+fn a_huge_or_hostile_id_in_an_error_is_bounded_and_escaped() {
+    // Issue 48 D10, D11: a 10 MB unknown id printed a 20 MB error; control and bidirectional
+    // characters from the files reached the terminal raw.
+    let dir = scratch("huge_id");
+    let id = "x".repeat(10_000_000);
+    let net = format!(
+        "<net>\n<edge id=\"a\" from=\"A\" to=\"B\"><lane id=\"a_0\" index=\"0\" speed=\"30\" \
+         length=\"100\"/></edge>\n<connection from=\"a\" to=\"{id}\u{202e}\" fromLane=\"0\" \
+         toLane=\"0\"/>\n</net>"
+    );
+    let path = dir.join("n.net.xml");
+    std::fs::write(&path, net).unwrap();
+    let o = platoonsim(&["import", "sumo", s(&path), "--out", s(&dir.join("n.toml"))]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{}", &err[..200.min(err.len())]);
+    assert!(err.len() < 5_000, "{} bytes", err.len());
+    assert!(err.contains("characters left out"), "{err}");
+    assert!(
+        err.contains("\\u{202e}") && !err.contains('\u{202e}'),
+        "{err}"
+    );
+}

@@ -187,6 +187,23 @@ pub enum FieldError {
         /// The known stations (the first few).
         known: String,
     },
+    /// More rows or stations than one load may hold ([`crate::MAX_ROWS`],
+    /// [`crate::MAX_STATIONS`]).
+    #[error(
+        "{}: line {line}: more than {limit} {what} in one load; split the data (by day or \
+         corridor) or keep only the stations of the corridor",
+        .file.display()
+    )]
+    TooMany {
+        /// The file.
+        file: PathBuf,
+        /// The line where the limit was passed.
+        line: u64,
+        /// "rows" or "stations".
+        what: &'static str,
+        /// The limit.
+        limit: usize,
+    },
     /// A file that is neither a PeMS station_5min file nor a tidy CSV.
     #[error("{}: line {line}: {value:?} is not a known layout; expected {allowed}", .file.display())]
     UnknownFormat {

@@ -152,6 +152,19 @@ pub fn flow_weighted_speed<'a>(obs: impl IntoIterator<Item = &'a Obs>) -> Option
     }
 }
 
+/// The largest plausible flow of a station over all its lanes (veh/h): ten lanes at
+/// 3,000 veh/h/lane, above the highest lane flows measured on freeways (about 2,500-2,900
+/// veh/h/lane). A larger value is a unit or data error (issue 48 D5: a flow of 1e308 made the
+/// calibration's objective NaN); the readers refuse it naming the line and field.
+pub const MAX_STATION_FLOW_VPH: f64 = 30_000.0;
+/// The largest plausible mean speed (km/h); PeMS reports at most about 100 mph (161 km/h).
+pub const MAX_SPEED_KMH: f64 = 200.0;
+/// The most rows (station intervals) one load may hold: 5,000,000, a year of 5-minute
+/// intervals of 47 stations (about 150 bytes each in memory, so at most about 750 MB).
+pub const MAX_ROWS: usize = 5_000_000;
+/// The most distinct stations one load may hold (a PeMS district has a few thousand).
+pub const MAX_STATIONS: usize = 20_000;
+
 /// Metres per mile (international mile), for postmiles.
 pub const METRES_PER_MILE: f64 = 1609.344;
 

@@ -42,7 +42,10 @@ pub fn sniff(path: &Path) -> Result<Format, FieldError> {
         });
     }
     let line = String::from_utf8_lossy(&first);
-    let line = line.trim_end_matches(['\n', '\r']);
+    // A UTF-8 byte order mark (spreadsheets write one) is not part of the first field.
+    let line = line
+        .trim_start_matches('\u{feff}')
+        .trim_end_matches(['\n', '\r']);
     let fields: Vec<&str> = line
         .split(',')
         .map(|f| f.trim().trim_matches('"'))
@@ -106,6 +109,10 @@ pub fn load(files: &[PathBuf]) -> Result<Vec<Obs>, FieldError> {
         };
         origin.extend(std::iter::repeat_n(k, obs.len()));
         all.extend(obs);
+        // Each reader bounds its own file; the load as a whole is bounded the same way.
+        if all.len() > crate::MAX_ROWS {
+            return Err(crate::tidy::too_many(path, 0, "rows", crate::MAX_ROWS));
+        }
     }
     check_overlaps(files, &all, &origin)?;
     Ok(all)

@@ -142,6 +142,14 @@ pub fn read_day(path: &Path) -> Result<PemsDay, FieldError> {
             }
         }
         last.insert(station.to_string(), (start_s, line));
+        if last.len() > crate::MAX_STATIONS {
+            return Err(crate::tidy::too_many(
+                &file,
+                line,
+                "stations",
+                crate::MAX_STATIONS,
+            ));
+        }
         let number = |i: usize, field: &str, max: f64, allowed: &str| {
             optional_number(&row[i], max).map_err(|()| FieldError::Number {
                 file: file.clone(),
@@ -154,12 +162,20 @@ pub fn read_day(path: &Path) -> Result<PemsDay, FieldError> {
         let count = number(
             9,
             "Total Flow",
-            f64::INFINITY,
-            "a vehicle count >= 0, or empty",
+            crate::MAX_STATION_FLOW_VPH * f64::from(INTERVAL_S) / 3600.0,
+            "a vehicle count in [0, 2500] (30,000 veh/h over all lanes for 5 minutes), or empty",
         )?;
         let occupancy = number(10, "Avg Occupancy", 1.0, "a number in 0-1, empty or nan")?;
-        let speed_mph = number(11, "Avg Speed", f64::INFINITY, "mph >= 0, empty or nan")?;
+        let speed_mph = number(
+            11,
+            "Avg Speed",
+            crate::MAX_SPEED_KMH / KMH_PER_MPH,
+            "mph in [0, 124.3] (200 km/h), empty or nan",
+        )?;
         let Some(count) = count else { continue };
+        if obs.len() >= crate::MAX_ROWS {
+            return Err(crate::tidy::too_many(&file, line, "rows", crate::MAX_ROWS));
+        }
         obs.push(Obs {
             station: station.to_string(),
             start_s,

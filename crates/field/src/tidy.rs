@@ -49,6 +49,21 @@ struct Row {
     interval: Option<u32>,
 }
 
+/// What a flow may be (the tidy and the PeMS readers).
+pub(crate) const FLOW_ALLOWED: &str =
+    "veh/h in [0, 30000] (a station's flow over all lanes: ten lanes at 3,000 veh/h/lane)";
+/// What a speed may be.
+pub(crate) const SPEED_ALLOWED: &str = "km/h in [0, 200], or empty";
+
+pub(crate) fn too_many(file: &Path, line: u64, what: &'static str, limit: usize) -> FieldError {
+    FieldError::TooMany {
+        file: file.to_path_buf(),
+        line,
+        what,
+        limit,
+    }
+}
+
 /// Reads a tidy CSV (plain or gzip), in file order.
 pub fn read(path: &Path) -> Result<Vec<Obs>, FieldError> {
     let mut rows = Rows::open(path, Dialect::Csv)?;
@@ -80,6 +95,7 @@ pub fn read(path: &Path) -> Result<Vec<Obs>, FieldError> {
     let interval = col(INTERVAL_COLUMN);
 
     let mut read_rows = Vec::new();
+    let mut stations: std::collections::HashSet<String> = std::collections::HashSet::new();
     while let Some((line, row)) = rows.next_row()? {
         if row.len() != names.len() {
             return Err(FieldError::Columns {
@@ -123,8 +139,9 @@ pub fn read(path: &Path) -> Result<Vec<Obs>, FieldError> {
             "" => Ok(None),
             _ => number(i, max).map(Some).ok_or_else(|| bad(i, allowed)),
         };
-        let flow_vph = number(flow, f64::INFINITY).ok_or_else(|| bad(flow, "veh/h >= 0"))?;
-        let speed_kmh = optional(speed, f64::INFINITY, "km/h >= 0, or empty")?;
+        let flow_vph =
+            number(flow, crate::MAX_STATION_FLOW_VPH).ok_or_else(|| bad(flow, FLOW_ALLOWED))?;
+        let speed_kmh = optional(speed, crate::MAX_SPEED_KMH, SPEED_ALLOWED)?;
         let occupancy = optional(occ, 1.0, "a number in 0-1, or empty")?;
         let interval = match interval {
             Some(i) => Some(
@@ -136,6 +153,15 @@ pub fn read(path: &Path) -> Result<Vec<Obs>, FieldError> {
             ),
             None => None,
         };
+        if read_rows.len() >= crate::MAX_ROWS {
+            return Err(too_many(&file, line, "rows", crate::MAX_ROWS));
+        }
+        if !stations.contains(&row[station]) {
+            if stations.len() >= crate::MAX_STATIONS {
+                return Err(too_many(&file, line, "stations", crate::MAX_STATIONS));
+            }
+            stations.insert(row[station].to_string());
+        }
         read_rows.push(Row {
             line,
             obs: Obs {

@@ -298,3 +298,30 @@ fn meta_errors_name_file_line_field_and_value() {
     assert!(matches!(e, FieldError::Value { line: 3, .. }), "{e:?}");
     assert_names(&message(e), &["m.txt", "line 3", "ID", "313190", "once"]);
 }
+
+#[test]
+fn implausible_pems_counts_and_speeds_are_refused() {
+    // Issue 48 D5: the flow and speed columns had no upper bound.
+    let dir = tempfile::tempdir().unwrap();
+    let good = ROWS.lines().next().unwrap();
+    let fields: Vec<&str> = good.split(',').collect();
+    for (col, value, name) in [
+        (9, "1e308", "Total Flow"),
+        (9, "2501", "Total Flow"),
+        (11, "130", "Avg Speed"),
+    ] {
+        let mut f: Vec<String> = fields.iter().map(|s| s.to_string()).collect();
+        f[col] = value.into();
+        let path = write(dir.path(), "d.txt", format!("{}\n", f.join(",")).as_bytes());
+        let e = message(platoonsim_field::pems::read_station_5min(&path).unwrap_err());
+        assert_names(&e, &["d.txt", "line 1", name, value]);
+    }
+}
+
+#[test]
+fn a_byte_order_mark_is_read_past_in_pems_files_too() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "bom.txt", format!("\u{feff}{ROWS}").as_bytes());
+    let rows = platoonsim_field::load::load(&[path]).unwrap();
+    assert_eq!(rows.len(), 3);
+}

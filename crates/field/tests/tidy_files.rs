@@ -208,3 +208,71 @@ fn bad_values_name_line_field_and_value() {
         assert_names(&e.to_string(), &["v.csv", "line 3", field, value]);
     }
 }
+
+#[test]
+fn implausible_flows_and_speeds_are_refused_naming_line_and_field() {
+    // Issue 48 D5: a flow of 1e308 was accepted and made the calibration's objective NaN.
+    let dir = tempfile::tempdir().unwrap();
+    let head = "station,time,flow_vph,speed_kmh,occupancy,interval_s\n";
+    for (row, field, value) in [
+        ("a,07:00,1e308,,,300", "flow_vph", "1e308"),
+        ("a,07:00,30001,,,300", "flow_vph", "30001"),
+        ("a,07:00,100,200.5,,300", "speed_kmh", "200.5"),
+        ("a,07:00,100,1e300,,300", "speed_kmh", "1e300"),
+    ] {
+        let path = write(
+            dir.path(),
+            "v.csv",
+            &format!("{head}a,06:00,1,,,300\n{row}\n"),
+        );
+        let e = tidy::read(&path).unwrap_err().to_string();
+        assert_names(&e, &["v.csv", "line 3", field, value, "in [0, "]);
+    }
+    // The limits themselves are plausible.
+    let path = write(
+        dir.path(),
+        "ok.csv",
+        &format!("{head}a,07:00,30000,200,,300\n"),
+    );
+    assert_eq!(tidy::read(&path).unwrap()[0].flow_vph, 30_000.0);
+}
+
+#[test]
+fn a_load_holds_at_most_max_stations() {
+    // Issue 48 D9: 2 million one-row stations in a 5 MB .gz took 1.57 GB.
+    let dir = tempfile::tempdir().unwrap();
+    let mut text = String::from("station,time,flow_vph,speed_kmh,occupancy,interval_s\n");
+    for k in 0..=platoonsim_field::MAX_STATIONS {
+        text.push_str(&format!("s{k},07:00,100,,,300\n"));
+    }
+    let path = write(dir.path(), "many.csv", &text);
+    let e = tidy::read(&path).unwrap_err();
+    assert!(matches!(e, FieldError::TooMany { .. }), "{e:?}");
+    assert_eq!(
+        e.to_string(),
+        format!(
+            "{}: line 20002: more than 20000 stations in one load; split the data (by day or \
+             corridor) or keep only the stations of the corridor",
+            path.display()
+        )
+    );
+    // One station fewer loads.
+    let fewer: String = text
+        .lines()
+        .take(20_001)
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let path = write(dir.path(), "fewer.csv", &fewer);
+    assert_eq!(load::load(&[path]).unwrap().len(), 20_000);
+}
+
+#[test]
+fn a_byte_order_mark_is_read_past() {
+    // Issue 48 D16: a file saved by a spreadsheet with a UTF-8 BOM was refused.
+    let dir = tempfile::tempdir().unwrap();
+    let text = "\u{feff}station,time,flow_vph,speed_kmh,occupancy\na,07:00,100,90,0.1\na,07:05,100,90,0.1\n";
+    let path = write(dir.path(), "bom.csv", text);
+    let rows = load::load(&[path]).unwrap();
+    assert_eq!(rows.len(), 2);
+    assert_eq!(rows[0].station, "a");
+}

@@ -84,6 +84,11 @@ fn a_corridor_with_its_demand_and_loops() {
     let out = import(&opts).unwrap();
     let d = doc(&out.toml);
     assert_eq!(d["name"].as_str(), Some("c"));
+    // The file's name, not where the importing user kept it (issue 48).
+    assert_eq!(
+        d["description"].as_str(),
+        Some("Imported from SUMO: 4 edges of c.net.xml (2762 m), 1 on-ramps, 1 off-ramps")
+    );
     let net = d["network"].as_table().unwrap();
     // 1000 + 4 + 250 + 4 + 1000 + 4 + 500
     assert_eq!(net["end_m"].as_float(), Some(2762.0));
@@ -253,4 +258,130 @@ fn gzip_networks_read_as_plain_ones() {
     })
     .unwrap();
     assert_eq!(doc(&a.toml)["network"], doc(&b.toml)["network"]);
+}
+
+#[test]
+fn demand_never_disappears_silently() {
+    // Issue 48 D7: a routeDistribution with zero-sum probabilities or no routes dropped its
+    // flow (2,400 of 3,000 veh/h) without a note. D8: a vType with a NaN, 0 or negative
+    // length, accel, decel or maxSpeed was left out of the mean but kept its demand weight.
+    let dir = tmp("demand");
+    let net = write(&dir, "c.net.xml", NET);
+    let err = |name: &str, routes: &str| {
+        let r = write(&dir, name, routes);
+        import(&Options {
+            net: net.clone(),
+            routes: vec![r],
+            ..Options::default()
+        })
+        .unwrap_err()
+        .to_string()
+        .replace(&format!("{}/", dir.display()), "")
+    };
+    let flow = r#"<flow id="f" route="d" begin="0" end="3600" vehsPerHour="2400"/>"#;
+    let e = err(
+        "zero.rou.xml",
+        &format!(
+            r#"<routes>
+<routeDistribution id="d"><route id="a" edges="m1 m2 m3 m4" probability="0"/><route id="b" edges="m1 m2 m3 off" probability="0"/></routeDistribution>
+{flow}</routes>"#
+        ),
+    );
+    assert_eq!(
+        e,
+        "zero.rou.xml:2: <routeDistribution id=\"d\"> has probabilities that sum to 0: some route \
+         needs a probability > 0; its demand would be lost"
+    );
+    let e = err(
+        "empty.rou.xml",
+        &format!("<routes>\n<routeDistribution id=\"d\"/>\n{flow}</routes>"),
+    );
+    assert_eq!(
+        e,
+        "empty.rou.xml:2: <routeDistribution id=\"d\"> has no <route>: a distribution needs at \
+         least one route; its demand would be lost"
+    );
+    // Inside a flow, and a vTypeDistribution.
+    let e = err(
+        "inline.rou.xml",
+        "<routes><flow id=\"g\" begin=\"0\" end=\"60\" vehsPerHour=\"600\">\n<routeDistribution>\
+         <route edges=\"m1 m2\" probability=\"0\"/></routeDistribution></flow></routes>",
+    );
+    assert!(
+        e.starts_with("inline.rou.xml:2: <routeDistribution> has probabilities that sum to 0"),
+        "{e}"
+    );
+    let e = err(
+        "types.rou.xml",
+        "<routes>\n<vTypeDistribution id=\"t\"/></routes>",
+    );
+    assert!(
+        e.contains("<vTypeDistribution id=\"t\"> has no <vType>"),
+        "{e}"
+    );
+    for (attr, value) in [
+        ("length", "nan"),
+        ("accel", "0"),
+        ("decel", "-4.5"),
+        ("maxSpeed", "inf"),
+        ("length", "1e300"),
+    ] {
+        let e = err(
+            "v.rou.xml",
+            &format!(
+                "<routes>\n<vType id=\"car\" {attr}=\"{value}\"/>\n<flow id=\"f\" type=\"car\" \
+                 from=\"m1\" to=\"m4\" begin=\"0\" end=\"60\" vehsPerHour=\"600\"/></routes>"
+            ),
+        );
+        assert!(
+            e.starts_with(&format!(
+                "v.rou.xml:2: <vType id=\"car\"> attribute {attr}=\"{value}\": must be a number in (0, "
+            )),
+            "{e}"
+        );
+    }
+}
+
+#[test]
+fn ordinary_loops_import() {
+    // Issue 48 D15: a loop at pos 0 and a loop whose id is an edge's (with --edge-detectors)
+    // made scenarios that validation refused, with messages about keys the importer wrote.
+    let dir = tmp("loops");
+    let net = write(&dir, "c.net.xml", NET);
+    let add = write(
+        &dir,
+        "l.add.xml",
+        r#"<additional><inductionLoop id="L0" lane="m1_0" pos="0" freq="300" file="x"/>
+<inductionLoop id="m3" lane="m3_0" pos="-1" freq="300" file="x"/></additional>"#,
+    );
+    let out = import(&Options {
+        net,
+        additional: vec![add],
+        edge_detectors: true,
+        ..Options::default()
+    })
+    .unwrap();
+    let d = doc(&out.toml);
+    let dets: Vec<(String, f64)> = d["detectors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| {
+            (
+                t["name"].as_str().unwrap().to_string(),
+                t["position_m"].as_float().unwrap(),
+            )
+        })
+        .collect();
+    assert!(dets.contains(&("L0".into(), 1.0)), "{dets:?}");
+    assert!(dets.iter().any(|(n, _)| n == "m3"), "{dets:?}");
+    assert!(dets.iter().any(|(n, _)| n == "m3_end"), "{dets:?}");
+    platoonsim_scenario::from_toml_in(
+        &out.toml,
+        "loops.toml",
+        "imported",
+        &platoonsim_scenario::Overrides::default(),
+        None,
+    )
+    .unwrap();
 }

@@ -2,7 +2,6 @@
 
 use std::ffi::OsString;
 use std::fs;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
@@ -122,24 +121,13 @@ fn encode_png(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>, String> {
     Ok(out)
 }
 
-/// Writes `bytes` to `<path>.tmp`, flushes it and renames it to `path`.
+/// Writes `bytes` through the project's one checked output path
+/// (`platoonsim_bounded::output::write_atomic`: tmp + fsync + rename, only over a regular file
+/// or a new path, a link followed to its target).
 fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), PlotError> {
-    let tmp = file_path(path, "tmp");
-    let io_err = |source| PlotError::Io {
+    platoonsim_bounded::output::write_atomic(path, bytes).map_err(|source| PlotError::Io {
         path: path.to_path_buf(),
         source,
-    };
-    let written = fs::File::create(&tmp).and_then(|mut f| {
-        f.write_all(bytes)?;
-        f.sync_all()
-    });
-    if let Err(e) = written {
-        let _ = fs::remove_file(&tmp);
-        return Err(io_err(e));
-    }
-    fs::rename(&tmp, path).map_err(|e| {
-        let _ = fs::remove_file(&tmp);
-        io_err(e)
     })
 }
 

@@ -65,8 +65,5 @@ pub fn write_table(
         Format::Parquet => Format::Csv,
     };
     let stale = dir.join(format!("{stem}.{}", other.ext()));
-    match std::fs::remove_file(&stale) {
-        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(Error::io(&stale, e)),
-        _ => Ok(()),
-    }
+    crate::atomic::remove_output(&stale).map_err(|e| Error::io(&stale, e))
 }

@@ -340,6 +340,10 @@ fn remove_stale_tmp(dir: &Path) {
         if !e.file_name().to_string_lossy().ends_with(".tmp") {
             continue;
         }
+        // Only a regular file (never a link, FIFO or device that happens to end in `.tmp`).
+        if !e.file_type().is_ok_and(|t| t.is_file()) {
+            continue;
+        }
         let age = e
             .metadata()
             .and_then(|m| m.modified())

@@ -140,6 +140,16 @@ pub fn terms(field: &[Obs], sim: &[Obs], w: &Weights) -> Result<Terms, String> {
     let values = [fit::rmsne(&speed), fit::rmsne(&flow), Some(geh), compare];
     for (i, v) in values.iter().enumerate() {
         match v {
+            // A non-finite term would make every candidate equal ("best objective NaN") and
+            // still write a calibrated file (issue 48 D5): stop instead.
+            Some(x) if !x.is_finite() => {
+                return Err(format!(
+                    "the term {} is {x} over {} matched pairs: a field or simulated value is \
+                     not a finite number in range",
+                    TERMS[i],
+                    flow.len()
+                ))
+            }
             Some(_) => {}
             None if w.0[i] > 0.0 => {
                 return Err(format!(
@@ -204,6 +214,20 @@ mod tests {
         );
         // A perfect fit is 0.
         assert_eq!(terms(&field, &field, &w).unwrap().objective(&w), 0.0);
+    }
+
+    #[test]
+    fn a_non_finite_term_stops_the_calibration() {
+        // Issue 48 D5: a field flow of 1e308 made the objective NaN, "best objective NaN",
+        // exit 0 and a calibrated.toml.
+        let field = [obs("a", 0, 1e308, Some(100.0)), obs("a", 300, 2000.0, None)];
+        let sim = [obs("a", 0, 1000.0, Some(90.0)), obs("a", 300, 2000.0, None)];
+        let e = terms(&field, &sim, &Weights::default()).unwrap_err();
+        assert_eq!(
+            e,
+            "the term flow_geh is inf over 2 matched pairs: a field or simulated value is not a \
+             finite number in range"
+        );
     }
 
     #[test]

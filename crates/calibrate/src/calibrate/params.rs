@@ -113,6 +113,16 @@ impl Params {
             }
         }
         let name = match doc.get("name") {
+            None if !crate::sweep::spec::valid_name(default_name) => {
+                return Err(err(
+                    "name",
+                    format!(
+                        "missing, and the file's name gives {default_name:?}, which is not a \
+                         name: letters, digits, '_', '-' and '.', not starting with '.' (it names \
+                         the output directory; set name = \"...\")"
+                    ),
+                ))
+            }
             None => default_name.to_string(),
             Some(Value::String(s)) if crate::sweep::spec::valid_name(s) => s.clone(),
             Some(v) => {
@@ -329,6 +339,21 @@ mod tests {
     }
 
     const OK: &str = "budget = 12\n[params]\n\"human.buffer_s\" = { min = 0.0, max = 0.6 }\n";
+
+    #[test]
+    fn a_default_name_that_is_no_name_is_refused() {
+        // Issue 48 D12: a parameters file named `...toml` wrote into `--out/..`.
+        for stem in ["..", ".", ".x", ""] {
+            let e = Params::from_toml(OK, "p.toml", stem).unwrap_err();
+            assert_eq!(e.key, "name", "{stem:?}");
+            assert!(e.message.contains("which is not a name"), "{stem:?}: {e}");
+        }
+        let named = format!("name = \"fine\"\n{OK}");
+        assert_eq!(
+            Params::from_toml(&named, "p.toml", "..").unwrap().name,
+            "fine"
+        );
+    }
 
     #[test]
     fn defaults() {

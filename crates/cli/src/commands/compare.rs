@@ -81,6 +81,31 @@ pub fn field_data(
         }
         _ => Vec::new(),
     };
+    if let Some(table) = &args.stations {
+        // A table of other stations placed nothing and silently changed the result (issue 48):
+        // it must place at least one station of the field files; the others are noted.
+        let field: std::collections::BTreeSet<&str> =
+            obs.iter().map(|o| o.station.as_str()).collect();
+        let (matched, unmatched): (Vec<&Placed>, Vec<&Placed>) = places
+            .iter()
+            .partition(|p| field.contains(p.station.as_str()));
+        let ids = |v: &[&Placed]| -> Vec<String> { v.iter().map(|p| p.station.clone()).collect() };
+        if matched.is_empty() {
+            bail!(
+                "--stations {}: none of its stations ({}) is in the field files (stations {})",
+                table.display(),
+                some_names(&ids(&unmatched)),
+                some_names(&field.iter().map(|s| s.to_string()).collect::<Vec<_>>())
+            );
+        }
+        if !unmatched.is_empty() {
+            notes.push(format!(
+                "{} station(s) of --stations not in the field files, not placed: {}.",
+                unmatched.len(),
+                some_names(&ids(&unmatched))
+            ));
+        }
+    }
     Ok((obs, places, notes))
 }
 
@@ -107,6 +132,14 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
              (docs/compare.md)",
             some_names(&fit.sim_only_stations),
             some_names(&fit.field_only_stations)
+        );
+    }
+    if let Some(x) = eval.objective().filter(|x| !x.is_finite()) {
+        // Never a result file with a NaN fit (issue 48 D5); the readers' ranges should make
+        // this unreachable.
+        bail!(
+            "the fit's objective is {x}: a field or simulated value is not a finite number in \
+             range; nothing written"
         );
     }
     if !fit.sim_only_stations.is_empty() {

@@ -75,6 +75,14 @@ fn sumo_cmd(a: &SumoArgs) -> Result<()> {
         duration_s: a.duration_s,
         name: a.name.clone(),
     };
+    // Before reading: the scenario must not replace one of the SUMO files (`--out NET` did),
+    // nor anything that is not a regular file.
+    let inputs: Vec<&std::path::Path> = std::iter::once(a.net.as_path())
+        .chain(a.routes.iter().map(|p| p.as_path()))
+        .chain(a.additional.iter().map(|p| p.as_path()))
+        .collect();
+    crate::atomic::refuse_input(&a.out, &inputs)?;
+    crate::atomic::check_output(&a.out)?;
     let imported = sumo::import(&opts)?;
     // The file must load as it will be run: relative paths from its own directory.
     let dir = a.out.parent().filter(|p| !p.as_os_str().is_empty());

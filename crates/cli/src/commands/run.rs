@@ -13,6 +13,7 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
     // Create and lock the directory before simulating, so that an unwritable one, or one
     // another process is writing, fails at once.
     let _lock = out_lock::lock(&args.out, out_lock::Share::Alone)?;
+    output::check_run_dir(&args.out)?;
     output::remove_stale_tmp(&args.out)?;
 
     let name = crate::messages::printable(&config.name);

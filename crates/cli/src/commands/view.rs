@@ -22,6 +22,16 @@ pub fn view(args: &ViewArgs) -> Result<()> {
 /// Build the page for the run in `dir` and write it to `file`; prints one line about its
 /// content and size to stderr.
 pub fn write(dir: &Path, file: &Path) -> Result<()> {
+    // The page must not replace one of the run's files it is built from (`--out
+    // RUN/trajectories.csv` did), nor anything that is not a regular file.
+    let inputs: Vec<std::path::PathBuf> = crate::output::RUN_FILES
+        .iter()
+        .filter(|name| **name != DEFAULT_FILE)
+        .map(|name| dir.join(name))
+        .collect();
+    let inputs: Vec<&Path> = inputs.iter().map(|p| p.as_path()).collect();
+    crate::atomic::refuse_input(file, &inputs)?;
+    crate::atomic::check_output(file)?;
     let v = platoonsim_view::build(dir)?;
     write_atomic(file, v.html.as_bytes())
         .with_context(|| format!("cannot write {}", file.display()))?;

@@ -180,14 +180,23 @@ pub fn write_run_files(
     Ok(written)
 }
 
-/// Remove a file of an earlier run (nothing if there is none).
+/// Remove a file of an earlier run (nothing if there is none) through the one checked path
+/// (`remove_output`: a regular file, or a link's regular target; anything else is refused,
+/// never unlinked).
 fn remove_stale(path: &Path) -> Result<()> {
-    match std::fs::remove_file(path) {
-        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-            Err(e).with_context(|| format!("cannot remove {} of an earlier run", path.display()))
-        }
-        _ => Ok(()),
+    crate::atomic::remove_output(path)
+        .with_context(|| format!("cannot remove {} of an earlier run", path.display()))
+}
+
+/// Before any work: refuse a run directory where one of the run's file names is something no
+/// output may replace or remove (a device, FIFO, directory, socket, or a link to one), and a
+/// directory that cannot take a new file.
+pub fn check_run_dir(dir: &Path) -> Result<()> {
+    crate::atomic::check_writable_dir(dir)?;
+    for name in RUN_FILES {
+        crate::atomic::check_output(&dir.join(name))?;
     }
+    Ok(())
 }
 
 /// The columns of `collisions.csv`, in the order of [`CollisionEvent`]'s fields.

@@ -90,6 +90,20 @@ pub struct OnCorridor {
     pub off_station: BTreeMap<usize, String>,
 }
 
+/// How far inside the road a detector at its very start or end is placed (m): a scenario's
+/// detectors lie strictly inside the corridor, and SUMO loops at `pos="0"` are common (issue 48
+/// D15).
+pub const DETECTOR_INSIDE_M: f64 = 1.0;
+
+/// `x` moved into `[DETECTOR_INSIDE_M, length - DETECTOR_INSIDE_M]` (the middle of a road
+/// shorter than twice that).
+pub fn inside(x: f64, length: f64) -> f64 {
+    if length <= 2.0 * DETECTOR_INSIDE_M {
+        return length / 2.0;
+    }
+    x.clamp(DETECTOR_INSIDE_M, length - DETECTOR_INSIDE_M)
+}
+
 pub fn place(loops: &[Loop], net: &Net, c: &Corridor, notes: &mut Notes) -> OnCorridor {
     let mut out = OnCorridor {
         mainline: Vec::new(),
@@ -98,9 +112,13 @@ pub fn place(loops: &[Loop], net: &Net, c: &Corridor, notes: &mut Notes) -> OnCo
     };
     let mut grouped: Vec<(Placed, usize)> = Vec::new(); // (detector, loops in it)
     let mut elsewhere = 0;
+    let mut moved = Vec::new();
     for l in loops {
         if let Some(k) = c.position(l.edge) {
-            let x = c.start[k] + l.pos;
+            let x = inside(c.start[k] + l.pos, c.length);
+            if x != c.start[k] + l.pos {
+                moved.push(l.id.clone());
+            }
             match grouped
                 .iter_mut()
                 .find(|(g, _)| (g.x - x).abs() <= GROUP_WITHIN_M)
@@ -138,6 +156,14 @@ pub fn place(loops: &[Loop], net: &Net, c: &Corridor, notes: &mut Notes) -> OnCo
     if elsewhere > 0 {
         notes.drop(format!(
             "{elsewhere} induction loops on edges that are neither the mainline nor a ramp's last edge"
+        ));
+    }
+    if !moved.is_empty() {
+        notes.reduce(format!(
+            "{} loop(s) at the corridor's very start or end moved {DETECTOR_INSIDE_M} m inside \
+             (a detector lies strictly inside the road): {}",
+            moved.len(),
+            moved.join(", ")
         ));
     }
     out.mainline = grouped.into_iter().map(|g| g.0).collect();

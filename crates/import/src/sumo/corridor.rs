@@ -64,18 +64,28 @@ pub struct Corridor {
     pub off_ramps: Vec<OffRamp>,
     /// Non-mainline edges feeding the first mainline edge (their traffic enters at x = 0).
     pub feeders: Vec<usize>,
+    /// Per network edge: its index in the chain, its on-ramp and off-ramp (`u32::MAX`: none),
+    /// so that placing a route or a loop costs a lookup, not a scan of the chain (issue 48 D3).
+    place: Vec<[u32; 3]>,
 }
 
 impl Corridor {
     /// Index in the chain of a mainline edge.
     pub fn position(&self, edge: usize) -> Option<usize> {
-        self.chain.iter().position(|&e| e == edge)
+        self.placed(edge, 0)
     }
     pub fn on_ramp_of(&self, edge: usize) -> Option<usize> {
-        self.on_ramps.iter().position(|r| r.edges.contains(&edge))
+        self.placed(edge, 1)
     }
     pub fn off_ramp_of(&self, edge: usize) -> Option<usize> {
-        self.off_ramps.iter().position(|r| r.edges.contains(&edge))
+        self.placed(edge, 2)
+    }
+    fn placed(&self, edge: usize, what: usize) -> Option<usize> {
+        self.place
+            .get(edge)
+            .map(|p| p[what])
+            .filter(|&i| i != u32::MAX)
+            .map(|i| i as usize)
     }
 }
 
@@ -127,6 +137,16 @@ pub fn build(net: &Net, chain: Vec<usize>, notes: &mut Notes) -> Result<Corridor
         start[k] = start[k - 1] + e(k - 1).length() + net.internal_m(chain[k - 1], chain[k]);
     }
     let length = start[n - 1] + e(n - 1).length();
+    // Refused before any ramp or lane is followed: a corridor a scenario may not have.
+    let max = platoonsim_scenario::limits::MAX_LENGTH_M;
+    if length > max {
+        return Err(ImportError::NotCorridor(format!(
+            "the mainline ({n} edges from \"{}\" to \"{}\") is {length:.0} m long; a corridor \
+             may be at most {max:.0} m (docs/robustness.md): give a shorter one with --mainline",
+            e(0).id,
+            e(n - 1).id
+        )));
+    }
     if length <= 0.0 {
         return Err(ImportError::NotCorridor(format!(
             "the mainline ({} edges from \"{}\") has length 0",
@@ -135,7 +155,16 @@ pub fn build(net: &Net, chain: Vec<usize>, notes: &mut Notes) -> Result<Corridor
         )));
     }
     let end_of = |k: usize| start[k] + e(k).length(); // x of edge k's downstream end
-    let on_main = |x: usize| chain.contains(&x);
+    let mut main = vec![false; net.edges.len()];
+    for &x in &chain {
+        main[x] = true;
+    }
+    let on_main = |x: usize| main[x];
+    // Edges by the junction they end at, for the crossing streams of each mainline junction.
+    let mut into: std::collections::HashMap<&str, Vec<usize>> = std::collections::HashMap::new();
+    for (i, edge) in net.edges.iter().enumerate() {
+        into.entry(edge.to.as_str()).or_default().push(i);
+    }
 
     // Ramps at each junction k (between edges k-1 and k).
     let mut on_ramps: Vec<OnRamp> = Vec::new();
@@ -158,7 +187,7 @@ pub fn build(net: &Net, chain: Vec<usize>, notes: &mut Notes) -> Result<Corridor
             .filter(|&p| p != a && !on_main(p))
         {
             let x = start[k];
-            let ramp_len = ramp_length(net, p, &chain);
+            let ramp_len = ramp_length(net, p, &main);
             let pe = &net.edges[p];
             if let Some(last) = on_ramps.last_mut() {
                 if x - last.x < MERGE_RAMPS_WITHIN_M {
@@ -212,7 +241,7 @@ pub fn build(net: &Net, chain: Vec<usize>, notes: &mut Notes) -> Result<Corridor
                 x,
             });
         }
-        crossings(net, a, b, &chain, junction, notes);
+        crossings(net, a, b, &main, &into, junction, notes);
     }
 
     // Follow the lanes by count (module doc).
@@ -373,6 +402,24 @@ pub fn build(net: &Net, chain: Vec<usize>, notes: &mut Notes) -> Result<Corridor
         length,
         stretches.len()
     ));
+    let mut place = vec![[u32::MAX; 3]; net.edges.len()];
+    for (k, &x) in chain.iter().enumerate() {
+        place[x][0] = k as u32;
+    }
+    for (r, ramp) in on_ramps.iter().enumerate() {
+        for &x in &ramp.edges {
+            if place[x][1] == u32::MAX {
+                place[x][1] = r as u32;
+            }
+        }
+    }
+    for (r, ramp) in off_ramps.iter().enumerate() {
+        for &x in &ramp.edges {
+            if place[x][2] == u32::MAX {
+                place[x][2] = r as u32;
+            }
+        }
+    }
     Ok(Corridor {
         chain,
         start,
@@ -381,11 +428,12 @@ pub fn build(net: &Net, chain: Vec<usize>, notes: &mut Notes) -> Result<Corridor
         on_ramps,
         off_ramps,
         feeders,
+        place,
     })
 }
 
 /// A ramp's own length: its edge and, upstream, the edges that lead only to it.
-fn ramp_length(net: &Net, p: usize, chain: &[usize]) -> f64 {
+fn ramp_length(net: &Net, p: usize, main: &[bool]) -> f64 {
     let typed = !net.edges[p].kind.is_empty();
     let mut total = net.edges[p].length();
     let mut cur = p;
@@ -394,7 +442,7 @@ fn ramp_length(net: &Net, p: usize, chain: &[usize]) -> f64 {
         let preds = net.predecessors(cur);
         let [q] = preds[..] else { break };
         let qe = &net.edges[q];
-        if chain.contains(&q) || seen.contains(&q) || (typed && !qe.is_link()) {
+        if main[q] || seen.contains(&q) || (typed && !qe.is_link()) {
             break;
         }
         if net.successors(q).len() != 1 {
@@ -408,13 +456,22 @@ fn ramp_length(net: &Net, p: usize, chain: &[usize]) -> f64 {
 }
 
 /// Traffic across a mainline junction (not onto or off the mainline) is not modelled.
-fn crossings(net: &Net, a: usize, b: usize, chain: &[usize], junction: &str, notes: &mut Notes) {
-    let crossing = net.conns.iter().any(|c| {
-        !chain.contains(&c.from)
-            && !chain.contains(&c.to)
-            && net.edges[c.from].to == junction
-            && !c.turnaround
-    });
+fn crossings(
+    net: &Net,
+    a: usize,
+    b: usize,
+    main: &[bool],
+    into: &std::collections::HashMap<&str, Vec<usize>>,
+    junction: &str,
+    notes: &mut Notes,
+) {
+    let crossing = into
+        .get(junction)
+        .into_iter()
+        .flatten()
+        .filter(|&&from| !main[from])
+        .flat_map(|&from| net.leaving(from))
+        .any(|c| !main[c.to] && !c.turnaround);
     if crossing {
         notes.drop(format!(
             "traffic crossing the mainline at junction \"{junction}\" (between \"{}\" and \"{}\"): \

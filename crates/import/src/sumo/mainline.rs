@@ -35,9 +35,8 @@ fn candidates(net: &Net) -> Vec<bool> {
 /// Successors among candidates, without turnarounds.
 fn next(net: &Net, cand: &[bool], a: usize) -> Vec<usize> {
     let mut v: Vec<usize> = net
-        .conns
-        .iter()
-        .filter(|c| c.from == a && !c.turnaround && cand[c.to] && c.to != a)
+        .leaving(a)
+        .filter(|c| !c.turnaround && cand[c.to] && c.to != a)
         .map(|c| c.to)
         .collect();
     v.sort_unstable();
@@ -137,6 +136,7 @@ pub fn given(net: &Net, ids: &[String]) -> Result<Vec<usize>, ImportError> {
         problem,
     };
     let mut chain: Vec<usize> = Vec::with_capacity(ids.len());
+    let mut listed = vec![false; net.edges.len()];
     for id in ids {
         let e = net
             .edge(id)
@@ -144,7 +144,7 @@ pub fn given(net: &Net, ids: &[String]) -> Result<Vec<usize>, ImportError> {
         if net.edges[e].lanes.is_empty() {
             return Err(flag(id, "this edge has no lane that cars may use".into()));
         }
-        if chain.contains(&e) {
+        if std::mem::replace(&mut listed[e], true) {
             return Err(flag(
                 id,
                 "this edge is listed twice; a corridor runs one way".into(),

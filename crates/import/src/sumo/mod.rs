@@ -13,6 +13,7 @@ pub mod net;
 mod router;
 pub mod routes;
 pub mod scenario;
+pub mod synth;
 #[cfg(test)]
 mod testnet;
 pub mod vtypes;
@@ -255,6 +256,20 @@ pub fn from_texts(
     for (tag, n) in other_add {
         notes.drop(format!("{n} {tag} elements of the additional files"));
     }
+    let max = platoonsim_scenario::limits::MAX_DETECTORS;
+    if opts.edge_detectors && c.chain.len() + placed.mainline.len() > max {
+        return Err(ImportError::Flag {
+            flag: "--edge-detectors",
+            value: "given".into(),
+            problem: format!(
+                "the mainline has {} edges (and {} loop detectors): a detector per edge would \
+                 be more than the {max} a scenario may have; leave the flag out or give a \
+                 shorter --mainline",
+                c.chain.len(),
+                placed.mainline.len()
+            ),
+        });
+    }
     let edge_detectors: Vec<(String, f64)> = if opts.edge_detectors {
         c.chain
             .iter()
@@ -269,13 +284,41 @@ pub fn from_texts(
                 };
                 (
                     corridor::sanitize(&net.edges[e].id),
-                    (end - before).max(c.start[k]),
+                    additional::inside((end - before).max(c.start[k]), c.length),
                 )
             })
             .collect()
     } else {
         Vec::new()
     };
+    // An edge detector is named by its edge, a loop by its id: SUMO allows a loop and an edge
+    // of one id, a scenario not two detectors of one name (issue 48 D15).
+    let mut edge_detectors = edge_detectors;
+    let mut renamed = Vec::new();
+    {
+        let mut taken: std::collections::HashSet<String> =
+            placed.mainline.iter().map(|p| p.name.clone()).collect();
+        for (name, _) in edge_detectors.iter_mut() {
+            if taken.contains(name.as_str()) {
+                let mut n = 1;
+                let mut new = format!("{name}_end");
+                while taken.contains(&new) {
+                    n += 1;
+                    new = format!("{name}_end{n}");
+                }
+                renamed.push(format!("{name} -> {new}"));
+                *name = new;
+            }
+            taken.insert(name.clone());
+        }
+    }
+    if !renamed.is_empty() {
+        notes.reduce(format!(
+            "{} edge detector(s) renamed, a loop has the edge's id: {}",
+            renamed.len(),
+            renamed.join(", ")
+        ));
+    }
 
     // Speed limits: the ramps' as ramp_speed_kmh (their median), the mainline's as a cap when
     // it is one value.
@@ -298,6 +341,9 @@ pub fn from_texts(
         .iter()
         .zip(&limits)
         .enumerate()
+        // Only where the limit changes: a line per edge made the file of a long chain of
+        // short edges larger than a scenario may be (issue 48, 100,000 edges: 3.4 MB).
+        .filter(|&(k, (_, v))| k == 0 || (v - limits[k - 1]).abs() >= 0.05)
         .map(|(k, (&e, v))| format!("{} at x = {:.1} m: {v:.1}", net.edges[e].id, c.start[k]))
         .collect();
     if !uniform {
@@ -338,7 +384,12 @@ pub fn from_texts(
     let description = format!(
         "Imported from SUMO: {} edges of {} ({:.0} m), {} on-ramps, {} off-ramps",
         c.chain.len(),
-        opts.net.display(),
+        // The file's name only: the description travels with the scenario (an absolute path
+        // told where the importing user kept their files).
+        opts.net.file_name().map_or_else(
+            || opts.net.display().to_string(),
+            |n| n.to_string_lossy().into_owned()
+        ),
         c.length,
         c.on_ramps.len(),
         c.off_ramps.len()

@@ -67,6 +67,11 @@ pub struct Net {
     pub conns: Vec<Conn>,
     /// Junction id → type (`priority`, `traffic_light`, `dead_end`, ...).
     pub junctions: HashMap<String, String>,
+    /// Indices into `conns` by the edge they leave and by the edge they enter, made by
+    /// [`Net::index`] (issue 48 D2/D3: every query scanned all connections, which made an import
+    /// quadratic and the corridor cubic in the network's size).
+    out_conns: Vec<Vec<u32>>,
+    in_conns: Vec<Vec<u32>>,
 }
 
 impl Net {
@@ -74,31 +79,50 @@ impl Net {
         self.by_id.get(id).copied()
     }
 
+    /// Index the connections by edge; called once after `conns` is complete.
+    pub fn index(&mut self) {
+        let n = self.edges.len();
+        self.out_conns = vec![Vec::new(); n];
+        self.in_conns = vec![Vec::new(); n];
+        for (i, c) in self.conns.iter().enumerate() {
+            self.out_conns[c.from].push(i as u32);
+            self.in_conns[c.to].push(i as u32);
+        }
+    }
+
+    /// Connections leaving edge `a`.
+    pub fn leaving(&self, a: usize) -> impl Iterator<Item = &Conn> {
+        self.out_conns
+            .get(a)
+            .into_iter()
+            .flatten()
+            .map(|&i| &self.conns[i as usize])
+    }
+
+    /// Connections entering edge `b`.
+    pub fn entering(&self, b: usize) -> impl Iterator<Item = &Conn> {
+        self.in_conns
+            .get(b)
+            .into_iter()
+            .flatten()
+            .map(|&i| &self.conns[i as usize])
+    }
+
     /// Connections from edge `a` to edge `b`.
     pub fn between(&self, a: usize, b: usize) -> impl Iterator<Item = &Conn> {
-        self.conns.iter().filter(move |c| c.from == a && c.to == b)
+        self.leaving(a).filter(move |c| c.to == b)
     }
 
     /// Edges that edge `a` has a connection to.
     pub fn successors(&self, a: usize) -> Vec<usize> {
-        let mut v: Vec<usize> = self
-            .conns
-            .iter()
-            .filter(|c| c.from == a)
-            .map(|c| c.to)
-            .collect();
+        let mut v: Vec<usize> = self.leaving(a).map(|c| c.to).collect();
         v.sort_unstable();
         v.dedup();
         v
     }
 
     pub fn predecessors(&self, b: usize) -> Vec<usize> {
-        let mut v: Vec<usize> = self
-            .conns
-            .iter()
-            .filter(|c| c.to == b)
-            .map(|c| c.from)
-            .collect();
+        let mut v: Vec<usize> = self.entering(b).map(|c| c.from).collect();
         v.sort_unstable();
         v.dedup();
         v
@@ -128,6 +152,16 @@ pub fn read(path: &Path) -> Result<Net, ImportError> {
 
 pub fn parse(path: &Path, text: &str) -> Result<Net, ImportError> {
     let doc = xml::parse(path, text)?;
+    if doc.root_element().has_tag_name("osm") {
+        return Err(ImportError::Invalid {
+            path: path.to_path_buf(),
+            line: Some(doc.text_pos_at(doc.root_element().range().start).row),
+            what: "an OpenStreetMap file (<osm>)".into(),
+            problem: "import sumo reads SUMO networks: convert it with netconvert first, \
+                      e.g. scripts/osm_to_corridor.sh (docs/import.md, \"From OpenStreetMap\")"
+                .into(),
+        });
+    }
     let root = xml::root(path, &doc, &["net"], "SUMO network (.net.xml)")?;
     let mut net = Net::default();
     // Internal lanes: id → length, and the connections that go on from one (internal
@@ -203,7 +237,8 @@ pub fn parse(path: &Path, text: &str) -> Result<Net, ImportError> {
                     .index("toLane", 1000)?
                     .ok_or_else(|| at.invalid("has no attribute toLane", "it is required"))?;
                 let turnaround = node.attribute("dir") == Some("t");
-                raw_conns.push((at.line(), from, to, from_lane, to_lane, via, turnaround));
+                // The position, not the line: a line is counted only for an error.
+                raw_conns.push((node, from, to, from_lane, to_lane, via, turnaround));
             }
             _ => {}
         }
@@ -214,11 +249,11 @@ pub fn parse(path: &Path, text: &str) -> Result<Net, ImportError> {
             path.display()
         )));
     }
-    for (line, from, to, from_lane, to_lane, via, turnaround) in raw_conns {
+    for (node, from, to, from_lane, to_lane, via, turnaround) in raw_conns {
         let edge = |id: &str| {
             net.edge(id).ok_or_else(|| ImportError::Invalid {
                 path: path.to_path_buf(),
-                line: Some(line),
+                line: Some(At::new(path, node).line()),
                 what: format!("<connection from=\"{from}\" to=\"{to}\">"),
                 problem: format!("names edge \"{id}\", which the network does not have"),
             })
@@ -249,6 +284,7 @@ pub fn parse(path: &Path, text: &str) -> Result<Net, ImportError> {
             internal_m,
         });
     }
+    net.index();
     Ok(net)
 }
 

@@ -23,12 +23,6 @@ impl PartialOrd for Item {
 /// The edges from `a` to `b` (both included), shortest by the lengths of the edges after `a`.
 pub fn shortest(net: &Net, a: usize, b: usize) -> Option<Vec<usize>> {
     let n = net.edges.len();
-    let mut succ: Vec<Vec<usize>> = vec![Vec::new(); n];
-    for c in &net.conns {
-        if !succ[c.from].contains(&c.to) {
-            succ[c.from].push(c.to);
-        }
-    }
     let mut dist = vec![f64::INFINITY; n];
     let mut prev = vec![usize::MAX; n];
     let mut heap = BinaryHeap::new();
@@ -41,7 +35,7 @@ pub fn shortest(net: &Net, a: usize, b: usize) -> Option<Vec<usize>> {
         if d > dist[u] {
             continue;
         }
-        for &v in &succ[u] {
+        for v in net.successors(u) {
             let nd = d + net.edges[v].length();
             if nd < dist[v] {
                 dist[v] = nd;

@@ -55,12 +55,18 @@ pub fn time(s: &str) -> Option<f64> {
         return None;
     }
     let mut t = 0.0;
-    for (p, m) in parts.iter().zip(&mult[4 - parts.len()..]) {
+    for (i, (p, m)) in parts.iter().zip(&mult[4 - parts.len()..]).enumerate() {
         let v: f64 = p.parse().ok()?;
         if !v.is_finite() || v < 0.0 {
             return None;
         }
-        t += v * m;
+        // After the first part, a clock: hours below 24, minutes and seconds below 60
+        // (`99:99:99` was 4 days of seconds; issue 48 D16).
+        let unit = *m;
+        if i > 0 && ((unit == 3_600.0 && v >= 24.0) || (unit < 3_600.0 && v >= 60.0)) {
+            return None;
+        }
+        t += v * unit;
     }
     Some(t)
 }
@@ -121,7 +127,7 @@ pub fn parse(
                     }
                     routes
                         .vtype_dists
-                        .insert(id.to_string(), normalize(members));
+                        .insert(id.to_string(), normalize(&at, "vType", members)?);
                 }
                 "route" => {
                     let id = at.req("id")?;
@@ -152,7 +158,7 @@ pub fn parse(
                         }
                         members.push((edges, p));
                     }
-                    named.insert(id.to_string(), normalize(members));
+                    named.insert(id.to_string(), normalize(&at, "route", members)?);
                 }
                 tag @ ("vehicle" | "trip" | "flow") => {
                     let paths = path_of(net, &at, &named)?;
@@ -207,16 +213,55 @@ pub fn parse(
     Ok(routes)
 }
 
-fn normalize<T>(members: Vec<(T, f64)>) -> Vec<(T, f64)> {
+/// A distribution's probabilities as shares. One without members, or whose probabilities sum
+/// to 0, would silently drop the demand that uses it (issue 48 D7: 2,400 of 3,000 veh/h): it
+/// is an error naming the element.
+fn normalize<T>(
+    at: &At,
+    member: &str,
+    members: Vec<(T, f64)>,
+) -> Result<Vec<(T, f64)>, ImportError> {
+    if members.is_empty() {
+        return Err(at.invalid(
+            format!("has no <{member}>"),
+            format!("a distribution needs at least one {member}; its demand would be lost"),
+        ));
+    }
     let total: f64 = members.iter().map(|m| m.1).sum();
-    members
-        .into_iter()
-        .map(|(m, p)| (m, if total > 0.0 { p / total } else { 0.0 }))
-        .collect()
+    if !(total > 0.0 && total.is_finite()) {
+        return Err(at.invalid(
+            format!("has probabilities that sum to {total}"),
+            format!("some {member} needs a probability > 0; its demand would be lost"),
+        ));
+    }
+    Ok(members.into_iter().map(|(m, p)| (m, p / total)).collect())
 }
+
+/// The mapped attributes of a vType and their ranges: each must be a number in (0, max] (a
+/// NaN, 0 or negative value was left out of the mean but kept its type's demand weight,
+/// issue 48 D8).
+const VTYPE_RANGES: [(&str, f64); 4] = [
+    ("length", 50.0),
+    ("accel", 20.0),
+    ("decel", 20.0),
+    ("maxSpeed", 100.0),
+];
 
 fn add_vtype(routes: &mut Routes, at: &At) -> Result<String, ImportError> {
     let id = at.req("id")?.to_string();
+    for (name, max) in VTYPE_RANGES {
+        if let Some(s) = at.node.attribute(name) {
+            match s.trim().parse::<f64>() {
+                Ok(v) if v > 0.0 && v <= max => {}
+                _ => {
+                    return Err(at.invalid(
+                        format!("attribute {name}=\"{s}\""),
+                        format!("must be a number in (0, {max}]"),
+                    ))
+                }
+            }
+        }
+    }
     let attrs = at
         .node
         .attributes()
@@ -275,7 +320,7 @@ fn path_of(
             let p = ra.num("probability", 0.0, 1e9)?.unwrap_or(1.0);
             members.push((edges_of(net, &ra)?, p));
         }
-        return Ok(normalize(members));
+        return normalize(&At::new(at.path, dist), "route", members);
     }
     match (at.node.attribute("from"), at.node.attribute("to")) {
         (Some(from), Some(to)) => {
@@ -385,5 +430,28 @@ mod tests {
         assert_eq!(time("1:0:0:0"), Some(86_400.0));
         assert_eq!(time("-3"), None);
         assert_eq!(time("soon"), None);
+        // Issue 48 D16: a clock's minutes and seconds are below 60, its hours (after days)
+        // below 24; the first part may be any size.
+        assert_eq!(time("99:99:99"), None);
+        assert_eq!(time("1:60:00"), None);
+        assert_eq!(time("1:24:00:00"), None);
+        assert_eq!(time("25:59:59.5"), Some(25.0 * 3600.0 + 59.0 * 60.0 + 59.5));
+        assert_eq!(time("1:23:59:59"), Some(86_400.0 + 86_399.0));
+    }
+
+    #[test]
+    fn an_openstreetmap_file_points_to_netconvert() {
+        let e = super::super::net::parse(
+            std::path::Path::new("x.osm"),
+            "<?xml version='1.0'?>\n<osm version=\"0.6\"><node id=\"1\" lat=\"0\" lon=\"0\"/></osm>",
+        )
+        .unwrap_err()
+        .to_string();
+        assert_eq!(
+            e,
+            "x.osm:2: an OpenStreetMap file (<osm>): import sumo reads SUMO networks: convert it \
+             with netconvert first, e.g. scripts/osm_to_corridor.sh (docs/import.md, \"From \
+             OpenStreetMap\")"
+        );
     }
 }

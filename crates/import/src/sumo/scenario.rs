@@ -147,7 +147,7 @@ pub fn header(sources: &[String], notes: &Notes, speed_data: &[String]) -> Strin
         h.push_str(&format!("#   {}\n", printable(line)));
     }
     if !speed_data.is_empty() {
-        h.push_str("#\n# Speed limits of the mainline edges (km/h), kept as data:\n");
+        h.push_str("#\n# Speed limits of the mainline (km/h) from each edge where they change, kept as data:\n");
         for line in speed_data {
             h.push_str(&format!("#   {}\n", printable(line)));
         }

@@ -50,7 +50,8 @@ impl Build {
         self
     }
 
-    pub fn done(self) -> Net {
+    pub fn done(mut self) -> Net {
+        self.net.index();
         self.net
     }
 }

@@ -105,6 +105,14 @@ pub fn run_with(spec: &Spec, opts: &Options, exec: Executor<'_>) -> Result<Done,
         None => specs.clone(),
     };
     std::fs::create_dir_all(&opts.out).map_err(|e| Error::io(&opts.out, e))?;
+    if opts.shard.is_none() {
+        // Before any run: every table and report name must be absent, a regular file or a
+        // link to one (a FIFO at `runs.parquet` was unlinked after the whole sweep).
+        for name in TABLE_FILES {
+            let p = opts.out.join(name);
+            crate::atomic::check_output(&p).map_err(|e| Error::io(&p, e))?;
+        }
+    }
     let label = match opts.shard {
         Some(s) => format!("sweep {} shard {s}", spec.name),
         None => format!("sweep {}", spec.name),
@@ -211,6 +219,17 @@ pub fn run_with(spec: &Spec, opts: &Options, exec: Executor<'_>) -> Result<Done,
     done.wall_seconds = start.elapsed().as_secs_f64();
     Ok(done)
 }
+
+/// The files an unsharded sweep writes into its directory (both formats of each table, which
+/// replace each other), checked before any run; the figures are named by the spec.
+pub const TABLE_FILES: [&str; 6] = [
+    "runs.csv",
+    "runs.parquet",
+    "summary.csv",
+    "summary.parquet",
+    "summary.md",
+    "run.json",
+];
 
 /// One cell of a `run.json` (a sweep's or an experiment's): its labels, its runs and the
 /// scenario they share.

@@ -161,6 +161,16 @@ impl Spec {
             }
         }
         let name = match doc.get("name") {
+            None if !valid_name(default_name) => {
+                return Err(err(
+                    "name",
+                    format!(
+                        "missing, and the file's name gives {default_name:?}, which is not a \
+                         name: letters, digits, '_', '-' and '.', not starting with '.' (it names \
+                         the output directory; set name = \"...\")"
+                    ),
+                ))
+            }
             None => default_name.to_string(),
             Some(Value::String(s)) if valid_name(s) => s.clone(),
             Some(v) => {

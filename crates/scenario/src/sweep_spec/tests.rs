@@ -249,3 +249,22 @@ fn bundle_and_skip_errors_name_the_key_the_value_and_what_is_allowed() {
     assert_eq!(e.key, "labels.x");
     assert!(e.message.contains("\"scenario\", a key of [set]"), "{e}");
 }
+
+#[test]
+fn a_file_name_that_is_no_name_is_refused_unless_the_file_names_itself() {
+    // Issue 48 D12: a sweep file named `...toml` has the stem `..`, and the default output
+    // directory `out/sweeps/..` was outside `out/sweeps`.
+    let dir = std::env::temp_dir().join(format!("platoonsim-spec-d12-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = "scenario = \"homogeneous\"\nseeds = 1\n[axes]\n\"run.penetration\" = [0.2]\n";
+    for file in ["...toml", "..toml", ".hidden.toml"] {
+        let path = dir.join(file);
+        std::fs::write(&path, text).unwrap();
+        let e = Spec::from_file(&path).unwrap_err();
+        assert_eq!(e.key, "name", "{file}");
+        assert!(e.message.contains("which is not a name"), "{file}: {e}");
+        std::fs::write(&path, format!("name = \"fine\"\n{text}")).unwrap();
+        assert_eq!(Spec::from_file(&path).unwrap().name, "fine");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
