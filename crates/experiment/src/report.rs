@@ -297,7 +297,8 @@ fn group_note(title: &str) -> &'static str {
     } else {
         "These sections run the engine's defaults: the paper's model with the documented \
          extensions that are on by default (the safe gap rule, automated organization with \
-         the narrow hold, 6.21, 6.22, automated yielding; docs/model-choices.md)."
+         the narrow hold, the field form of the CACC, 6.21, 6.22, automated yielding; \
+         docs/model-choices.md)."
     }
 }
 
