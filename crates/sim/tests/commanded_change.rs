@@ -3,6 +3,7 @@
 //! the driver dropped back (BLC-Slow, spec 4.3) behind the faster target-lane traffic, which
 //! only made the gap worse: down to the creep speed, 2.2 m/s, and 10 s in its lane.
 
+use platoonsim_model::cav::CaccLaw;
 use platoonsim_sim::{Command, Config, Kind, Side, Simulation, VehicleView};
 
 fn find(sim: &Simulation, id: u64) -> VehicleView<'_> {
@@ -15,8 +16,9 @@ fn find(sim: &Simulation, id: u64) -> VehicleView<'_> {
 /// Homogeneous road, 50 % CAV at `demand` veh/h/lane: after 200 s an automated CAV in the
 /// right lane (1-3 km) is set to `speed` m/s, drives 30 s, and is then commanded to the left.
 /// Returns the steps it took and its smallest acceleration meanwhile.
-fn set_speed_then_change(demand: f64, speed: f64) -> (Option<u32>, f64) {
-    let cfg = Config::homogeneous(0.5, demand, 600.0, 0.0, 2);
+fn set_speed_then_change(demand: f64, speed: f64, law: CaccLaw) -> (Option<u32>, f64) {
+    let mut cfg = Config::homogeneous(0.5, demand, 600.0, 0.0, 2);
+    cfg.cav.cacc_law = law;
     let mut sim = Simulation::new(cfg).unwrap();
     while sim.time_s() < 200.0 {
         sim.step().unwrap();
@@ -48,17 +50,24 @@ fn set_speed_then_change(demand: f64, speed: f64) -> (Option<u32>, f64) {
 
 #[test]
 fn a_commanded_change_after_a_desired_speed_completes_without_braking() {
-    for (demand, speed) in [(600.0, 10.0), (600.0, 20.0), (600.0, 25.0), (1000.0, 10.0)] {
-        let (steps, min_a) = set_speed_then_change(demand, speed);
-        eprintln!("{demand} {speed}: {steps:?} steps, min a {min_a}");
-        let steps = steps.expect("the change is made");
-        assert!(
-            steps <= 60,
-            "{demand} veh/h/lane, {speed} m/s: {steps} steps"
-        );
-        assert!(
-            min_a > -0.1,
-            "{demand} veh/h/lane, {speed} m/s: brakes at {min_a}"
-        );
+    // Under the spec's CACC law (the traffic this test was written against) every change is
+    // made within 6 s. Under the field law (docs/cacc-field.md) the surrounding strings differ
+    // and the gap at 1,000 veh/h/lane, 10 m/s comes after 6.5 s (measured: 65 steps, no
+    // braking); the failure this pins (the driver dropping back to the creep speed, 10 s in
+    // its lane) brakes, which `min_a` catches under both laws.
+    for (law, max_steps) in [(CaccLaw::Spec, 60), (CaccLaw::Field, 100)] {
+        for (demand, speed) in [(600.0, 10.0), (600.0, 20.0), (600.0, 25.0), (1000.0, 10.0)] {
+            let (steps, min_a) = set_speed_then_change(demand, speed, law);
+            eprintln!("{law:?} {demand} {speed}: {steps:?} steps, min a {min_a}");
+            let steps = steps.expect("the change is made");
+            assert!(
+                steps <= max_steps,
+                "{law:?}, {demand} veh/h/lane, {speed} m/s: {steps} steps"
+            );
+            assert!(
+                min_a > -0.1,
+                "{law:?}, {demand} veh/h/lane, {speed} m/s: brakes at {min_a}"
+            );
+        }
     }
 }
