@@ -141,7 +141,13 @@ fn a_cacc_string_attenuates_its_leaders_braking() {
             hardest[k] = hardest[k].min(v.a);
         }
     });
-    assert!((low[0] - 13.0).abs() < 1e-6, "leader's low {}", low[0]);
+    // 25 − 3 × 4 = 13 m/s; under the field law (the default, docs/cacc-field.md) the
+    // low-level lag (0.3 s) carries the braking on briefly after the command ends: 12.73.
+    assert!(
+        low[0] <= 13.0 + 1e-6 && low[0] > 12.5,
+        "leader's low {}",
+        low[0]
+    );
     for k in 1..5 {
         assert!(low[k] > low[0], "speed dips {low:?}");
         assert!(hardest[k] >= -4.0, "CAV {k} braked at {}", hardest[k]);
