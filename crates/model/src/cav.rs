@@ -531,6 +531,24 @@ pub fn acc_with_leader_length(
     }
 }
 
+/// The CACC family of spec 3.4 with its hysteresis, shared by both laws: speed regulation
+/// when the time gap g / v is above the band's top and the gap error e above
+/// `speed_control_min_gap_m`; gap control below the band's bottom (or with g ≤ 0), or above
+/// its top with a small error; in between, the previous family. `vv` is the speed floored at 0.
+#[inline]
+fn cacc_family(p: &CavParams, g: f64, vv: f64, e: f64, prev: Family) -> Family {
+    let [tg_low, tg_high] = p.cacc_tg_band_s;
+    let tg_large = g > 0.0 && g > tg_high * vv;
+    let tg_small = g <= 0.0 || g < tg_low * vv;
+    if tg_large && e > p.speed_control_min_gap_m {
+        Family::Speed
+    } else if tg_small || tg_large {
+        Family::Gap
+    } else {
+        prev
+    }
+}
+
 /// CACC (spec 3.4) with time gap `time_gap_s` (the vehicle's t_C, or the inter-platoon gap for
 /// a new string leader behind a full platoon). `a_own` is the vehicle's current acceleration
 /// (for ė = Δv − t_C a). Returns the acceleration equivalent of the speed update, per spec
@@ -555,16 +573,7 @@ pub fn cacc(
     // spec 3.4: e = g − t_C v − s_min, ė = Δv − t_C a.
     let e = g - time_gap_s * v - p.standstill_gap_m;
     let dv = leader.v_mps - v;
-    let [tg_low, tg_high] = p.cacc_tg_band_s;
-    let tg_large = g > 0.0 && g > tg_high * vv;
-    let tg_small = g <= 0.0 || g < tg_low * vv;
-    let family = if tg_large && e > p.speed_control_min_gap_m {
-        Family::Speed
-    } else if tg_small || tg_large {
-        Family::Gap
-    } else {
-        prev
-    };
+    let family = cacc_family(p, g, vv, e, prev);
     if family == Family::Speed {
         // spec 3.4: speed regulation as the speed update v + k0 (v_F − v)Δt, i.e. a = k0 (v_F − v),
         // [D] never above what the gap law above target asks for (gap closing, or regulation
@@ -777,16 +786,7 @@ pub fn field_cacc(
     let vv = v.max(0.0);
     let e = g - time_gap_s * v - p.standstill_gap_m;
     let dv = leader.v_mps - v;
-    let [tg_low, tg_high] = p.cacc_tg_band_s;
-    let tg_large = g > 0.0 && g > tg_high * vv;
-    let tg_small = g <= 0.0 || g < tg_low * vv;
-    let family = if tg_large && e > p.speed_control_min_gap_m {
-        Family::Speed
-    } else if tg_small || tg_large {
-        Family::Gap
-    } else {
-        prev
-    };
+    let family = cacc_family(p, g, vv, e, prev);
     let [kp, kd] = p.cacc_field_gains;
     let law = p.cacc_feedforward * a_pred + kp * e + kd * (dv - time_gap_s * a_own);
     let approach = approach_accel(p, v, leader);
