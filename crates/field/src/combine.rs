@@ -121,7 +121,11 @@ pub fn combine(obs: &[Obs], groups: &[Group]) -> (Vec<Obs>, Vec<Incomplete>) {
                 });
                 continue;
             }
-            let rows: Vec<(&Obs, u32)> = rows.into_iter().map(|(o, l)| (*o.unwrap(), l)).collect();
+            // Every member has its row here (the missing ones were set aside above).
+            let rows: Vec<(&Obs, u32)> = rows
+                .into_iter()
+                .filter_map(|(o, l)| o.map(|o| (*o, l)))
+                .collect();
             out.push(merge(&g.station, &rows));
         }
     }

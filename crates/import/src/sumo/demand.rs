@@ -33,8 +33,10 @@ pub fn on_corridor(
     reduced: &mut BTreeMap<String, f64>,
     weight: f64,
 ) -> Option<(Entry, Exit)> {
-    let i0 = path.iter().position(|&e| c.position(e).is_some())?;
-    let k0 = c.position(path[i0]).unwrap();
+    let (i0, k0) = path
+        .iter()
+        .enumerate()
+        .find_map(|(i, &e)| c.position(e).map(|k| (i, k)))?;
     let entry = if i0 == 0 {
         if k0 > 0 {
             *reduced

@@ -121,8 +121,10 @@ pub fn find(net: &Net) -> Result<Vec<usize>, ImportError> {
             )
         })?;
     let mut chain = vec![start];
-    while let Some(b) = via[*chain.last().unwrap()] {
+    let mut at = start;
+    while let Some(b) = via[at] {
         chain.push(b);
+        at = b;
     }
     Ok(chain)
 }

@@ -48,8 +48,10 @@ pub fn shortest(net: &Net, a: usize, b: usize) -> Option<Vec<usize>> {
         return None;
     }
     let mut path = vec![b];
-    while *path.last().unwrap() != a {
-        path.push(prev[*path.last().unwrap()]);
+    let mut at = b;
+    while at != a {
+        at = prev[at];
+        path.push(at);
     }
     path.reverse();
     Some(path)
