@@ -97,25 +97,9 @@
 //! | J(v) | `envelope_jerk_mps3` | 5.0, 2.5 | m/s³ (positive) | ISO 15622:2018 \[R\]: 5 below 5 m/s, 2.5 above 20 m/s |
 //! | τ_ll | `field_low_level_lag_s` | 0.3 | s | \[D\] between Ploeg et al. 2011 (0.1 s) and Plexe (0.5 s) |
 //!
-//! The field form (`cacc_law = "field"`, default; docs/cacc-field.md):
-//!
-//! ```text
-//! CACC:       a = k_ff a_p + k_p e + k_d ė,  e = g − t_C v − s_min,  ė = Δv − t_C a
-//!             (a_p: the predecessor's acceleration from its beacon; Ploeg et al. 2011, the
-//!             static form of their controller, with the vehicle's own lag τ_a as the
-//!             low-level loop); families and regimes labelled as in spec 3.4
-//! approach:   a ≤ a_kin = −(v − v_l)² / (2 (g − s_min)) while v > v_l and a_kin ≤ −0.5 m/s²
-//!             \[D\] (CACC and ACC): the constant deceleration that matches the leader's speed
-//!             at s_min (a standing queue at 250 m from 30 m/s: 1.8 m/s²)
-//! lag:        the demand is tracked with the lag max(τ_a, τ_ll) (the car's low-level loop)
-//! envelope:   a_cmd = max(a_req, −D(v)); a = max(lag(a_cmd), min(a_real, 0) − J(v) Δt);
-//!             D, J linear in v between v_lo and v_hi (ISO 15622); a_req < −D: take-over
-//!             request (counted); a_req < −D_auto: AEB (UN R152), as in spec 9.3 (counted)
-//! cut-in:     on a cut-in or a ramp merge ahead of an automated CAV its effective time gap
-//!             becomes min(t_eff, max(τ_r, (g − s_min)/v)) (the actual gap; v ≥ 1 m/s), and the
-//!             spec 3.5 transition reopens it at `time_gap_ramp_per_s`; the safe gap rule and
-//!             ramp insertion judge the follower by its law after this reset
-//! ```
+//! The field form (`cacc_law = "field"`, default; docs/cacc-field.md) is in `cav/field.rs`, the
+//! CACC realism of spec 9.3 (lag, beacons, the braking bound) in `cav/realism.rs`; both are
+//! re-exported here, and their parameters are rows of the table above.
 //!
 //! Yielding through the automation (spec 4.5 applied to an automated CAV, \[D\]):
 //! a = min(a_auto, max(a_virtual, b_c)), a_virtual = the driver's relaxed car-following
@@ -123,6 +107,11 @@
 
 use crate::{bounded, Leader};
 use serde::{Deserialize, Serialize};
+
+mod field;
+mod realism;
+pub use field::*;
+pub use realism::*;
 
 /// CAV controller parameters (shared by all CAVs; the CACC time gap is per vehicle).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -420,12 +409,12 @@ pub const CACC_CONTROL_INTERVAL_S: f64 = 0.1;
 /// Weakest braking magnitude (m/s²) accepted for `max_decel` (guards b ≥ 0).
 const MIN_BRAKE_MPS2: f64 = 1e-3;
 /// Smallest step (s) accepted by [`finalize`] (guards dt ≤ 0).
-const MIN_DT_S: f64 = 1e-6;
+pub(crate) const MIN_DT_S: f64 = 1e-6;
 
 /// `x` clamped to [lo, hi] without panicking when lo > hi (then `lo` wins). `lo` and `hi` are
 /// parameters, never NaN ([`bounded`]).
 #[inline]
-fn bound(x: f64, lo: f64, hi: f64) -> f64 {
+pub(crate) fn bound(x: f64, lo: f64, hi: f64) -> f64 {
     bounded::max(bounded::min(x, hi), lo)
 }
 
@@ -734,262 +723,4 @@ pub fn draw_time_gap(p: &CavParams, u: f64) -> f64 {
         }
     }
     last_gap
-}
-
-/// The deceleration (m/s², positive) from which on the kinematic approach binds
-/// ([`approach_accel`]) \[D\]: below it the gap law alone closes the gap, so a follower a
-/// little faster than a distant leader still closes up (docs/cacc-field.md).
-pub const APPROACH_ONSET_MPS2: f64 = 0.5;
-
-/// The kinematic approach of the field law (docs/cacc-field.md): the constant acceleration
-/// that brings speed v down to the leader's (constant) v_l within the gap beyond s_min, from
-/// the relative motion: −(v − v_l)² / (2 (g − s_min)) (for a standing leader the stopping
-/// deceleration v²/(2 (g − s_min))), once it reaches [`APPROACH_ONSET_MPS2`]; +∞ (no
-/// constraint) before, or when the follower is not faster. The gap beyond s_min is taken as at
-/// least 0.1 m (inside it the safety override governs).
-#[inline]
-pub fn approach_accel(p: &CavParams, v: f64, leader: Leader) -> f64 {
-    let (v, v_l) = (v.max(0.0), leader.v_mps.max(0.0));
-    if v <= v_l {
-        return f64::INFINITY;
-    }
-    let dv = v - v_l;
-    let a = -(dv * dv) / (2.0 * (leader.gap_m - p.standstill_gap_m).max(0.1));
-    if a <= -APPROACH_ONSET_MPS2 {
-        a
-    } else {
-        f64::INFINITY
-    }
-}
-
-/// The field form of the CACC (`cav.cacc_law = "field"`; docs/cacc-field.md): Ploeg et al.
-/// (2011)'s one-vehicle look-ahead law in its static form,
-/// a = k_ff a_p + k_p e + k_d ė, e = g − t_C v − s_min, ė = Δv − t_C a_own,
-/// with `a_pred` = a_p the predecessor's acceleration from its beacon, then the kinematic
-/// approach [`approach_accel`] as a lower envelope. The family hysteresis on tg is that of
-/// [`cacc`]; in the speed family the cruise term is capped by the law and the approach. The
-/// regime label: avoidance for e < 0, regulation in the band of spec 3.4 or while not
-/// approaching, gap closing while approaching (Δv < 0).
-#[allow(clippy::too_many_arguments)]
-#[inline]
-pub fn field_cacc(
-    p: &CavParams,
-    v: f64,
-    a_own: f64,
-    a_pred: f64,
-    v_des: f64,
-    leader: Leader,
-    time_gap_s: f64,
-    prev: Family,
-) -> Command {
-    let g = leader.gap_m;
-    let vv = v.max(0.0);
-    let e = g - time_gap_s * v - p.standstill_gap_m;
-    let dv = leader.v_mps - v;
-    let family = cacc_family(p, g, vv, e, prev);
-    let [kp, kd] = p.cacc_field_gains;
-    let law = p.cacc_feedforward * a_pred + kp * e + kd * (dv - time_gap_s * a_own);
-    let approach = approach_accel(p, v, leader);
-    if family == Family::Speed {
-        return Command {
-            accel: bounded::min(speed_regulation(p, v, v_des).min(law), approach),
-            mode: CavMode::SpeedRegulation,
-            family,
-        };
-    }
-    let mode = if e < 0.0 {
-        CavMode::CollisionAvoidance
-    } else if (e < p.reg_gap_band_m && dv.abs() < p.reg_speed_band_mps) || dv >= 0.0 {
-        CavMode::GapRegulation
-    } else {
-        CavMode::GapClosing
-    };
-    Command {
-        accel: bounded::min(law, approach),
-        mode,
-        family,
-    }
-}
-
-/// The CACC of `p.cacc_law`: [`cacc`] (spec) or [`field_cacc`] (field; `a_pred` is read only
-/// there).
-#[allow(clippy::too_many_arguments)]
-#[inline]
-pub fn cacc_by_law(
-    p: &CavParams,
-    v: f64,
-    a_own: f64,
-    a_pred: f64,
-    v_des: f64,
-    leader: Leader,
-    time_gap_s: f64,
-    prev: Family,
-) -> Command {
-    match p.cacc_law {
-        CaccLaw::Spec => cacc(p, v, a_own, v_des, leader, time_gap_s, prev),
-        CaccLaw::Field => field_cacc(p, v, a_own, a_pred, v_des, leader, time_gap_s, prev),
-    }
-}
-
-/// The ACC of `p.cacc_law`: [`acc`], under the field law with the kinematic approach
-/// [`approach_accel`] as a lower envelope (a leader within the sensor range).
-#[inline]
-pub fn acc_by_law(
-    p: &CavParams,
-    v: f64,
-    v_des: f64,
-    leader: Option<Leader>,
-    time_gap_s: f64,
-    prev: Family,
-) -> Command {
-    let mut c = acc(p, v, v_des, leader, time_gap_s, prev);
-    if p.cacc_law == CaccLaw::Field {
-        if let Some(l) = leader.filter(|l| l.gap_m <= p.sensor_range_m) {
-            c.accel = bounded::min(c.accel, approach_accel(p, v, l));
-        }
-    }
-    c
-}
-
-/// The ISO 15622 envelope at speed v (field law): (D, J), the largest automatic deceleration
-/// (m/s², positive) and the largest rate at which braking builds up (m/s³), linear in v
-/// between `envelope_speeds_mps` and constant outside.
-#[inline]
-pub fn envelope(p: &CavParams, v: f64) -> (f64, f64) {
-    let [v0, v1] = p.envelope_speeds_mps;
-    let w = if v1 > v0 {
-        ((v - v0) / (v1 - v0)).clamp(0.0, 1.0)
-    } else if v >= v1 {
-        1.0
-    } else {
-        0.0
-    };
-    let lerp = |[lo, hi]: [f64; 2]| lo + (hi - lo) * w;
-    (lerp(p.envelope_decel_mps2), lerp(p.envelope_jerk_mps3))
-}
-
-/// What the field automation applies, and what it had to call: the demand `a_req` (the law
-/// after the safety override and the limits) bounded by the ISO 15622 deceleration D, a_cmd =
-/// max(a_req, −D), then the lag `gain` from `a_real`, then the jerk bound on the realized
-/// acceleration, a ≥ min(a_real, 0) − J Δt (braking builds up at most at J; releasing the
-/// throttle is not braking). A demand beyond −D asks the driver to take over (`tor`, counted;
-/// the automation keeps braking at the envelope meanwhile). A demand beyond −`aeb_bound`
-/// (D_auto) is an AEB intervention (UN R152): it applies `a_req` within the step, as
-/// [`actuate`]. Returns (a, aeb, tor).
-#[inline]
-pub fn actuate_field(
-    a_real: f64,
-    a_req: f64,
-    gain: f64,
-    aeb_bound: f64,
-    (decel, jerk): (f64, f64),
-    dt: f64,
-) -> (f64, bool, bool) {
-    if a_req < -aeb_bound {
-        return (a_req, true, false);
-    }
-    let tor = a_req < -decel;
-    let a_cmd = a_req.max(-decel);
-    let lagged = if gain >= 1.0 {
-        a_cmd
-    } else {
-        a_real + (a_cmd - a_real) * gain
-    };
-    (lagged.max(a_real.min(0.0) - jerk * dt), false, tor)
-}
-
-/// The effective time gap of an automated follower right after a vehicle cut in ahead of it at
-/// net gap `gap_m` (field law; docs/cacc-field.md): the gap reference is reset to the actual
-/// gap, t = (g − s_min)/v, not below τ_r (the safety override's own gap) nor above the
-/// current reference; the time-gap transition (spec 3.5) then reopens it at
-/// `time_gap_ramp_per_s`. Under the spec law, or below 1 m/s, `current` unchanged. A
-/// non-positive `current` (no reference yet) is replaced by the reset value.
-#[inline]
-pub fn cut_in_time_gap(p: &CavParams, current: f64, gap_m: f64, v: f64) -> f64 {
-    if p.cacc_law == CaccLaw::Spec || v < 1.0 {
-        return current;
-    }
-    let actual = ((gap_m - p.standstill_gap_m) / v).max(p.reaction_s.max(0.0));
-    if current > 0.0 {
-        current.min(actual)
-    } else {
-        actual
-    }
-}
-
-/// Default beacon timeout T_b (s, spec 9.3) \[D\]: five missed beacons at the 10 Hz rate of
-/// CACC field tests; longer is the "persistent packet loss" after which Ploeg et al. (2015)
-/// degrade CACC to ACC.
-pub const DEFAULT_BEACON_TIMEOUT_S: f64 = 0.5;
-
-/// Default bound D_auto (m/s², positive) on the automation's braking (spec 9.3): the largest
-/// automatic deceleration ISO 15622 allows an ACC (at low speed; 3.5 m/s² above 20 m/s) \[R\].
-pub const DEFAULT_MAX_AUTOMATED_DECEL_MPS2: f64 = 5.0;
-
-/// Whole steps in `seconds` at step `dt` (spec 9.3: delays and timeouts are rounded to
-/// steps); 0 for a non-positive or non-finite duration.
-#[inline]
-pub fn whole_steps(seconds: f64, dt: f64) -> u64 {
-    let n = (seconds / dt.max(MIN_DT_S)).round();
-    if n.is_finite() && n > 0.0 {
-        n as u64
-    } else {
-        0
-    }
-}
-
-/// The share of the gap to the command that a first-order lag with time constant `tau` (s)
-/// closes in one step of `dt` (s): 1 − e^{−Δt/τ} (spec 9.3), the exact solution for a command
-/// held over the step (Plexe's `FirstOrderLagModel` uses the backward-Euler Δt/(τ + Δt),
-/// which agrees to first order in Δt/τ). 1 for τ ≤ 0 (no lag).
-#[inline]
-pub fn lag_gain(dt: f64, tau: f64) -> f64 {
-    if tau > 0.0 {
-        1.0 - (-dt.max(MIN_DT_S) / tau).exp()
-    } else {
-        1.0
-    }
-}
-
-/// What the automation applies this step (spec 9.3), and whether AEB intervenes: `a_req` is
-/// the automation's demand (the control law after the safety override, the limits, yielding),
-/// `a_real` the acceleration realized in the last step, `gain` from [`lag_gain`] (1 = no lag),
-/// `bound` = D_auto (positive). The command is bounded, a_cmd = max(a_req, −D_auto), and lags:
-/// a_real + (a_cmd − a_real)·gain. A demand beyond the bound is an AEB intervention, which
-/// applies a_req itself (within the step; the engine bounds it by b_e). Without lag and
-/// within the bound the result is `a_req`, bit for bit.
-#[inline]
-pub fn actuate(a_real: f64, a_req: f64, gain: f64, bound: f64) -> (f64, bool) {
-    if a_req < -bound {
-        return (a_req, true);
-    }
-    if gain >= 1.0 {
-        return (a_req, false);
-    }
-    (a_real + (a_req - a_real) * gain, false)
-}
-
-/// Age (steps) of the freshest beacon a CAV holds after this step's reception (spec 9.3): 0 if
-/// a beacon arrived (`lost` false), else one step older than before (saturating).
-#[inline]
-pub fn next_beacon_age(age: u32, lost: bool) -> u32 {
-    if lost {
-        age.saturating_add(1)
-    } else {
-        0
-    }
-}
-
-/// Whether a beacon `age` steps old is still held (spec 9.3): age ≤ the timeout in steps.
-/// Past it the follower falls back to ACC.
-#[inline]
-pub fn beacon_held(age: u32, timeout_steps: u64) -> bool {
-    u64::from(age) <= timeout_steps
-}
-
-/// The step whose broadcast the follower uses at `step` with a beacon `age` steps old and a
-/// delay of `delay_steps` (spec 9.3): step − age − delay, not before step 0.
-#[inline]
-pub fn broadcast_step(step: u64, age: u32, delay_steps: u64) -> u64 {
-    step.saturating_sub(u64::from(age) + delay_steps)
 }
