@@ -210,13 +210,15 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
     let paper = |o: &&ExperimentOutput| o.settings.preset == Preset::Paper;
     let rules = |o: &&ExperimentOutput| o.name.part == Part::Rules;
     let mut n = 0;
-    let groups: [(&str, Vec<&ExperimentOutput>); 3] = [
+    let groups: [(&str, &str, Vec<&ExperimentOutput>); 3] = [
         (
             "Under the paper's model (`model.preset = \"paper\"`)",
+            PAPER_NOTE,
             input.outputs.iter().filter(paper).collect(),
         ),
         (
             "Every engine rule beyond the paper, as a sensitivity",
+            RULES_NOTE,
             input
                 .outputs
                 .iter()
@@ -225,6 +227,7 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
         ),
         (
             "Under the platform's defaults (`model.preset = \"platform\"`)",
+            PLATFORM_NOTE,
             input
                 .outputs
                 .iter()
@@ -232,11 +235,11 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
                 .collect(),
         ),
     ];
-    for (title, outputs) in groups {
+    for (title, note, outputs) in groups {
         if outputs.is_empty() {
             continue;
         }
-        md.push_str(&format!("## {title}\n\n{}\n\n", group_note(title)));
+        md.push_str(&format!("## {title}\n\n{note}\n\n"));
         sections(&mut md, &mut n, &outputs, input.network_note);
     }
 
@@ -283,24 +286,23 @@ pub fn markdown(input: &ReportInput<'_>) -> String {
     format!("{head}## Contents\n\n{toc}\n{md}")
 }
 
-/// What a group of sections runs under, for the sentence below its heading.
-fn group_note(title: &str) -> &'static str {
-    if title.contains("paper's model") {
-        "These sections run the paper's rules as published (docs/model-choices.md, \"The two \
-         presets\"): the published gap rule, the PATH organization rule (a CAV is in manual \
-         control from its lane-change desire on), the spec's CACC law, no cooperative or \
-         automated yielding; with only the engine rules without which the model cannot run. \
-         Where a figure misses the paper's, the difference is this model's, not a tuning."
-    } else if title.contains("engine rule") {
-        "Each row switches one of the engine's rules on over the paper's model; the last row \
-         is the platform's defaults, the model of the sections after this one."
-    } else {
-        "These sections run the engine's defaults: the paper's model with the documented \
-         extensions that are on by default (the safe gap rule, automated organization with \
-         the narrow hold, the field form of the CACC, 6.21, 6.22, automated yielding; \
-         docs/model-choices.md)."
-    }
-}
+/// The sentence below the heading of the paper's model's sections.
+const PAPER_NOTE: &str =
+    "These sections run the paper's rules as published (docs/model-choices.md, \"The two \
+      presets\"): the published gap rule, the PATH organization rule (a CAV is in manual \
+      control from its lane-change desire on), the spec's CACC law, no cooperative or \
+      automated yielding; with only the engine rules without which the model cannot run. \
+      Where a figure misses the paper's, the difference is this model's, not a tuning.";
+/// … of the rules section.
+const RULES_NOTE: &str =
+    "Each row switches one of the engine's rules on over the paper's model; the last row \
+      is the platform's defaults, the model of the sections after this one.";
+/// … of the platform's sections.
+const PLATFORM_NOTE: &str =
+    "These sections run the engine's defaults: the paper's model with the documented \
+      extensions that are on by default (the safe gap rule, automated organization with \
+      the narrow hold, the field form of the CACC, 6.21, 6.22, automated yielding; \
+      docs/model-choices.md).";
 
 /// One numbered section per homogeneous-road experiment, one for the SR-99 experiments, then
 /// one per experiment beyond the paper, at `###`.

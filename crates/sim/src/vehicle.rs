@@ -144,8 +144,9 @@ pub(crate) struct CaccState {
     pub beacon_age: u32,
 }
 
-/// What the automation's realism did to a CAV in a step (spec 9.3; the take-over request of
-/// the field law), as bit flags in one byte
+/// What the automation did to a CAV in a step that the counts or the next step need (spec
+/// 9.3's AEB and CACC fallback, the field law's take-over request, 6.20's organizing wait), as
+/// bit flags in one byte
 /// (the decision and the vehicle carry it; one test per vehicle and step).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct AutoFlags(u8);
