@@ -112,29 +112,7 @@ impl Params {
                 ));
             }
         }
-        let name = match doc.get("name") {
-            None if !crate::sweep::spec::valid_name(default_name) => {
-                return Err(err(
-                    "name",
-                    format!(
-                        "missing, and the file's name gives {default_name:?}, which is not a \
-                         name: letters, digits, '_', '-' and '.', not starting with '.' (it names \
-                         the output directory; set name = \"...\")"
-                    ),
-                ))
-            }
-            None => default_name.to_string(),
-            Some(Value::String(s)) if crate::sweep::spec::valid_name(s) => s.clone(),
-            Some(v) => {
-                return Err(err(
-                    "name",
-                    format!(
-                        "{v} is not a name: letters, digits, '_', '-' and '.', not starting with \
-                         '.' (it names the output directory)"
-                    ),
-                ))
-            }
-        };
+        let name = crate::sweep::spec::name_of(&doc, default_name).map_err(|m| err("name", m))?;
         let int = |key: &str, default: Option<i64>, lo: i64, hi: i64| -> Result<i64, SpecError> {
             match (doc.get(key), default) {
                 (None, Some(d)) => Ok(d),

@@ -160,29 +160,7 @@ impl Spec {
                 ));
             }
         }
-        let name = match doc.get("name") {
-            None if !valid_name(default_name) => {
-                return Err(err(
-                    "name",
-                    format!(
-                        "missing, and the file's name gives {default_name:?}, which is not a \
-                         name: letters, digits, '_', '-' and '.', not starting with '.' (it names \
-                         the output directory; set name = \"...\")"
-                    ),
-                ))
-            }
-            None => default_name.to_string(),
-            Some(Value::String(s)) if valid_name(s) => s.clone(),
-            Some(v) => {
-                return Err(err(
-                    "name",
-                    format!(
-                        "{v} is not a name: letters, digits, '_', '-' and '.', not starting with \
-                         '.' (it names the output directory)"
-                    ),
-                ))
-            }
-        };
+        let name = name_of(&doc, default_name).map_err(|m| err("name", m))?;
         let description = match doc.get("description") {
             None => None,
             Some(Value::String(d)) => Some(d.clone()),
@@ -398,6 +376,27 @@ fn looks_like_path(s: &str) -> bool {
     s.contains(['/', '\\']) || s.ends_with(".toml")
 }
 
+/// A file's `name`: the key's value, or `default_name` (the file's stem) when the key is left
+/// out; each must be a [`valid_name`], since it names the output directory. Shared by sweep
+/// and calibration-parameter files; `Err` is the message for the key `name`.
+pub fn name_of(doc: &toml::Table, default_name: &str) -> Result<String, String> {
+    match doc.get("name") {
+        None if !valid_name(default_name) => Err(format!(
+            "missing, and the file's name gives {default_name:?}, which is not a name: letters, \
+             digits, '_', '-' and '.', not starting with '.' (it names the output directory; \
+             set name = \"...\")"
+        )),
+        None => Ok(default_name.to_string()),
+        Some(toml::Value::String(s)) if valid_name(s) => Ok(s.clone()),
+        Some(v) => Err(format!(
+            "{v} is not a name: letters, digits, '_', '-' and '.', not starting with '.' (it \
+             names the output directory)"
+        )),
+    }
+}
+
+/// A name that can name an output directory: letters, digits, `_`, `-` and `.`, not starting
+/// with `.`, at most 100 characters.
 pub fn valid_name(s: &str) -> bool {
     !s.is_empty()
         && !s.starts_with('.')
