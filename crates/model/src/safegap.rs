@@ -13,7 +13,8 @@
 //!                  smoothing) with its own parameters, relaxed by its own φ as after being cut in
 //!                  (RCF, spec 4.6: the factors at t = 0);
 //!                  automated CAV: its ACC or CACC law, time-gap transition and limits (spec 3.9),
-//!                  not relaxed (spec 4.6)
+//!                  not relaxed (spec 4.6); under the field law the law's demand before the
+//!                  deceleration limit (what it needs, not what it may apply)
 //! lead gap: a_ant = the changer's law behind its new leader (relaxed, spec 4.3, 4.6)
 //! accept  ⇔ published test (spec 4.3)  ∧  a_f ≥ −b_safe  ∧  a_ant ≥ −b_safe
 //! b_safe  = safe_follower_decel_mps2, or mandatory_safe_decel_mps2 for a mandatory change
@@ -35,7 +36,7 @@
 use crate::cav::{self, CavParams, Family};
 use crate::human::{self, HumanParams};
 use crate::lanechange::{self as lcm, LaneChangeParams};
-use crate::Leader;
+use crate::{bounded, Leader};
 use serde::{Deserialize, Serialize};
 
 /// Which gap-acceptance rule the lane changes use (`lane_change.gap_rule`).
@@ -121,8 +122,9 @@ pub struct AutomatedFollower {
     pub family: Family,
     /// The changer is a CAV (CACC) or not (ACC).
     pub changer_is_cav: bool,
-    /// The changer's acceleration, as its beacon carries it (the field law's feed-forward;
-    /// read only for a CAV changer under `cav.cacc_law = "field"`).
+    /// The changer's acceleration, as its beacon carries it (the field law's feed-forward and
+    /// approach; read only under `cav.cacc_law = "field"`), or as the radar estimates it (a
+    /// human changer: the field law's approach under ACC).
     pub a_pred: f64,
 }
 
@@ -144,11 +146,32 @@ pub fn automated_follower_accel(
             if f.changer_is_cav {
                 cav::cacc_by_law(p, f.v, f.a, f.a_pred, f.v_des, l, tg, f.family).accel
             } else {
-                cav::acc_by_law(p, f.v, f.v_des, Some(l), tg, f.family).accel
+                cav::acc_by_law(p, f.v, f.v_des, Some(l), f.a_pred, tg, f.family).accel
             }
         }
     };
-    cav::finalize(p, f.v, cmd, f.v_des, leader, dt)
+    let a = cav::finalize(p, f.v, cmd, f.v_des, leader, dt);
+    match leader {
+        Some(l) if p.cacc_law == cav::CaccLaw::Field => bounded::min(a, field_need(p, f, l)),
+        _ => a,
+    }
+}
+
+/// What an automated follower under the field law needs behind a changer: its kinematic
+/// approach (`cav::approach_accel`), not capped by the deceleration limit, over the gap that
+/// is left once its braking has built up. That takes the response time t_r = τ + D / (2 J)
+/// (the lag, then half the time to build the envelope's deceleration D at its jerk J; 1.0 s
+/// at 25 m/s, 0.8 s at low speed), during which the gap closes by (v − v_l) t_r
+/// (docs/cacc-field.md, cut-ins).
+pub fn field_need(p: &CavParams, f: &AutomatedFollower, changer: Leader) -> f64 {
+    let (decel, jerk) = cav::envelope(p, f.v);
+    let t_r = p.effective_lag_s() + decel / (2.0 * jerk.max(0.1));
+    let closing = (f.v - changer.v_mps).max(0.0) * t_r;
+    let left = Leader {
+        gap_m: changer.gap_m - closing,
+        ..changer
+    };
+    cav::approach_accel(p, f.v, left, f.a_pred)
 }
 
 #[cfg(test)]
@@ -212,7 +235,10 @@ mod tests {
 
     #[test]
     fn an_automated_follower_uses_its_controller_and_limits() {
-        let p = CavParams::default();
+        let p = CavParams {
+            cacc_law: cav::CaccLaw::Spec,
+            ..CavParams::default()
+        };
         let f = AutomatedFollower {
             v: 30.0,
             a: 0.0,
@@ -235,5 +261,41 @@ mod tests {
             v_mps: 30.0,
         };
         assert!(automated_follower_accel(&p, &f, far, 0.1) > -3.0);
+    }
+
+    #[test]
+    fn under_the_field_law_an_automated_follower_is_judged_by_its_need_not_its_limit() {
+        let p = CavParams::default();
+        assert_eq!(p.cacc_law, cav::CaccLaw::Field);
+        // 20 m/s behind a vehicle that cut in standing 60 m ahead: its braking builds up in
+        // t_r = 0.3 + 3.5 / (2 · 2.5) = 1.0 s, in which the gap closes by 20 m; stopping at
+        // s_min then asks for 20² / (2 · 38.5) = 5.19 m/s², beyond b = 4, which is all that
+        // finalize lets it apply.
+        let f = AutomatedFollower {
+            v: 20.0,
+            a: 0.0,
+            v_des: 30.0,
+            time_gap_s: 0.6,
+            target_gap_s: 0.6,
+            family: Family::Speed,
+            changer_is_cav: false,
+            a_pred: 0.0,
+        };
+        let standing = Leader {
+            gap_m: 60.0,
+            v_mps: 0.0,
+        };
+        let a = automated_follower_accel(&p, &f, standing, 0.1);
+        let need = -(20.0_f64 * 20.0) / (2.0 * (60.0 - 20.0 - p.standstill_gap_m));
+        assert!((a - need).abs() < 1e-9, "a = {a}, need = {need}");
+        assert!(!brakes_safely(a, 4.0));
+        // Under the spec law the same follower is judged by what it applies.
+        let spec = CavParams {
+            cacc_law: cav::CaccLaw::Spec,
+            ..p
+        };
+        let applied = automated_follower_accel(&spec, &f, standing, 0.1);
+        assert!(applied >= p.max_decel - 1e-9, "applied = {applied}");
+        assert!(brakes_safely(applied, 4.0));
     }
 }

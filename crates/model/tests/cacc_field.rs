@@ -218,7 +218,7 @@ fn the_field_law_is_feed_forward_plus_pd_on_the_spacing_error() {
         cacc(&spec, 25.0, 0.5, 30.0, l, 0.6, Family::Gap)
     );
     assert_eq!(
-        acc_by_law(&spec, 25.0, 30.0, Some(l), 1.1, Family::Gap),
+        acc_by_law(&spec, 25.0, 30.0, Some(l), 0.0, 1.1, Family::Gap),
         acc(&spec, 25.0, 30.0, Some(l), 1.1, Family::Gap)
     );
 }
@@ -230,40 +230,92 @@ fn the_approach_bound_is_the_constant_deceleration_to_the_leaders_speed() {
         gap_m: 251.5,
         v_mps: 0.0,
     };
-    assert!((approach_accel(&p, 30.0, standing) - (-900.0 / 500.0)).abs() < 1e-12);
+    assert!((approach_accel(&p, 30.0, standing, 0.0) - (-900.0 / 500.0)).abs() < 1e-12);
     let slower = Leader {
         gap_m: 51.5,
         v_mps: 20.0,
     };
-    assert!((approach_accel(&p, 30.0, slower) - (-1.0)).abs() < 1e-12);
-    assert_eq!(approach_accel(&p, 20.0, slower), f64::INFINITY);
+    assert!((approach_accel(&p, 30.0, slower, 0.0) - (-1.0)).abs() < 1e-12);
+    assert_eq!(approach_accel(&p, 20.0, slower, 0.0), f64::INFINITY);
     // It binds from 0.5 m/s² on: 5 m/s faster at 24 m beyond s_min asks for 25/48 = 0.52 m/s²,
     // at 26 m for 0.48 m/s² (no bound: the gap law closes the gap).
     let near = Leader {
         gap_m: 25.5,
         v_mps: 25.0,
     };
-    assert!((approach_accel(&p, 30.0, near) - (-25.0 / 48.0)).abs() < 1e-12);
+    assert!((approach_accel(&p, 30.0, near, 0.0) - (-25.0 / 48.0)).abs() < 1e-12);
     let farther = Leader {
         gap_m: 27.5,
         v_mps: 25.0,
     };
-    assert_eq!(approach_accel(&p, 30.0, farther), f64::INFINITY);
+    assert_eq!(approach_accel(&p, 30.0, farther, 0.0), f64::INFINITY);
     // It caps the ACC too under the field law (min of the two), not under the published one.
     let far = Leader {
         gap_m: 240.0,
         v_mps: 14.0,
     };
-    let a = acc_by_law(&p, 30.0, 30.0, Some(far), 1.1, Family::Speed).accel;
+    let a = acc_by_law(&p, 30.0, 30.0, Some(far), 0.0, 1.1, Family::Speed).accel;
     let own = acc(&p, 30.0, 30.0, Some(far), 1.1, Family::Speed).accel;
-    assert_eq!(a, own.min(approach_accel(&p, 30.0, far)));
+    assert_eq!(a, own.min(approach_accel(&p, 30.0, far, 0.0)));
     let spec = CavParams {
         cacc_law: CaccLaw::Spec,
         ..p
     };
     assert_eq!(
-        acc_by_law(&spec, 30.0, 30.0, Some(far), 1.1, Family::Speed).accel,
+        acc_by_law(&spec, 30.0, 30.0, Some(far), 0.0, 1.1, Family::Speed).accel,
         own
+    );
+}
+
+#[test]
+fn the_approach_bound_anticipates_a_braking_leader() {
+    let p = CavParams::default();
+    // Same speed, 101.5 m apart (s = 100 m beyond s_min), the leader braking at 2 m/s² from
+    // 25 m/s: it stops first (v_l Δv = 0 ≤ 2 s |ã|), so the follower must stop within
+    // s + 25²/4 = 256.25 m: 625 / 512.5 = 1.2195 m/s², where a constant-speed leader would
+    // ask for nothing.
+    let braking = Leader {
+        gap_m: 101.5,
+        v_mps: 25.0,
+    };
+    let a = approach_accel(&p, 25.0, braking, -2.0);
+    assert!(
+        (a - 625.0 * -2.0 / (625.0 + 400.0)).abs() < 1e-12,
+        "a = {a}"
+    );
+    assert!((a + 625.0 / 512.5).abs() < 1e-12);
+    assert_eq!(approach_accel(&p, 25.0, braking, 0.0), f64::INFINITY);
+    // A slower follower still brakes for a leader that will stop: 20 m/s behind 25 m/s.
+    let b = approach_accel(&p, 20.0, braking, -3.0);
+    assert!(
+        (b - 400.0 * -3.0 / (625.0 + 600.0)).abs() < 1e-12,
+        "b = {b}"
+    );
+    // Closing fast on a leader that brakes gently: the follower matches its speed while it
+    // still moves (v_l Δv = 20 · 10 = 200 > 2 · 20 · 1 = 40): ã − Δv² / (2 s) = −1 − 2.5.
+    let close = Leader {
+        gap_m: 21.5,
+        v_mps: 20.0,
+    };
+    let c = approach_accel(&p, 30.0, close, -1.0);
+    assert!((c - (-1.0 - 100.0 / 40.0)).abs() < 1e-12, "c = {c}");
+    // The cases meet: as the leader's braking vanishes the bound tends to the constant-speed
+    // one; a standing leader's last braking step changes nothing; an accelerating leader
+    // counts as a constant-speed one; NaN counts as 0.
+    let faint = approach_accel(&p, 30.0, close, -1e-9);
+    assert!((faint - approach_accel(&p, 30.0, close, 0.0)).abs() < 1e-6);
+    let standing = Leader {
+        gap_m: 251.5,
+        v_mps: 0.0,
+    };
+    assert!((approach_accel(&p, 30.0, standing, -3.0) - (-900.0 / 500.0)).abs() < 1e-12);
+    assert_eq!(
+        approach_accel(&p, 30.0, close, 1.0),
+        approach_accel(&p, 30.0, close, 0.0)
+    );
+    assert_eq!(
+        approach_accel(&p, 30.0, close, f64::NAN),
+        approach_accel(&p, 30.0, close, 0.0)
     );
 }
 

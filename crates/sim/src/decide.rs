@@ -241,7 +241,16 @@ impl View<'_> {
                     return d;
                 }
             }
-            return self.automated_decision(s, v, nb, leader, wall, None);
+            let d = self.automated_decision(s, v, nb, leader, wall, None);
+            // Under the field law the automation engages (after a manual spell: no regime in
+            // the last step) only where its demand lies within the ISO 15622 envelope; else
+            // the driver keeps driving this step (docs/cacc-field.md, engagement).
+            if !(v.cacc.regime.is_none()
+                && self.cfg.cav.cacc_law == CaccLaw::Field
+                && (d.auto.aeb() || d.auto.takeover()))
+            {
+                return d;
+            }
         }
         let yield_to = self.agreed_request(v, nb, false);
 
@@ -463,7 +472,14 @@ impl View<'_> {
             }
             (Some(l), None) => {
                 time_gap = cav::ramp_time_gap(p, time_gap, p.acc_time_gap_s, self.clock.dt);
-                cav::acc_by_law(p, v.v, v_des, Some(l), time_gap, v.cacc.family)
+                // The field law's approach reads the leader's acceleration as the radar
+                // estimates it: its realized acceleration of the last step (a wall: 0).
+                let a_radar = if field && !wall && ld != NONE {
+                    self.traffic.vehicles[ld as usize].a
+                } else {
+                    0.0
+                };
+                cav::acc_by_law(p, v.v, v_des, Some(l), a_radar, time_gap, v.cacc.family)
             }
         };
         Decision {

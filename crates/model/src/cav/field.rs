@@ -9,9 +9,15 @@
 //!             (a_p: the predecessor's acceleration from its beacon; Ploeg et al. 2011, the
 //!             static form of their controller, with the vehicle's own lag τ_a as the
 //!             low-level loop); families and regimes labelled as in spec 3.4
-//! approach:   a ≤ a_kin = −(v − v_l)² / (2 (g − s_min)) while v > v_l and a_kin ≤ −0.5 m/s²
-//!             \[D\] (CACC and ACC): the constant deceleration that matches the leader's speed
-//!             at s_min (a standing queue at 250 m from 30 m/s: 1.8 m/s²)
+//! approach:   a ≤ a_kin once a_kin ≤ −0.5 m/s² \[D\] (CACC and ACC), s = g − s_min, Δv = v − v_l,
+//!             ã = min(a_l, 0) the leader's acceleration (beacon under CACC, radar estimate
+//!             under ACC): the constant deceleration that matches the leader's speed at s_min
+//!             if it keeps braking at ã until it stops (Kesting, Treiber & Helbing 2010's
+//!             constant-acceleration heuristic):
+//!               ã = 0:                     a_kin = −Δv² / (2 s)          (while Δv > 0)
+//!               ã < 0, v_l Δv ≤ −2 s ã:    a_kin = v² ã / (v_l² − 2 s ã) (it stops first)
+//!               ã < 0 otherwise:           a_kin = ã − Δv² / (2 s)
+//!             (a standing queue at 250 m from 30 m/s: 1.8 m/s²)
 //! lag:        the demand is tracked with the lag max(τ_a, τ_ll) (the car's low-level loop)
 //! envelope:   a_cmd = max(a_req, −D(v)); a = max(lag(a_cmd), min(a_real, 0) − J(v) Δt);
 //!             D, J linear in v between v_lo and v_hi (ISO 15622); a_req < −D: take-over
@@ -33,19 +39,37 @@ use crate::{bounded, Leader};
 pub const APPROACH_ONSET_MPS2: f64 = 0.5;
 
 /// The kinematic approach of the field law (docs/cacc-field.md): the constant acceleration
-/// that brings speed v down to the leader's (constant) v_l within the gap beyond s_min, from
-/// the relative motion: −(v − v_l)² / (2 (g − s_min)) (for a standing leader the stopping
-/// deceleration v²/(2 (g − s_min))), once it reaches [`APPROACH_ONSET_MPS2`]; +∞ (no
-/// constraint) before, or when the follower is not faster. The gap beyond s_min is taken as at
-/// least 0.1 m (inside it the safety override governs).
+/// that brings the follower to the leader's speed at s_min behind it, assuming the leader
+/// keeps its acceleration `a_lead` while it brakes (until it stops) and its speed otherwise.
+/// With s = g − s_min (at least 0.1 m; inside it the safety override governs), Δv = v − v_l
+/// and ã = min(a_lead, 0):
+///
+/// - ã = 0 (the leader does not brake): −Δv² / (2 s) while v > v_l (a standing queue at
+///   250 m from 30 m/s: 1.8 m/s²);
+/// - ã < 0 and v_l Δv ≤ −2 s ã (the leader stops before the follower has matched its speed):
+///   stop behind its stopping point, v² ã / (v_l² − 2 s ã);
+/// - ã < 0 otherwise: match its speed while both brake, ã − Δv² / (2 s).
+///
+/// These are the three cases of the constant-acceleration heuristic of Kesting, Treiber &
+/// Helbing (2010), here with the gap beyond s_min and used as a lower bound on the demand. It
+/// binds once it reaches [`APPROACH_ONSET_MPS2`]; +∞ (no constraint) before. A NaN
+/// acceleration counts as 0.
 #[inline]
-pub fn approach_accel(p: &CavParams, v: f64, leader: Leader) -> f64 {
+pub fn approach_accel(p: &CavParams, v: f64, leader: Leader, a_lead: f64) -> f64 {
     let (v, v_l) = (v.max(0.0), leader.v_mps.max(0.0));
-    if v <= v_l {
-        return f64::INFINITY;
-    }
+    let s = (leader.gap_m - p.standstill_gap_m).max(0.1);
     let dv = v - v_l;
-    let a = -(dv * dv) / (2.0 * (leader.gap_m - p.standstill_gap_m).max(0.1));
+    let a = if a_lead < 0.0 {
+        if v_l * dv <= -2.0 * s * a_lead {
+            v * v * a_lead / (v_l * v_l - 2.0 * s * a_lead)
+        } else {
+            a_lead - dv * dv / (2.0 * s)
+        }
+    } else if dv > 0.0 {
+        -(dv * dv) / (2.0 * s)
+    } else {
+        return f64::INFINITY;
+    };
     if a <= -APPROACH_ONSET_MPS2 {
         a
     } else {
@@ -80,7 +104,7 @@ pub fn field_cacc(
     let family = cacc_family(p, g, vv, e, prev);
     let [kp, kd] = p.cacc_field_gains;
     let law = p.cacc_feedforward * a_pred + kp * e + kd * (dv - time_gap_s * a_own);
-    let approach = approach_accel(p, v, leader);
+    let approach = approach_accel(p, v, leader, a_pred);
     if family == Family::Speed {
         return Command {
             accel: bounded::min(speed_regulation(p, v, v_des).min(law), approach),
@@ -123,20 +147,22 @@ pub fn cacc_by_law(
 }
 
 /// The ACC of `p.cacc_law`: [`acc`], under the field law with the kinematic approach
-/// [`approach_accel`] as a lower envelope (a leader within the sensor range).
+/// [`approach_accel`] as a lower envelope (a leader within the sensor range; `a_lead` its
+/// acceleration as the radar estimates it, read only there).
 #[inline]
 pub fn acc_by_law(
     p: &CavParams,
     v: f64,
     v_des: f64,
     leader: Option<Leader>,
+    a_lead: f64,
     time_gap_s: f64,
     prev: Family,
 ) -> Command {
     let mut c = acc(p, v, v_des, leader, time_gap_s, prev);
     if p.cacc_law == CaccLaw::Field {
         if let Some(l) = leader.filter(|l| l.gap_m <= p.sensor_range_m) {
-            c.accel = bounded::min(c.accel, approach_accel(p, v, l));
+            c.accel = bounded::min(c.accel, approach_accel(p, v, l, a_lead));
         }
     }
     c

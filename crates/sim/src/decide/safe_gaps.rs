@@ -71,7 +71,7 @@ pub(crate) fn automated_follower_after(
     };
     // Under the field law the follower handles the cut-in by resetting its gap reference to
     // the actual gap (`cav::cut_in_time_gap`, as `execute.rs` does when the change happens)
-    // and reads the changer's acceleration from its beacon.
+    // and reads the changer's acceleration from its beacon (a CAV) or its radar (a human).
     safegap::automated_follower_accel(
         p,
         &AutomatedFollower {
@@ -82,7 +82,7 @@ pub(crate) fn automated_follower_after(
             target_gap_s,
             family: f.cacc.family,
             changer_is_cav,
-            a_pred: if changer_is_cav { c.a } else { 0.0 },
+            a_pred: c.a,
         },
         changer,
         dt,

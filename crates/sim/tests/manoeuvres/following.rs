@@ -1,8 +1,9 @@
 //! Car following: a slower leader, a CACC leader, a standing queue, a braking leader.
 
-use super::common::{at, empty, gap, run};
+use super::common::{at, empty, empty_config, gap, run};
+use platoonsim_model::cav::CaccLaw;
 use platoonsim_sim::vehicle::Kind;
-use platoonsim_sim::Command;
+use platoonsim_sim::{Command, Simulation};
 
 #[test]
 fn a_driver_closing_on_a_slow_vehicle_settles_behind_it_without_hard_braking() {
@@ -178,4 +179,43 @@ fn no_vehicle_brakes_beyond_its_emergency_limit_even_when_told_to() {
     assert_eq!(hardest, -9.0, "hardest braking");
     assert!(!back, "moved backwards");
     assert_eq!(at(&sim, id).v, 0.0);
+}
+
+#[test]
+fn the_field_automation_engages_only_within_its_envelope() {
+    // A CAV creeping at 1.8 m/s 1.2 m behind a standing vehicle, inside the automation's
+    // standstill gap s_min = 1.5 m (where a driver who drove by hand may leave it), with no
+    // regime yet (as after a manual spell). Engaged there, the safety override would stop it
+    // within one step (an AEB stop at the 9 m/s² limit); under the field law the driver keeps
+    // driving until the automation's demand lies within the ISO 15622 envelope (5 m/s² at
+    // low speed), so the stop stays within it. Under the spec law the automation engages at
+    // once and brakes at the limit.
+    let hardest_with = |law: CaccLaw| {
+        let mut cfg = empty_config(1);
+        cfg.cav.cacc_law = law;
+        let mut sim = Simulation::new(cfg).unwrap();
+        let stopped = sim.place_vehicle(Kind::Human, 0, 2000.0, 0.0).unwrap();
+        sim.command(
+            stopped,
+            Command::Accelerate {
+                accel_mps2: 0.0,
+                steps: 200,
+            },
+        )
+        .unwrap();
+        let len = at(&sim, stopped).length;
+        let cav = sim
+            .place_vehicle(Kind::Cav, 0, 2000.0 - len - 1.2, 1.8)
+            .unwrap();
+        let mut hardest: f64 = 0.0;
+        run(&mut sim, 10.0, |s| hardest = hardest.min(at(s, cav).a));
+        assert_eq!(sim.collisions(), 0);
+        assert!(gap(&sim, stopped, cav) > 0.0);
+        assert!(at(&sim, cav).v < 0.1);
+        hardest
+    };
+    let field = hardest_with(CaccLaw::Field);
+    assert!(field >= -5.0, "braked at {field} m/s² under the field law");
+    let spec = hardest_with(CaccLaw::Spec);
+    assert!(spec < -6.0, "braked at {spec} m/s² under the spec law");
 }
