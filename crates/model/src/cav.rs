@@ -641,7 +641,10 @@ pub fn safety_gap(p: &CavParams, v: f64) -> f64 {
 /// excess speed is shed at no more than |b|, as in [P15-code]), then the override
 /// v_new ≤ max(0, v_safe + min(2, max(0, g − s_min))) (spec 3.4 with the \[D\] tolerance below),
 /// which alone may brake harder than b, then v_new ≥ 0. When v > v_des the limits win, so v_new
-/// may stay above v_des for a few steps.
+/// may stay above v_des for a few steps. Under the field law (`cav.cacc_law`) the override
+/// brakes at no more than max(b, |a_cmd|) toward the cap: v_new may stay above it for a few
+/// steps while the law's demand, with its kinematic approach to the leader as it actually
+/// brakes, asks for less (docs/cacc-field.md).
 #[inline]
 pub fn finalize(
     p: &CavParams,
@@ -665,7 +668,16 @@ pub fn finalize(
         let tolerance = (l.gap_m - p.standstill_gap_m).clamp(0.0, 2.0);
         let cap = (safe_speed(p, l.gap_m, l.v_mps) + tolerance).max(0.0);
         if v + a * dt > cap {
-            a = (cap - v) / dt;
+            let snap = (cap - v) / dt;
+            // Under the field law the excess over the cap goes at no more than b, unless the
+            // law itself (its kinematic approach included) asks for more: the cap assumes the
+            // leader brakes at b from now on, the law knows how it brakes (docs/cacc-field.md,
+            // the override).
+            a = if p.cacc_law == CaccLaw::Field {
+                snap.max(a_cmd.min(p.max_decel))
+            } else {
+                snap
+            };
         }
     }
     if v + a * dt < 0.0 {

@@ -3,7 +3,7 @@
 use platoonsim_model::cav::{
     acc, acc_equilibrium_gap, acc_standstill_margin, acc_with_leader_length, cacc,
     cacc_equilibrium_gap, draw_time_gap, finalize, safe_speed, safety_gap, speed_regulation,
-    CavMode, CavParams, Family,
+    CaccLaw, CavMode, CavParams, Family,
 };
 use platoonsim_model::human::{equilibrium_gap, HumanParams};
 use platoonsim_model::{Leader, Relax};
@@ -320,7 +320,11 @@ fn finalize_applies_vehicle_limits_without_leader() {
 
 #[test]
 fn finalize_safety_override_may_exceed_b() {
-    let p = p();
+    // The spec 3.4 override (the published law).
+    let p = CavParams {
+        cacc_law: CaccLaw::Spec,
+        ..p()
+    };
     // 30 m/s, 20 m behind a stopped car: cap = v_safe(20) + 2 = −1.6 + sqrt(150.56) + 2.
     let cap = -1.6 + 150.56_f64.sqrt() + 2.0;
     let a = finalize(&p, 30.0, 0.0, 30.0, Some(leader(20.0, 0.0)), 0.1);
@@ -336,6 +340,30 @@ fn finalize_safety_override_may_exceed_b() {
     );
     // Degenerate step: finite.
     assert!(finalize(&p, 10.0, 1.0, 30.0, Some(leader(5.0, 0.0)), 0.0).is_finite());
+}
+
+#[test]
+fn under_the_field_law_the_override_sheds_the_excess_at_b_unless_the_law_asks_for_more() {
+    let p = p();
+    assert_eq!(p.cacc_law, CaccLaw::Field);
+    // 30 m/s, 20 m behind a stopped car: the cap asks for (cap − 30)/0.1 = −159 m/s² within
+    // the step; under the field law the override brakes at b = 4 when the law asks for less…
+    let cap = -1.6 + 150.56_f64.sqrt() + 2.0;
+    assert!((cap - 30.0) / 0.1 < -100.0);
+    let a = finalize(&p, 30.0, 0.0, 30.0, Some(leader(20.0, 0.0)), 0.1);
+    assert_eq!(a, p.max_decel);
+    // … and at what the law asks for (its kinematic approach: 30² / (2 · 18.5) = 24.3 m/s²)
+    // when that is more, never beyond the cap's own demand.
+    let need = -900.0 / 37.0;
+    let a = finalize(&p, 30.0, need, 30.0, Some(leader(20.0, 0.0)), 0.1);
+    assert!(close(a, need), "{a}");
+    let a = finalize(&p, 30.0, -500.0, 30.0, Some(leader(20.0, 0.0)), 0.1);
+    assert!(close(a, (cap - 30.0) / 0.1), "{a}");
+    // Below the cap nothing changes: the law's demand within the limits.
+    assert_eq!(
+        finalize(&p, 20.0, 1.0, 30.0, Some(leader(200.0, 20.0)), 0.1),
+        1.0
+    );
 }
 
 // ---------- time gaps (spec 3.5) ----------
