@@ -560,8 +560,8 @@ fn a_leader_braking_at_4_to_a_stop() {
 /// A stop-and-go wave: the leader brakes at 2 m/s² from 25 to 5 m/s, holds 10 s, accelerates
 /// at 1 m/s² back. Field law, 0.6 s, 0.3 s lag: no take-over request, nobody brakes more than
 /// 0.05 m/s² harder than the leader, but the dip is not strictly damped: each follower
-/// undershoots the 5 m/s plateau a little (vehicle 10: 0.35 m/s below it, growth ≤ 0.4 % per
-/// vehicle); the published law grows it more than twice as fast.
+/// undershoots the 5 m/s plateau a little (growth ≤ 0.4 % per vehicle); the published law
+/// grows it more than twice as fast.
 fn stop_and_go(law: CaccLaw) -> Trace {
     let p = params(law, 0.3);
     let lead = |t: f64, v: f64| {

@@ -85,8 +85,10 @@ pub fn approach_accel(p: &CavParams, v: f64, leader: Leader, a_lead: f64) -> f64
 /// [`cacc`]; in the speed family the cruise term is capped by the law and the approach. The
 /// regime label: avoidance for e < 0, regulation in the band of spec 3.4 or while not
 /// approaching, gap closing while approaching (Δv < 0).
+// Inlined into the decide loop: with the braking-leader approach the compiler stopped doing
+// so by itself, at +11 instructions per vehicle update (callgrind, docs/cacc-field.md).
 #[allow(clippy::too_many_arguments)]
-#[inline]
+#[inline(always)]
 pub fn field_cacc(
     p: &CavParams,
     v: f64,
