@@ -29,7 +29,9 @@
 //! safety (3.4, 3.8): v_safe = Gipps speed with τ_r = 0.4 s, θ = 0, b̂ = b, jam gap s_min, at its
 //!             fixed point v = v_G (= Krauss form): v_safe = bτ_r + sqrt(b²τ_r² + v_l² − 2b(g − s_min));
 //!             tol = min(2, max(0, g − s_min)) [D; spec: min(2, g)];
-//!             if v_new > v_safe + tol: v_new = max(0, v_safe + tol) (may brake harder than b)
+//!             if v_new > v_safe + tol: v_new = max(0, v_safe + tol) (may brake harder than b);
+//!             field law: a = max((v_safe + tol − v)/Δt, min(b, a_cmd)), the excess shed at no
+//!             more than b unless the law (its kinematic approach included) asks for more \[D\]
 //! limits:     (v_new − v)/Δt ∈ [b, a_M], 0 ≤ v_new ≤ v_F
 //! ```
 //!
