@@ -9,6 +9,7 @@
 use crate::pack::Blob;
 use crate::road::Road;
 use anyhow::{anyhow, bail, Context, Result};
+use platoonsim_rundir::TRAJECTORIES;
 use std::collections::HashMap;
 use std::io::Read;
 use std::path::Path;
@@ -106,9 +107,10 @@ pub fn read_and_pack<R: Read>(input: R, path: &Path, road: &Road) -> Result<Pack
     for (i, c) in TRAJECTORY_REQUIRED.iter().enumerate() {
         req[i] = col(c).ok_or_else(|| {
             anyhow!(
-                "{name}: column {c} is missing (the header is '{}'; a trajectories.csv written \
-                 by `platoonsim run --trajectories` has {})",
+                "{name}: column {c} is missing (the header is '{}'; a {} written by \
+                 `platoonsim run --trajectories` has {})",
                 header.iter().collect::<Vec<_>>().join(","),
+                TRAJECTORIES.csv,
                 TRAJECTORY_REQUIRED.join(",")
             )
         })?;
@@ -161,9 +163,11 @@ pub fn read_and_pack<R: Read>(input: R, path: &Path, road: &Road) -> Result<Pack
             return Err(bad(
                 c_lane,
                 &format!(
-                    "a lane of the road in scenario.json (1 to {}): trajectories.csv and \
-                     scenario.json are not from the same run",
-                    road.lanes
+                    "a lane of the road in {json} (1 to {}): {} and {json} are not from the \
+                     same run",
+                    road.lanes,
+                    TRAJECTORIES.csv,
+                    json = platoonsim_rundir::SCENARIO_JSON,
                 ),
             ));
         }

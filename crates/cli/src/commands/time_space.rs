@@ -2,12 +2,9 @@
 //! module reads the file; the drawing is `platoonsim_plot::time_space`.
 
 use crate::args::TimeSpaceArgs;
-use crate::output::TRAJECTORY_HEADER;
-
-/// Columns of the first `trajectories.csv` format (before `platoon_pos` and `regime`).
-const TRAJECTORY_COLUMNS_V1: usize = 8;
 use anyhow::{bail, Context, Result};
 use platoonsim_plot::{TimeSpace, Track, TrackSample};
+use platoonsim_rundir::{TRAJECTORIES, TRAJECTORY_COLUMNS_V1, TRAJECTORY_HEADER};
 use std::collections::{BTreeSet, HashMap};
 use std::io::Read;
 use std::path::Path;
@@ -58,8 +55,9 @@ pub fn read_tracks<R: Read>(input: R, path: &Path, lane: u32) -> Result<Vec<Trac
     let current: Vec<&str> = TRAJECTORY_HEADER.split(',').collect();
     if columns != current && columns != current[..TRAJECTORY_COLUMNS_V1] {
         bail!(
-            "{name} is not a trajectories.csv: its header is '{header}', expected \
-             '{TRAJECTORY_HEADER}' (write one with `platoonsim run ... --trajectories PERIOD_S`)"
+            "{name} is not a {}: its header is '{header}', expected \
+             '{TRAJECTORY_HEADER}' (write one with `platoonsim run ... --trajectories PERIOD_S`)",
+            TRAJECTORIES.csv
         );
     }
     let mut tracks: Vec<Track> = vec![];

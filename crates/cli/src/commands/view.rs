@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 use std::path::Path;
 
 /// The page's name inside the run directory when no --out is given.
-pub const DEFAULT_FILE: &str = "view.html";
+pub const DEFAULT_FILE: &str = platoonsim_rundir::VIEW;
 
 pub fn view(args: &ViewArgs) -> Result<()> {
     let file = args
@@ -24,7 +24,7 @@ pub fn view(args: &ViewArgs) -> Result<()> {
 pub fn write(dir: &Path, file: &Path) -> Result<()> {
     // The page must not replace one of the run's files it is built from (`--out
     // RUN/trajectories.csv` did), nor anything that is not a regular file.
-    let inputs: Vec<std::path::PathBuf> = crate::output::RUN_FILES
+    let inputs: Vec<std::path::PathBuf> = platoonsim_rundir::RUN_FILES
         .iter()
         .filter(|name| **name != DEFAULT_FILE)
         .map(|name| dir.join(name))
