@@ -8,6 +8,8 @@ use platoonsim_sim::{Config, Recording, TrajectorySpec};
 use std::path::PathBuf;
 
 mod compare;
+#[cfg(test)]
+mod doc_flags;
 mod experiment;
 mod field;
 pub use compare::CompareArgs;

@@ -3,7 +3,7 @@
 
 use crate::Error;
 use platoonsim_rundir::{
-    TRIP_ARRIVAL_COLUMN, TRIP_CLOCK_COLUMNS, TRIP_COLUMNS, TRIP_ENERGY_COLUMNS,
+    TRIPS, TRIP_ARRIVAL_COLUMN, TRIP_CLOCK_COLUMNS, TRIP_COLUMNS, TRIP_ENERGY_COLUMNS,
 };
 use platoonsim_sim::{Config, Queued, Trip, TripStatus};
 
@@ -43,7 +43,7 @@ pub fn off_ramp_name(config: &Config, k: usize) -> String {
 /// vehicle the wait so far. A queued vehicle never entered the road: `entered_s`,
 /// `travel_time_s` and the positions are empty, its counters 0 and `measured` false.
 pub fn trips_csv(config: &Config, trips: &[Trip], queued: &[Queued]) -> Result<Vec<u8>, Error> {
-    let enc = |e: csv::Error| Error::Other(format!("cannot encode trips.csv: {e}"));
+    let enc = |e: csv::Error| Error::Other(format!("cannot encode {}: {e}", TRIPS.csv));
     let mut w = csv::WriterBuilder::new()
         .has_headers(false)
         .from_writer(Vec::new());
@@ -130,5 +130,5 @@ pub fn trips_csv(config: &Config, trips: &[Trip], queued: &[Queued]) -> Result<V
         w.write_record(&row).map_err(enc)?;
     }
     w.into_inner()
-        .map_err(|e| Error::Other(format!("cannot encode trips.csv: {e}")))
+        .map_err(|e| Error::Other(format!("cannot encode {}: {e}", TRIPS.csv)))
 }
