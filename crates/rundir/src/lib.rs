@@ -11,6 +11,8 @@
 //! Outside tests, the file names below are spelled out in this crate only.
 
 mod cells;
+#[cfg(test)]
+mod doc_test;
 
 pub use cells::{DetectorKind, Lane};
 
