@@ -4,15 +4,17 @@
 //! the project's main data contract: `compare` and `calibrate` read it, the viewer and
 //! `time-space` read it, sweeps keep its detector records, users read it with pandas. This
 //! crate names its files and their columns, and types the cells that are words (the detector
-//! records' [`Lane`] and [`DetectorKind`]); it depends on nothing, so that every reader (the
-//! viewer too, which depends on no engine crate) and the one writer (`platoonsim_runs::run_dir`)
-//! use it. docs/outputs.md describes the files; a test of the CLI holds it to this crate.
+//! records' [`Lane`] and [`DetectorKind`]); [`trajectory`] is the one reader of
+//! `trajectories.csv` (the viewer's and `time-space`'s). It depends on no engine crate (only on
+//! `csv`), so that every reader (the viewer too) and the one writer
+//! (`platoonsim_runs::run_dir`) use it. docs/outputs.md describes the files; a test of the CLI holds it to this crate.
 //!
 //! Outside tests, the file names below are spelled out in this crate only.
 
 mod cells;
 #[cfg(test)]
 mod doc_test;
+pub mod trajectory;
 
 pub use cells::{DetectorKind, Lane};
 
@@ -130,10 +132,6 @@ pub const TRAJECTORY_COLUMNS: [&str; 10] = [
 
 /// The header line of `trajectories.csv` (without its line break).
 pub const TRAJECTORY_HEADER: &str = "t_s,id,kind,lane,x_m,v_mps,a_mps2,mode,platoon_pos,regime";
-
-/// How many columns the first `trajectories.csv` format had (before `platoon_pos` and
-/// `regime`); readers accept it.
-pub const TRAJECTORY_COLUMNS_V1: usize = 8;
 
 /// The columns of `collisions.csv`, in order.
 pub const COLLISION_COLUMNS: [&str; 11] = [

@@ -20,8 +20,6 @@ use anyhow::{bail, Context, Result};
 use platoonsim_rundir::{COLLISIONS, DETECTORS, SCENARIO_JSON, TRAJECTORIES, TRIPS};
 use std::path::Path;
 
-pub use tracks::TRAJECTORY_REQUIRED;
-
 /// A built page and what went into it.
 pub struct View {
     pub html: String,
