@@ -2,8 +2,8 @@
 //! `platoonsim_view`; this module writes it atomically and reports what went in).
 
 use crate::args::ViewArgs;
-use crate::atomic::write_atomic;
 use anyhow::{Context, Result};
+use platoonsim_runs::atomic::write_atomic;
 use std::path::Path;
 
 /// The page's name inside the run directory when no --out is given.
@@ -30,8 +30,8 @@ pub fn write(dir: &Path, file: &Path) -> Result<()> {
         .map(|name| dir.join(name))
         .collect();
     let inputs: Vec<&Path> = inputs.iter().map(|p| p.as_path()).collect();
-    crate::atomic::refuse_input(file, &inputs)?;
-    crate::atomic::check_output(file)?;
+    platoonsim_runs::atomic::refuse_input(file, &inputs)?;
+    platoonsim_runs::atomic::check_output(file)?;
     let v = platoonsim_view::build(dir)?;
     write_atomic(file, v.html.as_bytes())
         .with_context(|| format!("cannot write {}", file.display()))?;
