@@ -63,3 +63,32 @@ def test_finish_writes_the_cli_files(tmp_path):
     assert not list(py_dir.glob("*.tmp"))
     # finish() again returns the same summary; the simulation no longer steps.
     assert sim.finish() == summary == sim.summary()
+
+
+def test_a_python_run_directory_has_the_cli_files_and_headers(tmp_path):
+    """One writer for both (`platoonsim_runs::run_dir`): a run with collisions writes the same
+    files from Python as from the command line, collisions.csv included, with the same header
+    line in every CSV file, and an earlier run's table in the directory is removed."""
+    blind = ["--seed", "1", "--penetration", "0.5", "--set", "cav.sensor_range_m=1",
+             "--duration", "60", "--warmup", "0", "--allow-collisions"]
+    cli_dir, py_dir = tmp_path / "cli", tmp_path / "py"
+    cli_dir.mkdir()
+    py_dir.mkdir()
+    for d in (cli_dir, py_dir):
+        (d / "trips.csv").write_text("an earlier run's table\n")
+    cli = cli_run(cli_dir, "homogeneous", *blind)
+    overrides = {"run.penetration": 0.5, "cav.sensor_range_m": 1, "run.duration_s": 60, "run.warmup_s": 0}
+    sim = platoonsim.Simulation("homogeneous", seed=1, overrides=overrides)
+    sim.run()
+    py = sim.finish(py_dir)
+    assert py["collisions"] > 0 and cli["collisions"] > 0
+
+    def files(d):
+        return sorted(p.name for p in d.iterdir())
+
+    assert files(py_dir) == files(cli_dir)
+    assert "collisions.csv" in files(py_dir) and "trips.csv" not in files(py_dir)
+    for name in files(cli_dir):
+        if name.endswith(".csv"):
+            header = (cli_dir / name).read_text().splitlines()[0]
+            assert (py_dir / name).read_text().splitlines()[0] == header, name

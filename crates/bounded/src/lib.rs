@@ -8,6 +8,8 @@
 //! readers, the viewer's and the field data's readers, the SUMO importer, and the atomic
 //! writer's refusal of special files.
 
+#[cfg(feature = "gzip")]
+pub mod gzip;
 pub mod output;
 
 use std::fs;

@@ -20,7 +20,7 @@ use std::collections::BTreeMap;
 pub fn to_obs(records: &[DetectorRecord], clock_start_s: u32) -> Vec<Obs> {
     records
         .iter()
-        .filter(|r| r.lane == "all")
+        .filter(|r| platoonsim_rundir::Lane::is_all(&r.lane))
         .map(|r| Obs {
             station: r.detector.clone(),
             start_s: clock_start_s + r.interval_start_s.round() as u32,

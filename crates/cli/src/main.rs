@@ -14,7 +14,6 @@
 #[macro_use]
 mod stdout;
 mod args;
-mod atomic;
 mod commands;
 mod messages;
 mod out_lock;

@@ -45,7 +45,7 @@ pub fn lock(dir: &Path, share: Share) -> Result<OutLock> {
         Ok(()) => {
             // An existing directory that cannot take a new file fails here, before any work
             // (it used to fail only when the results were written).
-            crate::atomic::check_writable_dir(dir)?;
+            platoonsim_runs::atomic::check_writable_dir(dir)?;
             Ok(OutLock { _file: file })
         }
         Err(TryLockError::WouldBlock) => bail!(

@@ -9,7 +9,7 @@
 //! * [`report`]: `REPORT.md` and a self-contained `report.html` over several experiments.
 //!
 //! The runs go through `platoonsim-runs` (cells, the resumable runner, run files,
-//! statistics, tables, sweeps), whose modules are re-exported here under their names.
+//! statistics, tables, sweeps); import its items from there.
 
 pub mod corridor;
 pub mod experiments;
@@ -17,16 +17,7 @@ pub mod paper;
 pub mod report;
 pub mod table;
 
-// The runner and its files, re-exported under their former paths.
-pub use platoonsim_runs::{
-    atomic, columnar, design, detectors, hash, metric, progress, record, runner, safety, stats,
-    sweep, Error, Metric, VERSION,
-};
-
-pub use design::{Cell, Labels, RunSpec};
 pub use experiments::{
     run_experiment, Check, Experiment, ExperimentName, ExperimentOutput, Part, Settings,
     CAPACITY_FILL_S, EXPERIMENTS,
 };
-pub use runner::{Outcome, Runner};
-pub use stats::Stats;

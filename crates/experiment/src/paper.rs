@@ -12,7 +12,7 @@
 pub use platoonsim_runs::table::{CellSel, PaperValue};
 
 use crate::table::Col;
-use crate::Metric;
+use platoonsim_runs::Metric;
 use platoonsim_scenario::StrategyKind;
 
 const FIG4_TEXT: &str = "Preliminary Study, text on Fig. 4 (approximate, read from prose)";
@@ -266,7 +266,11 @@ pub fn all() -> Vec<PaperValue> {
 }
 
 /// The paper's value for a cell (by its labels) and metric, if the paper gives one.
-pub fn lookup(experiment: &str, labels: &crate::Labels, metric: &str) -> Option<PaperValue> {
+pub fn lookup(
+    experiment: &str,
+    labels: &platoonsim_runs::Labels,
+    metric: &str,
+) -> Option<PaperValue> {
     all()
         .into_iter()
         .find(|p| p.experiment == experiment && p.metric.name() == metric && p.cell.matches(labels))
@@ -275,7 +279,7 @@ pub fn lookup(experiment: &str, labels: &crate::Labels, metric: &str) -> Option<
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Labels;
+    use platoonsim_runs::Labels;
 
     #[test]
     fn table3_and_fig4_values_are_found_by_labels() {

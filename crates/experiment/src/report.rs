@@ -9,12 +9,12 @@
 //! earlier runs) stay in `docs/` and are linked, never copied: their figures come from other
 //! runs.
 
-use crate::atomic::write_atomic;
 use crate::experiments::{ExperimentOutput, Figure, Part};
-use crate::safety;
 use crate::table::md_table;
-use crate::{Error, VERSION};
+use platoonsim_runs::atomic::write_atomic;
 pub use platoonsim_runs::page::{base64, html, Anchors};
+use platoonsim_runs::safety;
+use platoonsim_runs::{Error, VERSION};
 use platoonsim_scenario::Preset;
 use std::path::{Path, PathBuf};
 

@@ -2,7 +2,7 @@
 
 pub use platoonsim_runs::table::*;
 
-use crate::{Cell, Outcome};
+use platoonsim_runs::{Cell, Outcome};
 
 /// One row per cell and metric (see [`platoonsim_runs::table::summarize`]), with the paper's
 /// value of `experiment` where it gives one.

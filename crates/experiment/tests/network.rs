@@ -2,11 +2,12 @@
 //! minutes (`run.duration_s` overridden): detector files kept beside the run files and
 //! reused like them.
 
-use platoonsim_experiment::design::{keep_detectors, runs, seeds};
-use platoonsim_experiment::detectors::Scope;
 use platoonsim_experiment::experiments::{self, run_experiment_with};
-use platoonsim_experiment::runner::{bar, simulate};
-use platoonsim_experiment::{Cell, Labels, Runner, Settings};
+use platoonsim_experiment::Settings;
+use platoonsim_runs::design::{keep_detectors, runs, seeds};
+use platoonsim_runs::detectors::Scope;
+use platoonsim_runs::runner::{bar, simulate};
+use platoonsim_runs::{Cell, Labels, Runner};
 use platoonsim_scenario::{demand_scale_set, load_with, Overrides, StrategyKind};
 use platoonsim_sim::{Config, Output, SimError};
 use std::fs;

@@ -10,8 +10,8 @@
 //! function of those results. Set `PLATOONSIM_PLAN_DIR` to write each plan as text.
 
 use platoonsim_experiment::experiments::{self, run_experiment_with};
-use platoonsim_experiment::hash::{config_key, fnv1a64};
 use platoonsim_experiment::{ExperimentName, Settings};
+use platoonsim_runs::hash::{config_key, fnv1a64};
 use platoonsim_sim::{Config, Output, SimError};
 use std::path::PathBuf;
 use std::sync::{Mutex, OnceLock};
@@ -19,8 +19,7 @@ use std::sync::{Mutex, OnceLock};
 fn sample() -> &'static Output {
     static OUT: OnceLock<Output> = OnceLock::new();
     OUT.get_or_init(|| {
-        platoonsim_experiment::runner::simulate(&Config::homogeneous(0.5, 1500.0, 600.0, 0.0, 1))
-            .unwrap()
+        platoonsim_runs::runner::simulate(&Config::homogeneous(0.5, 1500.0, 600.0, 0.0, 1)).unwrap()
     })
 }
 

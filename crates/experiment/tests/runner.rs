@@ -2,10 +2,11 @@
 //! files are recomputed), atomic files, identical results whatever the thread count, the
 //! shape of the output files.
 
-use platoonsim_experiment::design::{runs, seeds};
 use platoonsim_experiment::experiments::{self, run_experiment_with};
-use platoonsim_experiment::runner::{bar, simulate};
-use platoonsim_experiment::{Cell, Labels, Runner, Settings};
+use platoonsim_experiment::Settings;
+use platoonsim_runs::design::{runs, seeds};
+use platoonsim_runs::runner::{bar, simulate};
+use platoonsim_runs::{Cell, Labels, Runner};
 use platoonsim_sim::{Config, Output, SimError};
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -67,7 +68,7 @@ fn rerun_recomputes_only_missing_or_unusable_runs() {
     assert_eq!(count.swap(0, Ordering::SeqCst), 0);
     assert_eq!((r.computed(), r.reused()), (0, 6));
     assert!(second.iter().all(|o| !o.computed));
-    let strip = |v: &[platoonsim_experiment::Outcome]| {
+    let strip = |v: &[platoonsim_runs::Outcome]| {
         v.iter()
             .map(|o| (o.cell, o.seed, o.key.clone(), bits(&o.fields)))
             .collect::<Vec<_>>()
@@ -118,7 +119,7 @@ fn rerun_recomputes_only_missing_or_unusable_runs() {
     // A file computed by another build of the engine is not reused.
     let path = dir.join(format!("{}.json", specs[2].key()));
     let text = fs::read_to_string(&path).unwrap();
-    let id = platoonsim_experiment::record::engine_id();
+    let id = platoonsim_runs::record::engine_id();
     assert!(text.contains(id));
     fs::write(&path, text.replace(id, "0123456789abcdef")).unwrap();
     let r = runner();
@@ -424,6 +425,6 @@ fn capacity_baseline_mean_discharge_leaves_out_the_filling_road() {
 
 /// A run's metrics bit for bit: a statistic that does not apply (null, read as NaN) equals
 /// itself.
-fn bits(f: &platoonsim_experiment::record::Fields) -> Vec<(String, u64)> {
+fn bits(f: &platoonsim_runs::record::Fields) -> Vec<(String, u64)> {
     f.0.iter().map(|(k, v)| (k.clone(), v.to_bits())).collect()
 }

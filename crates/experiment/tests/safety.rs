@@ -4,10 +4,11 @@
 //! of an older engine without the new fields still reads.
 
 use platoonsim_experiment::experiments::{self, run_experiment_with};
-use platoonsim_experiment::record::{self, Fields};
 use platoonsim_experiment::report::{self, ReportInput};
-use platoonsim_experiment::runner::simulate;
-use platoonsim_experiment::{safety, table, Cell, Labels, Outcome, Settings};
+use platoonsim_experiment::{table, Settings};
+use platoonsim_runs::record::{self, Fields};
+use platoonsim_runs::runner::simulate;
+use platoonsim_runs::{safety, Cell, Labels, Outcome};
 use platoonsim_sim::{Config, Output, SimError};
 use std::fs;
 use std::path::PathBuf;

@@ -5,8 +5,8 @@
 //! same shortening on both sides), so that the test takes seconds; the full runs differ only
 //! in `run.duration_s`, `run.warmup_s` and the seed count.
 
-use platoonsim_experiment::sweep::{self, spec::Spec};
 use platoonsim_experiment::{experiments, run_experiment, ExperimentName, Settings};
+use platoonsim_runs::sweep::{self, spec::Spec};
 use std::path::{Path, PathBuf};
 use toml::Value;
 

@@ -1,7 +1,5 @@
-//! Bounded reading of field data files: the `platoonsim-bounded` crate, and the field data's
-//! own limits.
-
-pub(crate) use platoonsim_bounded::{regular_file, LineLimit};
+//! Bounded reading of field data files: the `platoonsim-bounded` crate (its gzip mode, in
+//! `input.rs`), and the field data's own limits.
 
 /// The largest field file opened (as stored, gzip or not): 16 GiB, a year of a district's
 /// PeMS station_5min files in one.

@@ -5,17 +5,13 @@
 //! with it for tidy and table files; blank lines are skipped. Read errors become
 //! [`FieldError`]s naming the file and line: a broken gzip stream is a `Gzip` error.
 
-use std::fs::File;
-use std::io::{BufRead, BufReader, ErrorKind};
+use std::io::{BufRead, ErrorKind};
 use std::path::{Path, PathBuf};
 
-use flate2::bufread::MultiGzDecoder;
+use platoonsim_bounded::gzip;
 
 use crate::bounded;
 use crate::error::FieldError;
-
-/// The gzip magic bytes (RFC 1952, section 2.3.1).
-const GZIP_MAGIC: [u8; 2] = [0x1f, 0x8b];
 
 /// An open field file: decompressed text and whether it was gzip.
 pub(crate) struct Input {
@@ -24,44 +20,36 @@ pub(crate) struct Input {
     pub reader: Box<dyn BufRead>,
 }
 
-/// Opens `path`, decompressing it if it starts with the gzip magic bytes.
+/// Opens `path`, decompressing it if it starts with the gzip magic bytes (the bounded crate's
+/// gzip mode, shared with the SUMO importer). The text (decompressed if need be) is bounded in
+/// line length and in total, so a corrupt file never becomes one unbounded record.
 pub(crate) fn open(path: &Path) -> Result<Input, FieldError> {
     let io = |source| FieldError::Io {
         file: path.to_path_buf(),
         source,
     };
-    // Never open what is not a regular file (a FIFO blocks the open, a device never ends).
-    let size = bounded::regular_file(path).map_err(io)?.len();
-    if size > bounded::MAX_FILE_BYTES {
-        return Err(io(std::io::Error::new(
+    let lines = gzip::open(
+        path,
+        bounded::MAX_FILE_BYTES,
+        bounded::MAX_LINE_BYTES,
+        bounded::MAX_TEXT_BYTES,
+    )
+    .map_err(|e| match e {
+        // Never open what is not a regular file (a FIFO blocks the open, a device never ends).
+        gzip::Error::NotRegular { kind } => io(std::io::Error::new(
+            ErrorKind::InvalidInput,
+            format!("not a regular file (a {kind})"),
+        )),
+        gzip::Error::TooLarge { size, limit } => io(std::io::Error::new(
             ErrorKind::InvalidData,
-            format!(
-                "{size} bytes: a field file must be at most {} bytes",
-                bounded::MAX_FILE_BYTES
-            ),
-        )));
-    }
-    let mut buf = BufReader::new(File::open(path).map_err(io)?);
-    let head = buf.fill_buf().map_err(io)?;
-    let gzip = head.starts_with(&GZIP_MAGIC);
-    // The text (decompressed if need be) is bounded in line length and in total, so a corrupt
-    // file never becomes one unbounded record.
-    let limit = |r: Box<dyn std::io::Read>| -> Box<dyn BufRead> {
-        Box::new(BufReader::new(bounded::LineLimit::new(
-            r,
-            bounded::MAX_LINE_BYTES,
-            bounded::MAX_TEXT_BYTES,
-        )))
-    };
-    let reader: Box<dyn BufRead> = if gzip {
-        limit(Box::new(MultiGzDecoder::new(buf)))
-    } else {
-        limit(Box::new(buf))
-    };
+            format!("{size} bytes: a field file must be at most {limit} bytes"),
+        )),
+        gzip::Error::Io(source) | gzip::Error::Gzip(source) => io(source),
+    })?;
     Ok(Input {
         path: path.to_path_buf(),
-        gzip,
-        reader,
+        gzip: lines.gzip,
+        reader: lines.reader,
     })
 }
 

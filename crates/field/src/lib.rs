@@ -1,7 +1,8 @@
 //! Field traffic data and how well a simulation fits it.
 //!
-//! No platoonsim dependency: field files in, plain data out, like `plot`. The experiment crate
-//! turns a run's `detectors.csv` into the same [`Obs`] rows and compares them
+//! No platoonsim dependency but `bounded` (its gzip mode reads the files): field files in,
+//! plain data out, like `plot`. The calibrate crate (`platoonsim_calibrate::field_obs`) turns
+//! a run's detector records into the same [`Obs`] rows and compares them
 //! (`platoonsim compare`, docs/compare.md; `platoonsim calibrate`, docs/calibrate.md).
 //!
 //! * [`Obs`]: one station's flow, speed and occupancy over one interval, the tidy row every

@@ -1,10 +1,11 @@
 //! Reading an input file whole, bounded: a regular file (or a symlink to one), at most
 //! [`MAX_BYTES`], gzip-compressed or plain (SUMO writes `.net.xml.gz` on request), and UTF-8.
 
+//! The reading itself is the bounded crate's gzip mode (`platoonsim_bounded::gzip`), shared
+//! with the field-data readers.
+
 use crate::ImportError;
-use flate2::read::MultiGzDecoder;
-use std::fs::File;
-use std::io::Read;
+use platoonsim_bounded::gzip;
 use std::path::Path;
 
 /// The largest file (and decompressed text) read: a whole-state freeway network from
@@ -12,41 +13,21 @@ use std::path::Path;
 pub const MAX_BYTES: u64 = 512 << 20;
 
 pub fn text(path: &Path) -> Result<String, ImportError> {
-    let io = |source| ImportError::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    let meta = std::fs::metadata(path).map_err(io)?;
-    let ft = meta.file_type();
-    if !ft.is_file() {
-        return Err(ImportError::NotRegular {
+    let raw = gzip::read(path, MAX_BYTES).map_err(|e| match e {
+        gzip::Error::NotRegular { kind } => ImportError::NotRegular {
             path: path.to_path_buf(),
-            kind: platoonsim_scenario::bounded::describe(&ft),
-        });
-    }
-    if meta.len() > MAX_BYTES {
-        return Err(too_large(path, meta.len()));
-    }
-    let mut raw = Vec::with_capacity(meta.len() as usize);
-    File::open(path)
-        .map_err(io)?
-        .take(MAX_BYTES + 1)
-        .read_to_end(&mut raw)
-        .map_err(io)?;
-    if raw.starts_with(&[0x1f, 0x8b]) {
-        let mut out = Vec::new();
-        MultiGzDecoder::new(&raw[..])
-            .take(MAX_BYTES + 1)
-            .read_to_end(&mut out)
-            .map_err(|e| ImportError::Xml {
-                path: path.to_path_buf(),
-                msg: format!("a broken gzip stream: {e}"),
-            })?;
-        raw = out;
-    }
-    if raw.len() as u64 > MAX_BYTES {
-        return Err(too_large(path, raw.len() as u64));
-    }
+            kind,
+        },
+        gzip::Error::TooLarge { size, .. } => too_large(path, size),
+        gzip::Error::Io(source) => ImportError::Io {
+            path: path.to_path_buf(),
+            source,
+        },
+        gzip::Error::Gzip(e) => ImportError::Xml {
+            path: path.to_path_buf(),
+            msg: format!("a broken gzip stream: {e}"),
+        },
+    })?;
     String::from_utf8(raw).map_err(|e| ImportError::Xml {
         path: path.to_path_buf(),
         msg: format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to()),

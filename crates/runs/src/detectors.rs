@@ -31,7 +31,7 @@ impl Scope {
     pub fn keeps(self, r: &DetectorRecord) -> bool {
         match self {
             Scope::None => false,
-            Scope::CrossSection => r.lane == "all",
+            Scope::CrossSection => Lane::is_all(&r.lane),
             Scope::All => true,
         }
     }
@@ -62,23 +62,11 @@ impl DetectorsRef {
     }
 }
 
-/// The columns, in order (those of `platoonsim run`'s `detectors.csv`).
-pub const COLUMNS: [&str; 11] = [
-    "detector",
-    "kind",
-    "position_m",
-    "lane",
-    "interval_start_s",
-    "interval_s",
-    "count",
-    "cav_count",
-    "flow_vph",
-    "speed_kmh",
-    "occupancy",
-];
-
-/// Where the optional `clock` column goes: right after `interval_start_s`.
-const CLOCK_AT: usize = 5;
+// The columns, in order (those of `platoonsim run`'s `detectors.csv`), and where the
+// optional `clock` column goes: right after `interval_start_s`.
+use platoonsim_rundir::{
+    DetectorKind, Lane, DETECTOR_CLOCK_AT as CLOCK_AT, DETECTOR_COLUMNS as COLUMNS,
+};
 
 /// Detector records that cannot be written or read as CSV; the message says where and why.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -182,11 +170,19 @@ fn from_csv_text(bytes: &[u8]) -> Result<Vec<DetectorRecord>, String> {
                 .parse::<u64>()
                 .map_err(|_| format!("line {row}: {} is not a count", COLUMNS[k]))
         };
+        // The word cells are typed: a file that is not the writer's is refused here, not
+        // matched by text later.
+        let kind: DetectorKind = rec[1]
+            .parse()
+            .map_err(|e| format!("line {row}: kind: {e}"))?;
+        let lane: Lane = rec[3]
+            .parse()
+            .map_err(|e| format!("line {row}: lane: {e}"))?;
         out.push(DetectorRecord {
             detector: rec[0].to_string(),
-            kind: rec[1].to_string(),
+            kind: kind.to_string(),
             position_m: f(2)?,
-            lane: rec[3].to_string(),
+            lane: lane.to_string(),
             interval_start_s: f(4)?,
             interval_s: f(5)?,
             count: u(6)?,
@@ -244,6 +240,40 @@ mod tests {
         assert!(Scope::CrossSection.covers(Scope::None));
         assert!(from_csv(b"a,b\n1,2\n").is_err());
         assert!(from_csv(&all[..all.len() - 8]).is_err());
+    }
+
+    #[test]
+    fn the_word_cells_are_read_typed() {
+        // Every lane and kind the writer uses reads back; another word is refused at its line
+        // instead of being matched by text (or silently skipped) by a reader later.
+        let mut recs = vec![record("A", "all", 0.0, None), record("A", "12", 0.0, None)];
+        for (i, kind) in ["on-ramp", "off-ramp"].into_iter().enumerate() {
+            recs.push(DetectorRecord {
+                kind: kind.into(),
+                ..record("R", &(i + 1).to_string(), 0.0, None)
+            });
+        }
+        let (bytes, _) = to_csv(&recs, Scope::All, None).unwrap();
+        assert_eq!(from_csv(&bytes).unwrap(), recs);
+        let text = String::from_utf8(bytes).unwrap();
+        let e = from_csv(text.replacen(",all,", ",All,", 1).as_bytes()).unwrap_err();
+        assert!(
+            e.0.starts_with("line 2: lane: 'All' is not a lane"),
+            "{}",
+            e.0
+        );
+        let e = from_csv(text.replacen(",12,", ",0,", 1).as_bytes()).unwrap_err();
+        assert!(
+            e.0.starts_with("line 3: lane: '0' is not a lane"),
+            "{}",
+            e.0
+        );
+        let e = from_csv(text.replacen("on-ramp", "onramp", 1).as_bytes()).unwrap_err();
+        assert!(
+            e.0.starts_with("line 4: kind: 'onramp' is not a detector kind"),
+            "{}",
+            e.0
+        );
     }
 
     #[test]

@@ -11,6 +11,8 @@
 //! * [`table`]: `runs.csv`, `summary.csv` (or Parquet, [`columnar`]) and Markdown tables.
 //! * [`safety`]: runs with collisions (a failed run) and the safety measures per cell.
 //! * [`sweep`]: sweeps of any scenario described as data (`sweeps/*.toml`).
+//! * [`run_dir`]: the one writer of a run directory (`platoonsim run --out`, the Python
+//!   binding), with the names and columns of `platoonsim-rundir`.
 //! * [`atomic`]: the one atomic file writer (also used by the CLI); [`page`]: Markdown as a
 //!   self-contained HTML page.
 //!
@@ -26,6 +28,7 @@ pub mod metric;
 pub mod page;
 pub mod progress;
 pub mod record;
+pub mod run_dir;
 pub mod runner;
 pub mod safety;
 pub mod stats;

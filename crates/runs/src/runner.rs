@@ -125,7 +125,7 @@ impl<'a> Runner<'a> {
 
     /// The detector file of a run that keeps its detector records.
     pub fn detectors_file(&self, key: &str) -> PathBuf {
-        self.runs_dir.join(format!("{key}.detectors.csv"))
+        self.runs_dir.join(platoonsim_rundir::kept_detectors(key))
     }
 
     /// The detector records kept by a run (after [`Runner::run`] computed or reused it).
@@ -279,7 +279,7 @@ impl<'a> Runner<'a> {
         let bytes = fs::read(dir.join(format!("{key}.json"))).ok()?;
         let (fields, det) = record::decode_with(&bytes, key, seed, self.engine.as_deref()).ok()?;
         let csv = match det {
-            Some(det) => fs::read(dir.join(format!("{key}.detectors.csv")))
+            Some(det) => fs::read(dir.join(platoonsim_rundir::kept_detectors(key)))
                 .ok()
                 .filter(|csv| det.matches(csv) && det.scope.covers(scope)),
             None => None,

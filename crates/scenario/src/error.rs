@@ -18,7 +18,7 @@ pub struct Problem {
 impl fmt::Display for Problem {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         // A value quoted from the input is cut to a readable length.
-        let value = crate::raw::clip_lines(&self.value, crate::raw::MAX_ECHO_CHARS);
+        let value = clip_lines(&self.value, MAX_ECHO_CHARS);
         write!(f, "{} = {}: {}", self.field, value, self.allowed)
     }
 }
@@ -67,10 +67,7 @@ pub enum ScenarioError {
     Syntax { origin: String, message: String },
 
     /// Valid TOML, but a key is unknown or a value has the wrong type.
-    #[error(
-        "{origin}: {path}: {}",
-        crate::raw::clip_lines(message, crate::raw::MAX_ECHO_CHARS)
-    )]
+    #[error("{origin}: {path}: {}", clip_lines(message, MAX_ECHO_CHARS))]
     Structure {
         origin: String,
         /// Key path, e.g. `road.foo` or `human.headway_s`.
@@ -79,10 +76,7 @@ pub enum ScenarioError {
     },
 
     /// A `--set KEY=VALUE` (or typed) override that cannot be applied.
-    #[error(
-        "invalid override '{}': {reason}",
-        crate::raw::clip_lines(arg, crate::raw::MAX_ECHO_CHARS)
-    )]
+    #[error("invalid override '{}': {reason}", clip_lines(arg, MAX_ECHO_CHARS))]
     Override { arg: String, reason: String },
 
     /// Well-formed, but some values are out of range or inconsistent.
@@ -128,4 +122,20 @@ impl ScenarioError {
             _ => &[],
         }
     }
+}
+
+/// The most characters of one line an error message quotes from the input.
+pub const MAX_ECHO_CHARS: usize = 200;
+
+/// `message` with every line cut to `max` characters (and marked `…`): toml quotes the line of
+/// a syntax error whole, and a 400 KB line of brackets is no help on a terminal.
+pub fn clip_lines(message: &str, max: usize) -> String {
+    message
+        .lines()
+        .map(|l| match l.char_indices().nth(max) {
+            Some((at, _)) => format!("{}…", &l[..at]),
+            None => l.to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
 }

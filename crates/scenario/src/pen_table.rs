@@ -14,9 +14,9 @@ pub(crate) fn parse<const N: usize>(
     columns: [&str; N],
 ) -> Result<Vec<(f64, [f64; N])>, TableError> {
     let doc: toml::Table = text.parse().map_err(|e: toml::de::Error| {
-        TableError::Syntax(crate::raw::clip_lines(
+        TableError::Syntax(crate::error::clip_lines(
             e.to_string().trim_end(),
-            crate::raw::MAX_ECHO_CHARS,
+            crate::error::MAX_ECHO_CHARS,
         ))
     })?;
     let mut rows = Vec::new();

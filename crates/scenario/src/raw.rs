@@ -8,7 +8,7 @@
 //! fields of a distribution (`human.desired_speed_kmh.mean = 100` keeps the default sd, min
 //! and max).
 
-use crate::error::ScenarioError;
+use crate::error::{clip_lines, ScenarioError, MAX_ECHO_CHARS};
 use platoonsim_model::cav::CavParams;
 use platoonsim_model::energy::EnergyParams;
 use platoonsim_model::human::HumanDists;
@@ -307,22 +307,6 @@ pub fn parse_document(text: &str, origin: &str) -> Result<Table, ScenarioError> 
         origin: origin.to_string(),
         message: clip_lines(e.to_string().trim_end(), MAX_ECHO_CHARS),
     })
-}
-
-/// The most characters of one line an error message quotes from the input.
-pub const MAX_ECHO_CHARS: usize = 200;
-
-/// `message` with every line cut to `max` characters (and marked `…`): toml quotes the line of
-/// a syntax error whole, and a 400 KB line of brackets is no help on a terminal.
-pub fn clip_lines(message: &str, max: usize) -> String {
-    message
-        .lines()
-        .map(|l| match l.char_indices().nth(max) {
-            Some((at, _)) => format!("{}…", &l[..at]),
-            None => l.to_string(),
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
 }
 
 /// Turn a document (after overrides) into a [`RawScenario`]. On failure the error names the

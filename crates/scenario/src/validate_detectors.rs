@@ -52,7 +52,10 @@ pub(super) fn check_detectors(
         let field = format!("detectors[{i}].name");
         let name = match &d.name {
             None => {
-                c.missing(&field, "a name, used in detectors.csv and [measurement]");
+                c.missing(
+                    &field,
+                    "a name, used in the detector records and [measurement]",
+                );
                 String::new()
             }
             Some(n) if n.trim().is_empty() => {

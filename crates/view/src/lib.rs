@@ -5,7 +5,8 @@
 //! The page is the files under `assets/` (embedded at compile time) with two blocks filled
 //! in: a JSON block (`page.rs`) describing the road, the frames and the tables, and a base64 block
 //! with the vehicle samples packed into typed arrays and gzip-compressed (`tracks.rs`, `pack.rs`).
-//! This crate depends on no engine crate: it reads the files by their header names, so a file
+//! This crate depends on no engine crate (the file names come from `platoonsim-rundir`, which
+//! depends on nothing): it reads the files by their header names, so a file
 //! with extra columns still works, and what it shows is what the run wrote.
 
 mod bounded;
@@ -16,9 +17,8 @@ mod tables;
 mod tracks;
 
 use anyhow::{bail, Context, Result};
+use platoonsim_rundir::{COLLISIONS, DETECTORS, SCENARIO_JSON, TRAJECTORIES, TRIPS};
 use std::path::Path;
-
-pub use tracks::TRAJECTORY_REQUIRED;
 
 /// A built page and what went into it.
 pub struct View {
@@ -36,7 +36,7 @@ pub struct View {
 /// Build the page for the run in `dir`. Errors name the file and, for a bad row, the line and
 /// the column.
 pub fn build(dir: &Path) -> Result<View> {
-    let traj = dir.join("trajectories.csv");
+    let traj = TRAJECTORIES.csv_in(dir);
     if !traj.exists() {
         bail!(
             "{} not found: the viewer replays a run's trajectories; make them with `platoonsim \
@@ -45,7 +45,7 @@ pub fn build(dir: &Path) -> Result<View> {
             dir.display()
         );
     }
-    let scenario_path = dir.join("scenario.json");
+    let scenario_path = dir.join(SCENARIO_JSON);
     let scenario_text = bounded::read_text(&scenario_path, bounded::MAX_SCENARIO_BYTES)
         .with_context(|| {
             format!(
@@ -66,9 +66,9 @@ pub fn build(dir: &Path) -> Result<View> {
     .with_context(|| format!("cannot read {}", traj.display()))?;
     let packed = tracks::read_and_pack(std::io::BufReader::new(file), &traj, &road)?;
 
-    let detectors = tables::detectors(&dir.join("detectors.csv"))?;
-    let trips = tables::trips(&dir.join("trips.csv"), &packed.ids)?;
-    let collisions = tables::collisions(&dir.join("collisions.csv"))?;
+    let detectors = tables::detectors(&DETECTORS.csv_in(dir))?;
+    let trips = tables::trips(&TRIPS.csv_in(dir), &packed.ids)?;
+    let collisions = tables::collisions(&dir.join(COLLISIONS))?;
 
     let meta = page::Meta {
         road: &road,

@@ -4,6 +4,7 @@
 //! name; a missing file gives an empty table.
 
 use anyhow::{anyhow, bail, Context, Result};
+use platoonsim_rundir::Lane;
 use serde::Serialize;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -155,9 +156,13 @@ pub fn detectors(path: &Path) -> Result<Vec<DetectorSeries>> {
         let d = &mut out[k];
         d.x_m = c.num(row, line, pos)?.unwrap_or(d.x_m);
         let l = row.get(lane).unwrap_or("");
-        if l != "all" {
-            lanes[k].insert(l.to_string());
-            continue;
+        match l.parse::<Lane>() {
+            Ok(Lane::All) => {}
+            Ok(Lane::Index(_)) => {
+                lanes[k].insert(l.to_string());
+                continue;
+            }
+            Err(e) => bail!("{} line {line}, column lane: {e}", path.display()),
         }
         d.start_s.push(c.num(row, line, start)?.unwrap_or(0.0));
         d.interval_s.push(c.num(row, line, len)?.unwrap_or(0.0));

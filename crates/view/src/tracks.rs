@@ -8,14 +8,12 @@
 
 use crate::pack::Blob;
 use crate::road::Road;
-use anyhow::{anyhow, bail, Context, Result};
+use anyhow::{anyhow, bail, Result};
+use platoonsim_rundir::trajectory::{read_samples, Bad, Stop};
+use platoonsim_rundir::TRAJECTORIES;
 use std::collections::HashMap;
 use std::io::Read;
 use std::path::Path;
-
-/// Columns the viewer needs; `a_mps2`, `mode`, `platoon_pos` and `regime` are used when present,
-/// and any other column is ignored.
-pub const TRAJECTORY_REQUIRED: [&str; 6] = ["t_s", "id", "kind", "lane", "x_m", "v_mps"];
 
 /// Code of a missing category (no such column, or an empty cell).
 pub const NONE: u8 = 255;
@@ -93,118 +91,47 @@ impl Codes {
 }
 
 pub fn read_and_pack<R: Read>(input: R, path: &Path, road: &Road) -> Result<Packed> {
-    let name = path.display();
-    let mut reader = csv::ReaderBuilder::new()
-        .has_headers(true)
-        .from_reader(input);
-    let header = reader
-        .headers()
-        .with_context(|| format!("cannot read {name}"))?
-        .clone();
-    let col = |c: &str| header.iter().position(|h| h == c);
-    let mut req = [0usize; 6];
-    for (i, c) in TRAJECTORY_REQUIRED.iter().enumerate() {
-        req[i] = col(c).ok_or_else(|| {
-            anyhow!(
-                "{name}: column {c} is missing (the header is '{}'; a trajectories.csv written \
-                 by `platoonsim run --trajectories` has {})",
-                header.iter().collect::<Vec<_>>().join(","),
-                TRAJECTORY_REQUIRED.join(",")
-            )
-        })?;
-    }
-    let [c_t, c_id, c_kind, c_lane, c_x, c_v] = req;
-    let (c_a, c_mode, c_pos, c_regime) = (
-        col("a_mps2"),
-        col("mode"),
-        col("platoon_pos"),
-        col("regime"),
-    );
+    let name = path.display().to_string();
     let (mut kinds, mut modes, mut regimes) =
         (Codes::default(), Codes::default(), Codes::default());
     let mut rows = Vec::new();
-    let mut record = csv::StringRecord::new();
-    let mut line = 1u64;
-    loop {
-        match reader.read_record(&mut record) {
-            Ok(false) => break,
-            Ok(true) => line += 1,
-            Err(e) => {
-                return Err(e).with_context(|| format!("cannot read {name} after line {line}"))
-            }
-        }
-        let cell = |c: usize| record.get(c).unwrap_or("");
-        let bad = |c: usize, what: &str| {
-            anyhow!(
-                "{name} line {line}, column {}: '{}' is not {what}",
-                header.get(c).unwrap_or("?"),
-                cell(c)
-            )
-        };
-        let float = |c: usize| -> Result<f64> {
-            cell(c)
-                .parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| bad(c, "a finite number"))
-        };
-        let t = float(c_t)?;
-        let id = cell(c_id)
-            .parse::<u64>()
-            .map_err(|_| bad(c_id, "a vehicle id (a whole number >= 0)"))?;
-        let lane = cell(c_lane)
-            .parse::<u8>()
-            .ok()
-            .filter(|l| *l >= 1 && *l < NONE)
-            .ok_or_else(|| bad(c_lane, "a lane number from 1 to 254"))?;
-        if u32::from(lane) > road.lanes {
-            return Err(bad(
-                c_lane,
-                &format!(
-                    "a lane of the road in scenario.json (1 to {}): trajectories.csv and \
-                     scenario.json are not from the same run",
-                    road.lanes
+    // The one reader of the file (`platoonsim_rundir::trajectory`, shared with time-space);
+    // what is checked here is what the viewer adds: the road's lanes, at most 254 codes.
+    let header = read_samples(input, &name, |s| {
+        if s.lane > road.lanes || s.lane >= u32::from(NONE) {
+            return Err(Bad {
+                column: "lane",
+                what: format!(
+                    "a lane of the road in {json} (1 to {}): {} and {json} are not from the \
+                     same run",
+                    road.lanes,
+                    TRAJECTORIES.csv,
+                    json = platoonsim_rundir::SCENARIO_JSON,
                 ),
-            ));
-        }
-        let x = float(c_x)?;
-        let v = float(c_v)?;
-        let a = match c_a {
-            Some(c) => float(c)?,
-            None => 0.0,
-        };
-        let pos = match c_pos {
-            Some(c) if !cell(c).is_empty() => {
-                let p = cell(c)
-                    .parse::<u32>()
-                    .map_err(|_| bad(c, "a platoon position (1, 2, ...)"))?;
-                p.clamp(1, 254) as u8
             }
-            _ => 0,
-        };
-        // The kinds a run writes; anything else is not a run's file (and would be drawn as '?').
-        if !matches!(cell(c_kind), "cav" | "human") {
-            return Err(bad(c_kind, "a vehicle kind (cav or human)"));
+            .into());
         }
+        let code = |codes: &mut Codes, cell: Option<&str>, column: &str| match cell {
+            Some(c) => codes
+                .code(c, column)
+                .map_err(|e| Stop::Other(format!("{name}: {e}"))),
+            None => Ok(NONE),
+        };
         rows.push(Row {
-            t,
-            id,
-            kind: kinds.code(cell(c_kind), "kind")?,
-            lane,
-            x,
-            v,
-            a,
-            mode: match c_mode {
-                Some(c) => modes.code(cell(c), "mode")?,
-                None => NONE,
-            },
-            pos,
-            regime: match c_regime {
-                Some(c) => regimes.code(cell(c), "regime")?,
-                None => NONE,
-            },
+            t: s.t_s,
+            id: s.id,
+            kind: code(&mut kinds, Some(s.kind), "kind")?,
+            lane: s.lane as u8,
+            x: s.x_m,
+            v: s.v_mps,
+            a: s.a_mps2.unwrap_or(0.0),
+            mode: code(&mut modes, s.mode, "mode")?,
+            pos: s.platoon_pos.map_or(0, |p| p.clamp(1, 254) as u8),
+            regime: code(&mut regimes, s.regime, "regime")?,
         });
-    }
+        Ok(())
+    })
+    .map_err(anyhow::Error::msg)?;
     if rows.is_empty() {
         bail!("{name} has no samples (was the trajectory window or x range outside the run?)");
     }
@@ -216,8 +143,8 @@ pub fn read_and_pack<R: Read>(input: R, path: &Path, road: &Road) -> Result<Pack
         kinds,
         modes,
         regimes,
-        c_pos.is_some(),
-        c_a.is_some(),
+        header.iter().any(|h| h == "platoon_pos"),
+        header.iter().any(|h| h == "a_mps2"),
         path,
     )
 }

@@ -8,6 +8,7 @@ use crate::detectors::from_csv;
 use crate::field_obs::{mean_over_runs, to_obs};
 use crate::Error;
 use platoonsim_field::{Obs, Placed, StationKind};
+use platoonsim_rundir::{DetectorKind, Lane, DETECTORS, SCENARIO_TOML};
 use platoonsim_scenario::bounded;
 use platoonsim_scenario::clock::{format_clock, parse_clock};
 use platoonsim_sim::DetectorRecord;
@@ -38,7 +39,7 @@ fn other(msg: String) -> Error {
 
 /// `run.clock_start` of a run's `scenario.toml`, s after midnight.
 pub fn clock_start(dir: &Path) -> Result<u32, Error> {
-    let path = dir.join("scenario.toml");
+    let path = dir.join(SCENARIO_TOML);
     let text = bounded::read_text(&path, platoonsim_scenario::limits::MAX_FILE_BYTES as u64)
         .map_err(|e| Error::io(&path, e))?;
     let value: toml::Value = toml::from_str(&text)
@@ -71,7 +72,7 @@ pub fn places(records: &[DetectorRecord]) -> Vec<Placed> {
         let e = by_name
             .entry(&r.detector)
             .or_insert((r.position_m, &r.kind, BTreeSet::new()));
-        if r.lane != "all" {
+        if !Lane::is_all(&r.lane) {
             e.2.insert(&r.lane);
         }
     }
@@ -80,11 +81,11 @@ pub fn places(records: &[DetectorRecord]) -> Vec<Placed> {
         .map(|(name, (x_m, kind, lanes))| Placed {
             station: name.to_string(),
             x_m,
-            kind: match kind {
-                "mainline" => StationKind::Mainline,
-                "on-ramp" => StationKind::OnRamp,
-                "off-ramp" => StationKind::OffRamp,
-                other => StationKind::Other(other.to_string()),
+            kind: match kind.parse() {
+                Ok(DetectorKind::Mainline) => StationKind::Mainline,
+                Ok(DetectorKind::OnRamp) => StationKind::OnRamp,
+                Ok(DetectorKind::OffRamp) => StationKind::OffRamp,
+                Err(_) => StationKind::Other(kind.to_string()),
             },
             lanes: lanes.len() as u32,
             name: name.to_string(),
@@ -97,15 +98,17 @@ pub fn places(records: &[DetectorRecord]) -> Vec<Placed> {
 /// Read one run directory.
 pub fn read_run(dir: &Path) -> Result<Run, Error> {
     let clock_start_s = clock_start(dir)?;
-    let path = dir.join("detectors.csv");
+    let path = DETECTORS.csv_in(dir);
     // Read whole: bounded like the viewer's tables (5 million detector records are ~500 MB).
     let bytes = match bounded::read(&path, 2 << 30) {
         Ok(b) => b,
-        Err(e) if dir.join("detectors.parquet").exists() => {
+        Err(e) if dir.join(DETECTORS.parquet).exists() => {
             return Err(other(format!(
-                "{}: {e}; this run wrote detectors.parquet, and compare reads detectors.csv: \
-                 run it again with --format csv",
-                path.display()
+                "{}: {e}; this run wrote {}, and compare reads {}: run it again with \
+                 --format csv",
+                path.display(),
+                DETECTORS.parquet,
+                DETECTORS.csv
             )))
         }
         Err(e) => return Err(Error::io(&path, e)),

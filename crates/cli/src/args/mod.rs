@@ -8,6 +8,8 @@ use platoonsim_sim::{Config, Recording, TrajectorySpec};
 use std::path::PathBuf;
 
 mod compare;
+#[cfg(test)]
+mod doc_flags;
 mod experiment;
 mod field;
 pub use compare::CompareArgs;
@@ -322,7 +324,7 @@ impl RunArgs {
             }
             Some((text, _)) => bail!(
                 "invalid --trajectory-x {text}: expected X0,X1 with X0 < X1 (metres, in the \
-                 coordinate of detectors.csv's position_m)"
+                 coordinate of the detector records' position_m)"
             ),
         };
         rec.trajectories = Some(TrajectorySpec {
@@ -387,7 +389,7 @@ impl TimeSpaceArgs {
             Ok(lane) if lane >= 1 => Ok(lane),
             _ => bail!(
                 "invalid --lane {}: lanes are numbered from 1 (the rightmost position), as in \
-                 trajectories.csv's lane column",
+                 the trajectory records' lane column",
                 self.lane
             ),
         }

@@ -83,7 +83,7 @@ pub fn calibrate(args: &CalibrateArgs, quiet: bool) -> Result<()> {
                 .with_context(|| format!("cannot read --field {}", f.display()))?;
         field.files.push((
             f.display().to_string(),
-            format!("{:016x}", platoonsim_experiment::hash::fnv1a64(&bytes)),
+            format!("{:016x}", platoonsim_runs::hash::fnv1a64(&bytes)),
         ));
     }
     let out = args.out.join(&params.name);

@@ -113,8 +113,10 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
     let sim = runs::read_runs(&args.runs)?;
     let Some(span) = compare::sim_span(&sim.obs) else {
         bail!(
-            "{}: detectors.csv has no cross-section rows (lane \"all\"): nothing to compare",
-            args.runs[0].display()
+            "{}: {} has no cross-section rows (lane \"{}\"): nothing to compare",
+            args.runs[0].display(),
+            platoonsim_rundir::DETECTORS.csv,
+            platoonsim_rundir::Lane::ALL
         );
     };
     let window = args.window(span)?;

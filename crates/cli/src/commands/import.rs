@@ -3,10 +3,10 @@
 //! checks that the file it made loads as a scenario, writes it and prints what was kept,
 //! reduced and dropped.
 
-use crate::atomic::write_atomic;
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
 use platoonsim_import::sumo;
+use platoonsim_runs::atomic::write_atomic;
 use platoonsim_scenario::Overrides;
 use std::path::PathBuf;
 
@@ -81,8 +81,8 @@ fn sumo_cmd(a: &SumoArgs) -> Result<()> {
         .chain(a.routes.iter().map(|p| p.as_path()))
         .chain(a.additional.iter().map(|p| p.as_path()))
         .collect();
-    crate::atomic::refuse_input(&a.out, &inputs)?;
-    crate::atomic::check_output(&a.out)?;
+    platoonsim_runs::atomic::refuse_input(&a.out, &inputs)?;
+    platoonsim_runs::atomic::check_output(&a.out)?;
     let imported = sumo::import(&opts)?;
     // The file must load as it will be run: relative paths from its own directory.
     let dir = a.out.parent().filter(|p| !p.as_os_str().is_empty());

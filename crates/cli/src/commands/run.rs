@@ -3,6 +3,8 @@
 use crate::args::RunArgs;
 use crate::{out_lock, output, progress, EXIT_COLLISIONS};
 use anyhow::{Context, Result};
+use platoonsim_rundir::{COLLISIONS, DETECTORS, TRAJECTORIES, TRIPS};
+use platoonsim_runs::run_dir;
 use std::process::ExitCode;
 
 /// Simulate and write the files; the exit code is [`EXIT_COLLISIONS`] if the run had
@@ -13,8 +15,8 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
     // Create and lock the directory before simulating, so that an unwritable one, or one
     // another process is writing, fails at once.
     let _lock = out_lock::lock(&args.out, out_lock::Share::Alone)?;
-    output::check_run_dir(&args.out)?;
-    output::remove_stale_tmp(&args.out)?;
+    run_dir::check_run_dir(&args.out)?;
+    run_dir::remove_stale_tmp(&args.out)?;
 
     let name = crate::messages::printable(&config.name);
     let bar = progress::sim_bar(config.duration_s, progress::wanted(quiet), &name);
@@ -22,13 +24,13 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
         .with_context(|| format!("simulation of scenario '{name}' failed"))?;
 
     let writing = std::time::Instant::now();
-    let mut written = output::write_run_files(&args.out, &config, &out, args.format)?;
+    let mut written = run_dir::write_run_files(&args.out, &config, &out, args.format.table())?;
     let view_file = args.out.join(super::view::DEFAULT_FILE);
     if args.view {
         super::view::write(&args.out, &view_file)?;
     }
     // Last, so that a directory with a summary.json holds a finished run.
-    written.push(output::write_summary(&args.out, &out)?);
+    written.push(run_dir::write_summary(&args.out, &out)?);
     let write_s = writing.elapsed().as_secs_f64();
     // The warning goes first, so that it is on stderr even if stdout is closed below.
     if let Some(first) = out.collision_events.first() {
@@ -38,7 +40,7 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
             out.summary.collisions,
             if out.summary.collisions == 1 { "" } else { "s" },
             output::describe_collision(first),
-            args.out.join(output::COLLISIONS_FILE).display()
+            args.out.join(COLLISIONS).display()
         );
     }
     let failed = out.summary.collisions > 0 && !args.allow_collisions;
@@ -46,16 +48,20 @@ pub fn run(args: &RunArgs, quiet: bool) -> Result<ExitCode> {
         let paragraph = output::paragraph(&config, &out.summary, &args.out);
         outln!(
             "{}",
-            paragraph.replace("detectors.csv", &format!("detectors.{}", args.format.ext()))
+            paragraph.replace(DETECTORS.csv, &DETECTORS.file(args.format.ext()))
         )?;
         let ext = args.format.ext();
         let mut extra = Vec::new();
         if let Some(trips) = &out.trips {
             let queued = out.queued.as_ref().map_or(0, Vec::len);
-            extra.push(format!("trips.{ext} ({} rows)", trips.len() + queued));
+            extra.push(format!(
+                "{} ({} rows)",
+                TRIPS.file(ext),
+                trips.len() + queued
+            ));
         }
         if let Some(rows) = &out.trajectories {
-            extra.push(format!("trajectories.{ext} ({} rows)", rows.len()));
+            extra.push(format!("{} ({} rows)", TRAJECTORIES.file(ext), rows.len()));
         }
         if !extra.is_empty() {
             let bytes: u64 = written

@@ -2,7 +2,6 @@
 //! the preset set marked.
 
 use crate::args::{ShowArgs, ShowFormat};
-use crate::output;
 use anyhow::Result;
 use platoonsim_scenario::preset::{self, Applied};
 
@@ -18,7 +17,7 @@ pub fn show(args: &ShowArgs) -> Result<()> {
             crate::messages::printable(&args.scenario.scenario),
             mark_preset(&platoonsim_scenario::to_toml(&config), &applied)
         ),
-        ShowFormat::Json => String::from_utf8(output::json(&config)?)?,
+        ShowFormat::Json => String::from_utf8(platoonsim_runs::run_dir::json(&config)?)?,
     };
     Ok(crate::stdout::print(&text)?)
 }

@@ -1,10 +1,10 @@
 //! `platoonsim sweep SPEC.toml`: a sweep of any scenario (see
-//! `platoonsim_experiment::sweep` and docs/sweeps.md).
+//! `platoonsim_runs::sweep` and docs/sweeps.md).
 
 use crate::{progress, EXIT_COLLISIONS};
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use platoonsim_experiment::sweep::{self, shard::Shard, spec::Spec};
+use platoonsim_runs::sweep::{self, shard::Shard, spec::Spec};
 use std::path::PathBuf;
 use std::process::ExitCode;
 

@@ -2,12 +2,9 @@
 //! module reads the file; the drawing is `platoonsim_plot::time_space`.
 
 use crate::args::TimeSpaceArgs;
-use crate::output::TRAJECTORY_HEADER;
-
-/// Columns of the first `trajectories.csv` format (before `platoon_pos` and `regime`).
-const TRAJECTORY_COLUMNS_V1: usize = 8;
 use anyhow::{bail, Context, Result};
 use platoonsim_plot::{TimeSpace, Track, TrackSample};
+use platoonsim_rundir::trajectory::read_samples;
 use std::collections::{BTreeSet, HashMap};
 use std::io::Read;
 use std::path::Path;
@@ -41,77 +38,20 @@ pub fn time_space(args: &TimeSpaceArgs) -> Result<()> {
 /// samples elsewhere are not kept, so memory follows the lane drawn). Errors name the file,
 /// and for a bad row the line and the column.
 pub fn read_tracks<R: Read>(input: R, path: &Path, lane: u32) -> Result<Vec<Track>> {
-    let name = path.display();
-    let mut reader = csv::ReaderBuilder::new()
-        .has_headers(true)
-        .flexible(true)
-        .from_reader(input);
-    let header = reader
-        .headers()
-        .with_context(|| format!("cannot read {name}"))?
-        .iter()
-        .collect::<Vec<_>>()
-        .join(",");
-    // Files written before the `platoon_pos` and `regime` columns were added are read too:
-    // the columns used here are the first eight.
-    let columns: Vec<&str> = header.split(',').collect();
-    let current: Vec<&str> = TRAJECTORY_HEADER.split(',').collect();
-    if columns != current && columns != current[..TRAJECTORY_COLUMNS_V1] {
-        bail!(
-            "{name} is not a trajectories.csv: its header is '{header}', expected \
-             '{TRAJECTORY_HEADER}' (write one with `platoonsim run ... --trajectories PERIOD_S`)"
-        );
-    }
+    let name = path.display().to_string();
     let mut tracks: Vec<Track> = vec![];
     // Vehicle id -> (index in `tracks`, whether its last sample was in the lane).
     let mut index: HashMap<u64, (usize, bool)> = HashMap::new();
     let mut lanes = BTreeSet::new();
     let mut in_lane = 0usize;
-    for record in reader.records() {
-        let record = record.with_context(|| format!("cannot read {name}"))?;
-        let line = record.position().map_or(0, |p| p.line());
-        if record.len() != columns.len() {
-            bail!(
-                "{name} line {line}: {} fields, expected {} ({header})",
-                record.len(),
-                columns.len()
-            );
-        }
-        let field = |col: usize| record[col].trim();
-        let bad = |col: usize, what: &str| {
-            anyhow::anyhow!(
-                "{name} line {line}, column {}: '{}' is not {what}",
-                columns[col],
-                field(col)
-            )
-        };
-        let num = |col: usize| -> Result<f64> {
-            field(col)
-                .parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| bad(col, "a finite number"))
-        };
-        let t_s = num(0)?;
-        let id: u64 = field(1)
-            .parse()
-            .map_err(|_| bad(1, "a vehicle id (a whole number)"))?;
-        let cav = match field(2) {
-            "cav" => true,
-            "human" => false,
-            _ => return Err(bad(2, "a vehicle kind (human or cav)")),
-        };
-        let row_lane: u32 = field(3)
-            .parse()
-            .ok()
-            .filter(|&l| l >= 1)
-            .ok_or_else(|| bad(3, "a lane number (1, 2, ...)"))?;
-        let x_m = num(4)?;
-        let v_mps = num(5)?;
-        num(6)?;
+    // The one reader of the file (`platoonsim_rundir::trajectory`, shared with the viewer):
+    // it checks the header and every cell; files of the first format (before `platoon_pos`
+    // and `regime`) read too.
+    read_samples(input, &name, |s| {
+        let row_lane = s.lane;
         lanes.insert(row_lane);
         let here = row_lane == lane;
-        let entry = index.get(&id).copied();
+        let entry = index.get(&s.id).copied();
         // Samples elsewhere are kept only to break a line that was in the lane.
         let keep = here || entry.is_some_and(|(_, was_here)| was_here);
         if keep {
@@ -119,22 +59,24 @@ pub fn read_tracks<R: Read>(input: R, path: &Path, lane: u32) -> Result<Vec<Trac
                 Some((i, _)) => i,
                 None => {
                     tracks.push(Track {
-                        cav,
+                        cav: s.is_cav(),
                         samples: vec![],
                     });
                     tracks.len() - 1
                 }
             };
             tracks[i].samples.push(TrackSample {
-                t_s,
+                t_s: s.t_s,
                 lane: row_lane,
-                x_m,
-                v_mps,
+                x_m: s.x_m,
+                v_mps: s.v_mps,
             });
-            index.insert(id, (i, here));
+            index.insert(s.id, (i, here));
         }
         in_lane += usize::from(here);
-    }
+        Ok(())
+    })
+    .map_err(anyhow::Error::msg)?;
     if in_lane == 0 {
         if lanes.is_empty() {
             bail!("{name} has no samples (only the header): nothing to draw");

@@ -2,12 +2,12 @@
 //! `platoonsim_view`; this module writes it atomically and reports what went in).
 
 use crate::args::ViewArgs;
-use crate::atomic::write_atomic;
 use anyhow::{Context, Result};
+use platoonsim_runs::atomic::write_atomic;
 use std::path::Path;
 
 /// The page's name inside the run directory when no --out is given.
-pub const DEFAULT_FILE: &str = "view.html";
+pub const DEFAULT_FILE: &str = platoonsim_rundir::VIEW;
 
 pub fn view(args: &ViewArgs) -> Result<()> {
     let file = args
@@ -24,14 +24,14 @@ pub fn view(args: &ViewArgs) -> Result<()> {
 pub fn write(dir: &Path, file: &Path) -> Result<()> {
     // The page must not replace one of the run's files it is built from (`--out
     // RUN/trajectories.csv` did), nor anything that is not a regular file.
-    let inputs: Vec<std::path::PathBuf> = crate::output::RUN_FILES
+    let inputs: Vec<std::path::PathBuf> = platoonsim_rundir::RUN_FILES
         .iter()
         .filter(|name| **name != DEFAULT_FILE)
         .map(|name| dir.join(name))
         .collect();
     let inputs: Vec<&Path> = inputs.iter().map(|p| p.as_path()).collect();
-    crate::atomic::refuse_input(file, &inputs)?;
-    crate::atomic::check_output(file)?;
+    platoonsim_runs::atomic::refuse_input(file, &inputs)?;
+    platoonsim_runs::atomic::check_output(file)?;
     let v = platoonsim_view::build(dir)?;
     write_atomic(file, v.html.as_bytes())
         .with_context(|| format!("cannot write {}", file.display()))?;

@@ -1,6 +1,7 @@
 //! The one-paragraph human summary printed after a run, and its number formatting.
 
 use crate::messages::printable;
+use platoonsim_rundir as rundir;
 use platoonsim_sim::{Config, Counted, Summary};
 use std::path::Path;
 
@@ -57,7 +58,11 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
          TET {tet:.1} s, TIT {tit:.1} s², minimum TTC {min_ttc}; largest deceleration \
          {max_decel:.2} m/s² over the whole run. \
          Collisions: {collisions}. {updates} vehicle updates in {wall:.2} s{rate}. \
-         Files in {dir}: summary.json, detectors.csv, scenario.json, scenario.toml{collisions_file}.",
+         Files in {dir}: {summary}, {detectors}, {scenario_json}, {scenario_toml}{collisions_file}.",
+        summary = rundir::SUMMARY,
+        detectors = rundir::DETECTORS.csv,
+        scenario_json = rundir::SCENARIO_JSON,
+        scenario_toml = rundir::SCENARIO_TOML,
         name = printable(&s.scenario),
         dur = s.duration_s,
         dt = s.dt_s,
@@ -99,9 +104,9 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
         max_decel = s.max_deceleration_mps2,
         collisions = s.collisions,
         collisions_file = if s.collisions > 0 {
-            ", collisions.csv"
+            format!(", {}", rundir::COLLISIONS)
         } else {
-            ""
+            String::new()
         },
         updates = s.vehicle_updates,
         wall = s.wall_seconds,

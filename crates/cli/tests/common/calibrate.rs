@@ -44,7 +44,7 @@ pub fn field_of(dir: &Path, keep: &dyn Fn(&str) -> bool) -> PathBuf {
         ]);
         assert!(o.status.success(), "{}", stderr(&o));
         let bytes = std::fs::read(out.join("detectors.csv")).unwrap();
-        let records = platoonsim_experiment::detectors::from_csv(&bytes).unwrap();
+        let records = platoonsim_runs::detectors::from_csv(&bytes).unwrap();
         runs.push(to_obs(&records, 7 * 3600));
     }
     let mut csv = String::from("station,time,flow_vph,speed_kmh,occupancy\n");

@@ -13,13 +13,13 @@
 //! variant does to safety.
 
 use super::{checks_md, find, run_cells, Check, Done, Experiment, Part, Report, Results, Settings};
-use crate::design::num;
-use crate::metric::Part as Share;
-use crate::runner::{Outcome, Runner};
 use crate::table::Col;
 use crate::table::{self, decimals, fixed, md_table, pm, signed, SummaryRow};
-use crate::Metric;
-use crate::{Cell, Error};
+use platoonsim_runs::design::num;
+use platoonsim_runs::metric::Part as Share;
+use platoonsim_runs::runner::{Outcome, Runner};
+use platoonsim_runs::Metric;
+use platoonsim_runs::{Cell, Error};
 use platoonsim_scenario::StrategyKind;
 use platoonsim_sim::Counted;
 

@@ -13,12 +13,12 @@ use super::{
     cell, checks_md, find, point, run_cells, sensitivity, Check, Done, Experiment, Figure, Part,
     Report, Results, Settings,
 };
-use crate::design::num;
-use crate::runner::{Outcome, Runner};
 use crate::table::{self, csv_num, fixed, md_table, signed, SummaryRow};
-use crate::Metric;
-use crate::{Cell, Error, VERSION};
 use platoonsim_plot::{line_chart, Chart, Series, Style};
+use platoonsim_runs::design::num;
+use platoonsim_runs::runner::{Outcome, Runner};
+use platoonsim_runs::Metric;
+use platoonsim_runs::{Cell, Error, VERSION};
 use platoonsim_scenario::StrategyKind;
 use std::path::Path;
 
@@ -485,8 +485,8 @@ pub(super) fn figure(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::record::Fields;
-    use crate::Labels;
+    use platoonsim_runs::record::Fields;
+    use platoonsim_runs::Labels;
     use platoonsim_sim::Config;
 
     /// Synthetic results: at every penetration and demand, pair (q, v) has ΔQ = dq(q, d) and

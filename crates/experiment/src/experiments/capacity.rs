@@ -18,12 +18,12 @@
 use super::{
     checks_md, find, grid, run_cells, Check, Done, Experiment, Part, Report, Results, Settings,
 };
-use crate::design::num;
-use crate::runner::{Outcome, Runner};
-use crate::sweep::spec::{Axis, Spec};
 use crate::table::{self, fixed, md_table, paper_comparison, pm, signed, SummaryRow};
-use crate::Metric;
-use crate::{Cell, Error};
+use platoonsim_runs::design::num;
+use platoonsim_runs::runner::{Outcome, Runner};
+use platoonsim_runs::sweep::spec::{Axis, Spec};
+use platoonsim_runs::Metric;
+use platoonsim_runs::{Cell, Error};
 use platoonsim_scenario::StrategyKind;
 use toml::Value;
 

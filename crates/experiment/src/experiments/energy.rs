@@ -8,13 +8,13 @@
 //! the CAVs while it costs the system more?
 
 use super::{find, grid, run_cells, Check, Done, Experiment, Part, Report, Results, Settings};
-use crate::design::{self, num, Cell};
-use crate::metric::{EnergyField, Metric};
-use crate::runner::{Outcome, Runner};
-use crate::sweep::spec::Spec;
 use crate::table::Col;
 use crate::table::{self, fixed, md_table, pm, signed, SummaryRow};
-use crate::Error;
+use platoonsim_runs::design::{self, num, Cell};
+use platoonsim_runs::metric::{EnergyField, Metric};
+use platoonsim_runs::runner::{Outcome, Runner};
+use platoonsim_runs::sweep::spec::Spec;
+use platoonsim_runs::Error;
 use platoonsim_scenario::StrategyKind;
 
 /// The homogeneous road's penetration (the paper's Table 3).

@@ -4,11 +4,11 @@
 //! paper's values as markers).
 
 use super::{capacity, find, sensitivity, Figure};
-use crate::design::num;
 use crate::table::{Col, SummaryRow};
-use crate::Metric;
-use crate::{Cell, Error};
 use platoonsim_plot::{line_chart, panels, Chart, Series, Style};
+use platoonsim_runs::design::num;
+use platoonsim_runs::Metric;
+use platoonsim_runs::{Cell, Error};
 use platoonsim_scenario::StrategyKind;
 use std::path::Path;
 

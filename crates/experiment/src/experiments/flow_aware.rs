@@ -4,12 +4,12 @@
 //! (`discharge_change_pct`) and the L̄ gain (`platoon_length_gain`).
 
 use super::{checks_md, find, run_cells, Check, Done, Experiment, Part, Report, Results, Settings};
-use crate::design::num;
-use crate::runner::{Outcome, Runner};
 use crate::table::Col;
 use crate::table::{self, md_table, pm, SummaryRow};
-use crate::Metric;
-use crate::{Cell, Error};
+use platoonsim_runs::design::num;
+use platoonsim_runs::runner::{Outcome, Runner};
+use platoonsim_runs::Metric;
+use platoonsim_runs::{Cell, Error};
 use platoonsim_scenario::StrategyKind;
 
 pub const PENETRATION: f64 = 0.5;

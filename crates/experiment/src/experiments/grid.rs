@@ -7,10 +7,10 @@
 //! scales) puts them in the spec before it is planned ([`levels`], [`fix`]).
 
 use super::Settings;
-use crate::design::Cell;
-use crate::sweep::plan;
-use crate::sweep::spec::{Axis, Spec};
-use crate::{Error, Labels};
+use platoonsim_runs::design::Cell;
+use platoonsim_runs::sweep::plan;
+use platoonsim_runs::sweep::spec::{Axis, Spec};
+use platoonsim_runs::{Error, Labels};
 use platoonsim_scenario::preset;
 use toml::Value;
 

@@ -23,14 +23,14 @@ pub mod sr99;
 pub mod sr99_demand;
 mod sr99_figures;
 
-use crate::atomic::write_atomic;
-use crate::design::{self, Cell, Labels, Point};
-use crate::runner::{self, Executor, Outcome, Runner};
-use crate::safety;
 use crate::table::{self, SummaryRow};
-use crate::{Error, VERSION};
+use platoonsim_runs::atomic::write_atomic;
+use platoonsim_runs::design::{self, Cell, Labels, Point};
+use platoonsim_runs::runner::{self, Executor, Outcome, Runner};
+use platoonsim_runs::safety;
 pub(crate) use platoonsim_runs::table::metric_label;
 pub use platoonsim_runs::Figure;
+use platoonsim_runs::{Error, VERSION};
 use platoonsim_scenario::{Preset, StrategyKind};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -275,7 +275,7 @@ pub struct Settings {
     /// `<out>/paper/<name>/`.
     pub preset: Preset,
     /// `runs` and `summary` as CSV or Parquet.
-    pub format: crate::columnar::Format,
+    pub format: platoonsim_runs::columnar::Format,
     /// The command line, for the provenance.
     pub arguments: Vec<String>,
 }
@@ -306,7 +306,7 @@ impl Default for Settings {
             energy_demands: sensitivity::DEMANDS.to_vec(),
             network_seeds: None,
             preset: Preset::Platform,
-            format: crate::columnar::Format::Csv,
+            format: platoonsim_runs::columnar::Format::Csv,
             arguments: Vec::new(),
         }
     }
@@ -439,10 +439,9 @@ pub fn run_experiment_with(
     let mut runner = Runner::new(dir.join("runs"), settings.jobs, bar.clone(), exec);
     runner.reuse = settings.reuse;
     if settings.progress_lines && !settings.progress {
-        runner.log = Some(std::sync::Arc::new(crate::progress::Lines::stderr(
-            name.as_str(),
-            name.total_runs(settings),
-        )));
+        runner.log = Some(std::sync::Arc::new(
+            platoonsim_runs::progress::Lines::stderr(name.as_str(), name.total_runs(settings)),
+        ));
     }
     runner.reuse_from = name
         .reuse_from
@@ -566,9 +565,9 @@ pub fn write_outputs(out: &ExperimentOutput) -> Result<(), Error> {
     let labels = table::label_columns(&out.cells);
     let format = out.settings.format;
     let runs = table::runs_csv(&out.cells, &out.outcomes)?;
-    crate::columnar::write_table(dir, "runs", &runs, &labels, format)?;
+    platoonsim_runs::columnar::write_table(dir, "runs", &runs, &labels, format)?;
     let summary = table::summary_csv(&out.cells, &out.rows)?;
-    crate::columnar::write_table(dir, "summary", &summary, &labels, format)?;
+    platoonsim_runs::columnar::write_table(dir, "summary", &summary, &labels, format)?;
     write_file(&dir.join("summary.md"), out.summary_md().as_bytes())?;
     let prov = Provenance {
         experiment: out.name.as_str(),

@@ -19,13 +19,13 @@
 //! per vehicle and severe brakings per 100 veh-km (spec 9.4) under PD.
 
 use super::{checks_md, find, run_cells, Check, Done, Experiment, Part, Report, Results, Settings};
-use crate::design::num;
-use crate::metric::Part as Share;
-use crate::runner::Runner;
 use crate::table::Col;
 use crate::table::{self, decimals, md_table, pm, signed, SummaryRow};
-use crate::Metric;
-use crate::{Cell, Error};
+use platoonsim_runs::design::num;
+use platoonsim_runs::metric::Part as Share;
+use platoonsim_runs::runner::Runner;
+use platoonsim_runs::Metric;
+use platoonsim_runs::{Cell, Error};
 use platoonsim_scenario::StrategyKind;
 use platoonsim_sim::Counted;
 

@@ -10,12 +10,12 @@ use super::{
     checks_md, find, metric_label, run_cells, Check, Done, Experiment, Part, Report, Results,
     Settings,
 };
-use crate::design::num;
-use crate::metric::{Metric as M, Part as Share};
-use crate::runner::{Outcome, Runner};
 use crate::table::Col;
 use crate::table::{self, decimals, fixed, md_table, paper_comparison, pm, signed, SummaryRow};
-use crate::{Cell, Error};
+use platoonsim_runs::design::num;
+use platoonsim_runs::metric::{Metric as M, Part as Share};
+use platoonsim_runs::runner::{Outcome, Runner};
+use platoonsim_runs::{Cell, Error};
 use platoonsim_scenario::StrategyKind;
 use platoonsim_sim::Counted;
 

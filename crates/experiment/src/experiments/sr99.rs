@@ -13,15 +13,15 @@ use super::{
     checks_md, find, grid, Check, Done, Experiment, Extra, Part, Report, Results, Settings,
 };
 use crate::corridor::{self, Criterion};
-use crate::design::{self, num, Cell, Labels};
-use crate::detectors::Scope;
-use crate::metric::{Field, Metric};
 use crate::paper;
-use crate::runner::Runner;
-use crate::sweep::spec::{Axis, Spec};
 use crate::table::Col;
 use crate::table::{self, fixed, md_table, pm, signed, SummaryRow};
-use crate::Error;
+use platoonsim_runs::design::{self, num, Cell, Labels};
+use platoonsim_runs::detectors::Scope;
+use platoonsim_runs::metric::{Field, Metric};
+use platoonsim_runs::runner::Runner;
+use platoonsim_runs::sweep::spec::{Axis, Spec};
+use platoonsim_runs::Error;
 use platoonsim_scenario::{demand_scale_set, demand_scales, load_with, Overrides, StrategyKind};
 use platoonsim_sim::{Config, DetectorRecord};
 

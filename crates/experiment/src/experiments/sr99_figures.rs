@@ -13,14 +13,14 @@
 use super::sr99::{self, Data, FIGURE_PENETRATION};
 use super::{find, Extra, Figure};
 use crate::corridor::{self, FLORIN_DETECTOR};
-use crate::design::num;
 use crate::paper;
 use crate::table::SummaryRow;
-use crate::Metric;
-use crate::{Cell, Error, Labels};
 use platoonsim_plot::{
     bar_panels, heatmap_panels, panels, Bars, Chart, Heatmap, PlotError, Series, Style,
 };
+use platoonsim_runs::design::num;
+use platoonsim_runs::Metric;
+use platoonsim_runs::{Cell, Error, Labels};
 use std::path::Path;
 
 fn plot_error(e: PlotError) -> Error {
@@ -283,9 +283,9 @@ fn bars(dir: &Path, cells: &[Cell], rows: &[SummaryRow]) -> Result<Figure, Error
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::record::Fields;
-    use crate::runner::Outcome;
     use crate::table;
+    use platoonsim_runs::record::Fields;
+    use platoonsim_runs::runner::Outcome;
     use platoonsim_sim::{Config, DetectorRecord};
 
     fn rec(det: &str, x: f64, lane: &str, t: f64, cavs: u64, speed: f64) -> DetectorRecord {

@@ -1,7 +1,10 @@
 //! `trips.csv`: one row per vehicle that entered the road, then one per vehicle still in an
 //! entrance queue at the end; the names of entrances and off-ramps it uses.
 
-use anyhow::{Context, Result};
+use crate::Error;
+use platoonsim_rundir::{
+    TRIPS, TRIP_ARRIVAL_COLUMN, TRIP_CLOCK_COLUMNS, TRIP_COLUMNS, TRIP_ENERGY_COLUMNS,
+};
 use platoonsim_sim::{Config, Queued, Trip, TripStatus};
 
 /// The name of entrance `origin` ([`Trip::origin`]): `mainline`, or the on-ramp's id as in the
@@ -29,38 +32,6 @@ pub fn off_ramp_name(config: &Config, k: usize) -> String {
         )
 }
 
-/// The columns of `trips.csv`, in order.
-pub const TRIP_COLUMNS: [&str; 15] = [
-    "id",
-    "kind",
-    "origin",
-    "destination",
-    "status",
-    "entered_s",
-    "depart_delay_s",
-    "left_s",
-    "travel_time_s",
-    "entry_x_m",
-    "last_x_m",
-    "lane_changes",
-    "max_platoon",
-    "max_platoon_tg2",
-    "measured",
-];
-
-/// The columns `trips.csv` gains with `energy.enabled` (docs/energy.md): fuel (L) of a
-/// combustion-engine vehicle, battery energy (kWh) of an electric one (the other empty), and
-/// the share of its energy without drag reduction that drafting saved (%).
-pub const TRIP_ENERGY_COLUMNS: [&str; 3] = ["fuel_l", "energy_kwh", "drag_saving_pct"];
-
-/// The column every `trips.csv` ends with (after the energy columns, if any): the vehicle's
-/// arrival at its entrance (s), `entered_s − depart_delay_s`.
-pub const TRIP_ARRIVAL_COLUMN: &str = "entrance_arrival_s";
-
-/// The columns appended last with `run.clock_start`: the clock times ("HH:MM:SS") of
-/// `entered_s` and `left_s`.
-pub const TRIP_CLOCK_COLUMNS: [&str; 2] = ["entered_clock", "left_clock"];
-
 /// `trips.csv`: the header, then one row per trip, then one per vehicle still queued at the
 /// end. `destination` is the off-ramp's id, `end` (the road end) or empty (still on the road
 /// or queued); `status` is `exited`, `missed_exit_then_end` (it chose an off-ramp, was not in
@@ -71,7 +42,8 @@ pub const TRIP_CLOCK_COLUMNS: [&str; 2] = ["entered_clock", "left_clock"];
 /// insertion on the road (the wait in the entrance queue, SUMO's `departDelay`), for a queued
 /// vehicle the wait so far. A queued vehicle never entered the road: `entered_s`,
 /// `travel_time_s` and the positions are empty, its counters 0 and `measured` false.
-pub fn trips_csv(config: &Config, trips: &[Trip], queued: &[Queued]) -> Result<Vec<u8>> {
+pub fn trips_csv(config: &Config, trips: &[Trip], queued: &[Queued]) -> Result<Vec<u8>, Error> {
+    let enc = |e: csv::Error| Error::Other(format!("cannot encode {}: {e}", TRIPS.csv));
     let mut w = csv::WriterBuilder::new()
         .has_headers(false)
         .from_writer(Vec::new());
@@ -85,7 +57,7 @@ pub fn trips_csv(config: &Config, trips: &[Trip], queued: &[Queued]) -> Result<V
     if clock.is_some() {
         header.extend(TRIP_CLOCK_COLUMNS);
     }
-    w.write_record(&header)?;
+    w.write_record(&header).map_err(enc)?;
     let num = |v: Option<f64>| v.map(|v| format!("{v}")).unwrap_or_default();
     let at = |t: Option<f64>| match (clock, t) {
         (Some(start), Some(t)) => platoonsim_scenario::clock::clock_at(start, t),
@@ -128,7 +100,7 @@ pub fn trips_csv(config: &Config, trips: &[Trip], queued: &[Queued]) -> Result<V
         if clock.is_some() {
             row.extend([at(Some(t.entered_s)), at(t.left_s)]);
         }
-        w.write_record(&row)?;
+        w.write_record(&row).map_err(enc)?;
     }
     for q in queued {
         let mut row = vec![
@@ -155,7 +127,8 @@ pub fn trips_csv(config: &Config, trips: &[Trip], queued: &[Queued]) -> Result<V
         if clock.is_some() {
             row.extend([String::new(), String::new()]);
         }
-        w.write_record(&row)?;
+        w.write_record(&row).map_err(enc)?;
     }
-    w.into_inner().context("cannot encode trips.csv")
+    w.into_inner()
+        .map_err(|e| Error::Other(format!("cannot encode {}: {e}", TRIPS.csv)))
 }
