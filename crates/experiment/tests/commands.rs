@@ -160,9 +160,19 @@ fn shock(seed: u64) -> (f64, f64) {
             .filter(|r| r.t_s == t && r.v_mps < 0.5 * v_up && r.x_m < X_STOP + 150.0)
             .collect();
         let tail = slow.iter().map(|r| r.x_m).fold(f64::INFINITY, f64::min);
-        let head = slow.iter().map(|r| r.x_m).fold(f64::NEG_INFINITY, f64::max);
         tails.push(tail);
-        k_c.push(slow.len() as f64 / (head - tail));
+        // The state behind the shock with q_c = 0 is the standing queue: its density from the
+        // vehicles that stand (below 1 m/s), not from the slow ones still braking into it.
+        let standing: Vec<f64> = slow
+            .iter()
+            .filter(|r| r.v_mps < 1.0)
+            .map(|r| r.x_m)
+            .collect();
+        let lo = standing.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = standing.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        if standing.len() >= 2 {
+            k_c.push((standing.len() - 1) as f64 / (hi - lo));
+        }
     }
     let k_c = k_c.iter().sum::<f64>() / k_c.len() as f64;
     // Least-squares slope of the tail position against time: the wave speed.
