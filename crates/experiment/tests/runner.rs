@@ -232,6 +232,10 @@ fn sensitivity_files_have_the_expected_shape() {
     assert!(fs::read(dir.join("sensitivity.png"))
         .unwrap()
         .starts_with(b"\x89PNG"));
+    // The drawn title names the model it ran under (here the default preset).
+    let svg = fs::read_to_string(dir.join("sensitivity.svg")).unwrap();
+    assert!(svg.contains("platform defaults"), "no model in the title");
+    assert!(!svg.contains("the paper&apos;s model") && !svg.contains("the paper's model"));
     // The Table 3 panels and the braking histogram (issue 29).
     assert_eq!(res.figures.len(), 2);
     assert_eq!(res.figures[1].stem, "braking");

@@ -55,7 +55,7 @@ pub(super) const EXPERIMENT: Experiment = Experiment {
 
 fn report(r: &Results<'_>) -> Result<Report, Error> {
     let (body, checks) = markdown(r.settings, r.cells, r.outcomes, r.rows);
-    let figures = super::figures::capacity(r.dir, r.cells, r.rows)?;
+    let figures = super::figures::capacity(r.dir, r.cells, r.rows, r.settings.preset)?;
     Ok(Report {
         body,
         checks,

@@ -9,7 +9,7 @@ use platoonsim_plot::{line_chart, panels, Chart, Series, Style};
 use platoonsim_runs::design::num;
 use platoonsim_runs::Metric;
 use platoonsim_runs::{Cell, Error};
-use platoonsim_scenario::StrategyKind;
+use platoonsim_scenario::{Preset, StrategyKind};
 use std::path::Path;
 
 /// A series' mean, low and high over the given cells (NaN where a cell is missing).
@@ -72,6 +72,15 @@ fn markers(name: &str, x: &[f64], y: Vec<f64>) -> Option<Series> {
     })
 }
 
+/// The model a figure ran under, for its drawn title: a chart seen on its own (a PNG passed
+/// around) must say whether it shows the paper's model or the platform's defaults.
+pub(super) fn model_suffix(preset: Preset) -> &'static str {
+    match preset {
+        Preset::Paper => " — the paper's model",
+        Preset::Platform => " — platform defaults",
+    }
+}
+
 pub(super) fn plot_error(e: platoonsim_plot::PlotError) -> Error {
     Error::Other(e.to_string())
 }
@@ -81,6 +90,7 @@ pub(super) fn capacity(
     dir: &Path,
     cells: &[Cell],
     rows: &[SummaryRow],
+    preset: Preset,
 ) -> Result<Vec<Figure>, Error> {
     let x: Vec<f64> = capacity::PENETRATIONS.iter().map(|p| 100.0 * p).collect();
     let pick = |k: StrategyKind| -> Vec<Option<usize>> {
@@ -113,7 +123,10 @@ pub(super) fn capacity(
     s.extend(markers("paper, baseline (text)", &x, paper(rows, &base, m)));
     s.extend(markers("paper, PD lane (text)", &x, paper(rows, &pd, m)));
     let chart = Chart {
-        title: "Capacity vs CAV penetration (paper Fig. 4)".into(),
+        title: format!(
+            "Capacity vs CAV penetration (paper Fig. 4){}",
+            model_suffix(preset)
+        ),
         x_label: "CAV penetration (%)".into(),
         y_label: "Capacity: highest 5-min discharge (veh/h/lane)".into(),
         series: s,
@@ -131,6 +144,7 @@ pub(super) fn sensitivity(
     dir: &Path,
     cells: &[Cell],
     rows: &[SummaryRow],
+    preset: Preset,
 ) -> Result<Vec<Figure>, Error> {
     let x: Vec<f64> = sensitivity::DEMANDS.to_vec();
     let pick = |k: StrategyKind| -> Vec<Option<usize>> {
@@ -197,7 +211,10 @@ pub(super) fn sensitivity(
     panels(
         &charts,
         2,
-        "Platoon organization at 50 % CAV vs demand (paper Table 3)",
+        &format!(
+            "Platoon organization at 50 % CAV vs demand (paper Table 3){}",
+            model_suffix(preset)
+        ),
         &dir.join("sensitivity"),
     )
     .map_err(plot_error)?;

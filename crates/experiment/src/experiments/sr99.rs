@@ -287,7 +287,7 @@ pub const QUICK_PENETRATIONS: [f64; 2] = [0.0, FIGURE_PENETRATION];
 
 fn report(r: &Results<'_>) -> Result<Report, Error> {
     let (body, checks) = markdown(r.settings, r.cells, r.rows);
-    let figures = super::sr99_figures::all(r.dir, r.cells, r.rows, r.extra)?;
+    let figures = super::sr99_figures::all(r.dir, r.cells, r.rows, r.extra, r.settings.preset)?;
     Ok(Report {
         body,
         checks,

@@ -10,6 +10,7 @@
 //!   the three strategies with 95 % whiskers; a second row with the paper's Table 4 values
 //!   (paper Fig. 8).
 
+use super::figures::model_suffix;
 use super::sr99::{self, Data, FIGURE_PENETRATION};
 use super::{find, Extra, Figure};
 use crate::corridor::{self, FLORIN_DETECTOR};
@@ -21,6 +22,7 @@ use platoonsim_plot::{
 use platoonsim_runs::design::num;
 use platoonsim_runs::Metric;
 use platoonsim_runs::{Cell, Error, Labels};
+use platoonsim_scenario::Preset;
 use std::path::Path;
 
 fn plot_error(e: PlotError) -> Error {
@@ -39,15 +41,17 @@ pub(super) fn all(
     cells: &[Cell],
     rows: &[SummaryRow],
     extra: &Extra,
+    preset: Preset,
 ) -> Result<Vec<Figure>, Error> {
+    let model = model_suffix(preset);
     let mut out = Vec::new();
     if let Extra::Sr99(d) = extra {
         if !d.figure_runs.is_empty() {
-            out.push(contours(dir, cells, d)?);
-            out.push(lanes(dir, cells, d)?);
+            out.push(contours(dir, cells, d, model)?);
+            out.push(lanes(dir, cells, d, model)?);
         }
     }
-    out.push(bars(dir, cells, rows)?);
+    out.push(bars(dir, cells, rows, model)?);
     Ok(out)
 }
 
@@ -71,10 +75,10 @@ pub fn contour_maps(cells: &[Cell], d: &Data) -> Vec<Heatmap> {
         .collect()
 }
 
-fn contours(dir: &Path, cells: &[Cell], d: &Data) -> Result<Figure, Error> {
+fn contours(dir: &Path, cells: &[Cell], d: &Data, model: &str) -> Result<Figure, Error> {
     let maps = contour_maps(cells, d);
     let title = format!(
-        "SR-99 speed contours, {} % CAV (seed {})",
+        "SR-99 speed contours, {} % CAV (seed {}){model}",
         num(100.0 * FIGURE_PENETRATION),
         d.figure_seed
     );
@@ -158,11 +162,11 @@ pub fn lane_charts(cells: &[Cell], d: &Data) -> Vec<Chart> {
     charts
 }
 
-fn lanes(dir: &Path, cells: &[Cell], d: &Data) -> Result<Figure, Error> {
+fn lanes(dir: &Path, cells: &[Cell], d: &Data, model: &str) -> Result<Figure, Error> {
     let charts = lane_charts(cells, d);
     let cols = d.figure_runs.len().max(1);
     let title = format!(
-        "SR-99 at {FLORIN_DETECTOR}, {} % CAV: CAV flow ratio and speed per lane",
+        "SR-99 at {FLORIN_DETECTOR}, {} % CAV: CAV flow ratio and speed per lane{model}",
         num(100.0 * FIGURE_PENETRATION)
     );
     panels(&charts, cols, &title, &dir.join("sr99_lanes")).map_err(plot_error)?;
@@ -262,12 +266,14 @@ pub fn bar_charts(cells: &[Cell], rows: &[SummaryRow]) -> Vec<Bars> {
     ours
 }
 
-fn bars(dir: &Path, cells: &[Cell], rows: &[SummaryRow]) -> Result<Figure, Error> {
+fn bars(dir: &Path, cells: &[Cell], rows: &[SummaryRow], model: &str) -> Result<Figure, Error> {
     let charts = bar_charts(cells, rows);
     bar_panels(
         &charts,
         3,
-        "SR-99: lane changes, platoon length and network discharge vs CAV penetration",
+        &format!(
+            "SR-99: lane changes, platoon length and network discharge vs CAV penetration{model}"
+        ),
         &dir.join("sr99_bars"),
     )
     .map_err(plot_error)?;
@@ -394,7 +400,7 @@ mod tests {
 
         let dir = std::env::temp_dir().join(format!("platoonsim-sr99fig-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
-        let figs = all(&dir, &cells, &rows, &Extra::Sr99(data)).unwrap();
+        let figs = all(&dir, &cells, &rows, &Extra::Sr99(data), Preset::Paper).unwrap();
         let stems: Vec<&str> = figs.iter().map(|f| f.stem.as_str()).collect();
         assert_eq!(stems, ["sr99_contours", "sr99_lanes", "sr99_bars"]);
         assert!(figs[0].title.contains("is index 2"));
@@ -403,6 +409,12 @@ mod tests {
                 let f = dir.join(format!("{stem}.{ext}"));
                 assert!(std::fs::metadata(&f).unwrap().len() > 1000, "{f:?}");
             }
+            // Each drawn title names the model.
+            let svg = std::fs::read_to_string(dir.join(format!("{stem}.svg"))).unwrap();
+            assert!(
+                svg.contains("the paper&apos;s model") || svg.contains("the paper's model"),
+                "{stem}"
+            );
         }
         let _ = std::fs::remove_dir_all(&dir);
     }
