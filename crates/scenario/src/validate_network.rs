@@ -7,12 +7,15 @@ use super::{quoted, Checker, Num};
 use crate::demand_scales;
 use crate::limits;
 use crate::network::{
-    default_off_id, default_on_id, engine_name, offset_series, offset_step, through_lanes,
-    valid_id, RampStations, Spacing, Stretch, MAX_LANE_COUNT,
+    offset_series, offset_step, through_lanes, RampStations, Spacing, Stretch, MAX_LANE_COUNT,
 };
 use crate::raw::{num, RawNetwork};
 use platoonsim_sim::config::{Network, OffRamp, OnRamp};
 use std::path::Path;
+
+#[path = "validate_ramps.rs"]
+mod ramps;
+use ramps::{off_ramps, on_ramps, ramp_ids};
 
 /// Defaults of the optional `[network]` keys.
 pub mod defaults {
@@ -162,7 +165,74 @@ pub(super) fn check_network(
     penetration: f64,
     base_dir: Option<&Path>,
 ) -> Checked {
-    // --- bounds
+    // The sections in the order their problems are reported.
+    let b = bounds(c, n);
+    let origin = b.start.unwrap_or(f64::NAN);
+    let length = b.span.map(|(s, e)| e - s);
+    let d = demand(c, n, penetration, base_dir);
+    let (ramp_speed, lane_caps) = speeds(c, n);
+    let stretches = stretches(c, n, &b, origin);
+    let (lanes, through) = through_lanes(&stretches);
+    let ids = ramp_ids(c, n);
+    let n_on = n.on_ramps.len();
+    let on_ramps = on_ramps(c, n, &ids[..n_on], &b, origin, &d);
+    let off_ramps = off_ramps(c, n, &ids[n_on..], &b, origin, &d);
+    let spacing = detector_spacing(c, n, length);
+    let (mainline, on_ramps, off_ramps, interval_s) =
+        shifted(c, &d, d.mainline.clone(), on_ramps, off_ramps);
+
+    Checked {
+        lanes,
+        origin,
+        end: b.span.map(|(_, e)| e),
+        length,
+        network: Network {
+            origin_m: origin,
+            through_lanes: through,
+            on_ramps,
+            off_ramps,
+            interval_s,
+            mainline_vph: mainline,
+            demand_scale: d.base.v * d.scale.v,
+            ramp_speed_kmh: ramp_speed.v,
+            lane_speed_limits_kmh: lane_caps,
+            cross_lane_friction: n.cross_lane_friction,
+        },
+        on_ids: ids[..n_on].iter().map(|(_, id, _)| id.clone()).collect(),
+        off_ids: ids[n_on..].iter().map(|(_, id, _)| id.clone()).collect(),
+        stations: super::stations::check(c, n),
+        spacing,
+    }
+}
+
+/// The corridor's bounds as checked: the start and end that are valid positions, and the
+/// span if the end also lies after the start (and not too far).
+struct Bounds {
+    start: Option<f64>,
+    end: Option<f64>,
+    span: Option<(f64, f64)>,
+}
+
+impl Bounds {
+    /// Report a position `x` outside the corridor (nothing to check without a valid span).
+    fn inside(&self, c: &mut Checker, field: &str, x: f64) {
+        if let Some((s, e)) = self.span {
+            c.value(
+                field,
+                x,
+                x > s && x < e,
+                &format!(
+                    "must lie inside the corridor (network.start_m, network.end_m) = ({}, {})",
+                    num(s),
+                    num(e)
+                ),
+            );
+        }
+    }
+}
+
+/// `network.start_m` and `network.end_m`.
+fn bounds(c: &mut Checker, n: &RawNetwork) -> Bounds {
     let start = position(
         c,
         "network.start_m",
@@ -175,7 +245,7 @@ pub(super) fn check_network(
         n.end_m,
         "the corridor coordinate of the road end (m), > network.start_m",
     );
-    let bounds = match (start, end) {
+    let span = match (start, end) {
         (Some(s), Some(e)) if e > s + limits::MAX_LENGTH_M => {
             c.value(
                 "network.end_m",
@@ -202,24 +272,25 @@ pub(super) fn check_network(
         }
         _ => None,
     };
-    let origin = start.unwrap_or(f64::NAN);
-    let length = bounds.map(|(s, e)| e - s);
-    let inside = |c: &mut Checker, field: &str, x: f64| {
-        if let Some((s, e)) = bounds {
-            c.value(
-                field,
-                x,
-                x > s && x < e,
-                &format!(
-                    "must lie inside the corridor (network.start_m, network.end_m) = ({}, {})",
-                    num(s),
-                    num(e)
-                ),
-            );
-        }
-    };
+    Bounds { start, end, span }
+}
 
-    // --- demand
+/// What the demand keys give: the interval, the multipliers, the mainline series and its
+/// length, the on-ramp demand cap, and the offset with the step it refines the series to.
+struct Demand {
+    interval: Num,
+    base: Num,
+    scale: Num,
+    ramp_cap: (f64, String),
+    mainline: Vec<f64>,
+    intervals: Option<usize>,
+    offset: Num,
+    shift: Option<f64>,
+}
+
+/// The demand keys: interval, multipliers (the scale from the named table at this
+/// penetration), the mainline series and the time offset.
+fn demand(c: &mut Checker, n: &RawNetwork, penetration: f64, base_dir: Option<&Path>) -> Demand {
     let interval = c.opt(n.interval_s, defaults::INTERVAL_S);
     c.check(
         "network.interval_s",
@@ -297,6 +368,20 @@ pub(super) fn check_network(
     let intervals = (!mainline.is_empty()).then_some(mainline.len());
     let offset = c.opt(n.demand_offset_s, defaults::DEMAND_OFFSET_S);
     let shift = demand_offset(c, offset, interval, intervals);
+    Demand {
+        interval,
+        base,
+        scale,
+        ramp_cap,
+        mainline,
+        intervals,
+        offset,
+        shift,
+    }
+}
+
+/// The ramp speed, the lane-based desired-speed caps and the cross-lane friction (spec 2.7).
+fn speeds(c: &mut Checker, n: &RawNetwork) -> (Num, Vec<f64>) {
     let speed_cap = limits::MAX_SPEED_THRESHOLD_KMH;
     let ramp_speed = c.opt(n.ramp_speed_kmh, defaults::RAMP_SPEED_KMH);
     c.check(
@@ -337,8 +422,13 @@ pub(super) fn check_network(
             "must be in (0, 1] (1 = off)",
         );
     }
+    (ramp_speed, lane_caps)
+}
 
-    // --- lane stretches: they tile [start_m, end_m) in order
+/// `[[network.lanes]]`: the stretches tile [start_m, end_m) in order; their engine
+/// coordinates (x − `origin`). Also the entry counts of the three lists.
+fn stretches(c: &mut Checker, n: &RawNetwork, b: &Bounds, origin: f64) -> Vec<Stretch> {
+    let (start, end) = (b.start, b.end);
     if n.lanes.is_empty() {
         c.push(
             "network.lanes",
@@ -425,169 +515,12 @@ pub(super) fn check_network(
             );
         }
     }
-    let (lanes, through) = through_lanes(&stretches);
+    stretches
+}
 
-    // --- ramp ids: unique across on- and off-ramps (they name the detectors)
-    let mut ids: Vec<(String, String, bool)> = Vec::new(); // (field, id, defaulted)
-    for (i, r) in n.on_ramps.iter().enumerate() {
-        ids.push(match &r.id {
-            Some(id) => (format!("network.on_ramps[{i}].id"), id.clone(), false),
-            None => (format!("network.on_ramps[{i}].id"), default_on_id(i), true),
-        });
-    }
-    for (i, r) in n.off_ramps.iter().enumerate() {
-        ids.push(match &r.id {
-            Some(id) => (format!("network.off_ramps[{i}].id"), id.clone(), false),
-            None => (
-                format!("network.off_ramps[{i}].id"),
-                default_off_id(i),
-                true,
-            ),
-        });
-    }
-    for (k, (field, id, defaulted)) in ids.iter().enumerate() {
-        let shown = if *defaulted {
-            format!("{} (default)", quoted(id))
-        } else {
-            quoted(id)
-        };
-        if !valid_id(id) {
-            c.push(
-                field,
-                shown,
-                "must be a non-empty id of letters, digits, '_', '-' and '.' (it names the ramp's detectors)",
-            );
-        } else if let Some((other, _, _)) = ids[..k].iter().find(|(_, o, _)| o == id) {
-            c.push(
-                field,
-                shown,
-                format!("duplicates {other}; ramp ids must be unique (they name the detectors)"),
-            );
-        }
-    }
-    let name_of = |c: &mut Checker, field: String, name: &Option<String>, id: &str| match name {
-        Some(s) if s.trim().is_empty() => {
-            c.push(field, quoted(s), "must be a non-empty string");
-            s.clone()
-        }
-        Some(s) => s.clone(),
-        None => id.to_string(),
-    };
-
-    // --- on-ramps
-    let mut on_ramps = Vec::with_capacity(n.on_ramps.len());
-    let mut prev_x: Option<f64> = None;
-    for (i, r) in n.on_ramps.iter().enumerate() {
-        let at = |k: &str| format!("network.on_ramps[{i}].{k}");
-        let id = &ids[i].1;
-        let name = name_of(c, at("name"), &r.name, id);
-        let x = position(
-            c,
-            &at("x_m"),
-            r.x_m,
-            "the merge point (m, corridor coordinate)",
-        );
-        if let Some(x) = x {
-            inside(c, &at("x_m"), x);
-            if let Some(p) = prev_x {
-                c.value(
-                    &at("x_m"),
-                    x,
-                    x > p,
-                    &format!(
-                        "must be > network.on_ramps[{}].x_m = {} (on-ramps are listed in downstream order)",
-                        i - 1,
-                        num(p)
-                    ),
-                );
-            }
-            prev_x = Some(x);
-        }
-        let ramp_m = limits::MAX_RAMP_LENGTH_M;
-        let ramp_allowed = format!("must be in [0, {}] m", num(ramp_m));
-        let accel = c.opt(r.accel_lane_m, defaults::ACCEL_LANE_M);
-        c.check(
-            &at("accel_lane_m"),
-            accel,
-            (0.0..=ramp_m).contains(&accel.v),
-            &ramp_allowed,
-        );
-        let ramp_len = c.req(
-            &at("ramp_length_m"),
-            r.ramp_length_m,
-            "the ramp roadway length upstream of the merge point (m)",
-        );
-        if let Some(l) = ramp_len {
-            c.check(
-                &at("ramp_length_m"),
-                l,
-                (0.0..=ramp_m).contains(&l.v),
-                &ramp_allowed,
-            );
-        }
-        let demand = series(
-            c,
-            &at("demand_vph"),
-            &r.demand_vph,
-            (ramp_cap.0, &ramp_cap.1),
-            intervals,
-            "the ramp demand per interval (veh/h)",
-        );
-        on_ramps.push(OnRamp {
-            name: engine_name(id, &name),
-            x_m: x.map_or(f64::NAN, |x| x - origin),
-            accel_lane_m: accel.v,
-            ramp_length_m: ramp_len.map_or(f64::NAN, |n: Num| n.v),
-            demand_vph: demand,
-        });
-    }
-
-    // --- off-ramps
-    let mut off_ramps = Vec::with_capacity(n.off_ramps.len());
-    let mut prev_x: Option<f64> = None;
-    let n_on = n.on_ramps.len();
-    for (i, r) in n.off_ramps.iter().enumerate() {
-        let at = |k: &str| format!("network.off_ramps[{i}].{k}");
-        let id = &ids[n_on + i].1;
-        let name = name_of(c, at("name"), &r.name, id);
-        let x = position(
-            c,
-            &at("x_m"),
-            r.x_m,
-            "the diverge point (m, corridor coordinate)",
-        );
-        if let Some(x) = x {
-            inside(c, &at("x_m"), x);
-            if let Some(p) = prev_x {
-                c.value(
-                    &at("x_m"),
-                    x,
-                    x > p,
-                    &format!(
-                        "must be > network.off_ramps[{}].x_m = {} (off-ramps are listed in downstream order)",
-                        i - 1,
-                        num(p)
-                    ),
-                );
-            }
-            prev_x = Some(x);
-        }
-        let fraction = series(
-            c,
-            &at("exit_fraction"),
-            &r.exit_fraction,
-            (1.0, ""),
-            intervals,
-            "the share of arriving mainline vehicles that exit here, per interval, in [0, 1]",
-        );
-        off_ramps.push(OffRamp {
-            name: engine_name(id, &name),
-            x_m: x.map_or(f64::NAN, |x| x - origin),
-            exit_fraction: fraction,
-        });
-    }
-
-    // --- detector spacing
+/// `[network.detectors]`: the spacing of the generated detectors (`length`: the corridor's,
+/// if its bounds are valid).
+fn detector_spacing(c: &mut Checker, n: &RawNetwork, length: Option<f64>) -> Spacing {
     let d = &n.detectors;
     let spacing_default = Spacing::default();
     let spacing = |c: &mut Checker, field: &str, n: Num| {
@@ -622,9 +555,23 @@ pub(super) fn check_network(
             c.positive("network.detectors.before_end_m", before_end);
         }
     }
+    Spacing {
+        upstream_of_ramps_m: up.v,
+        downstream_of_onramps_m: down.v,
+        before_end_m: before_end.v,
+    }
+}
 
-    // --- demand time offset: every series is read at clock + offset
-    let (mut mainline, mut on_ramps, mut off_ramps) = (mainline, on_ramps, off_ramps);
+/// The demand time offset: every series is read at clock + offset, refined to the offset's
+/// step if it is not a multiple of the interval. Returns the series and their interval.
+fn shifted(
+    c: &mut Checker,
+    d: &Demand,
+    mut mainline: Vec<f64>,
+    mut on_ramps: Vec<OnRamp>,
+    mut off_ramps: Vec<OffRamp>,
+) -> (Vec<f64>, Vec<OnRamp>, Vec<OffRamp>, f64) {
+    let (interval, offset, shift) = (d.interval, d.offset, d.shift);
     let mut interval_s = interval.v;
     // The offset may refine the series to a shorter step (their common divisor): bound the
     // values that would make before making them.
@@ -659,31 +606,5 @@ pub(super) fn check_network(
             .for_each(|r| r.exit_fraction = f(&r.exit_fraction));
         interval_s = step;
     }
-
-    Checked {
-        lanes,
-        origin,
-        end: bounds.map(|(_, e)| e),
-        length,
-        network: Network {
-            origin_m: origin,
-            through_lanes: through,
-            on_ramps,
-            off_ramps,
-            interval_s,
-            mainline_vph: mainline,
-            demand_scale: base.v * scale.v,
-            ramp_speed_kmh: ramp_speed.v,
-            lane_speed_limits_kmh: lane_caps,
-            cross_lane_friction: n.cross_lane_friction,
-        },
-        on_ids: ids[..n_on].iter().map(|(_, id, _)| id.clone()).collect(),
-        off_ids: ids[n_on..].iter().map(|(_, id, _)| id.clone()).collect(),
-        stations: super::stations::check(c, n),
-        spacing: Spacing {
-            upstream_of_ramps_m: up.v,
-            downstream_of_onramps_m: down.v,
-            before_end_m: before_end.v,
-        },
-    }
+    (mainline, on_ramps, off_ramps, interval_s)
 }

@@ -1,0 +1,199 @@
+//! Validation of the ramps of `[network]`: their ids (unique across on- and off-ramps, they
+//! name the detectors), names, merge and diverge points, acceleration lanes and demand
+//! series. Split from `validate_network.rs`, whose bounds and demand they are checked against.
+
+use super::{defaults, position, series, Bounds, Demand};
+use crate::limits;
+use crate::network::{default_off_id, default_on_id, engine_name, valid_id};
+use crate::raw::{num, RawNetwork};
+use crate::validate::{quoted, Checker, Num};
+use platoonsim_sim::config::{OffRamp, OnRamp};
+
+/// The ramp ids, on-ramps first: (field, id, defaulted), unique across on- and off-ramps
+/// (they name the detectors).
+pub(super) fn ramp_ids(c: &mut Checker, n: &RawNetwork) -> Vec<(String, String, bool)> {
+    let mut ids: Vec<(String, String, bool)> = Vec::new(); // (field, id, defaulted)
+    for (i, r) in n.on_ramps.iter().enumerate() {
+        ids.push(match &r.id {
+            Some(id) => (format!("network.on_ramps[{i}].id"), id.clone(), false),
+            None => (format!("network.on_ramps[{i}].id"), default_on_id(i), true),
+        });
+    }
+    for (i, r) in n.off_ramps.iter().enumerate() {
+        ids.push(match &r.id {
+            Some(id) => (format!("network.off_ramps[{i}].id"), id.clone(), false),
+            None => (
+                format!("network.off_ramps[{i}].id"),
+                default_off_id(i),
+                true,
+            ),
+        });
+    }
+    for (k, (field, id, defaulted)) in ids.iter().enumerate() {
+        let shown = if *defaulted {
+            format!("{} (default)", quoted(id))
+        } else {
+            quoted(id)
+        };
+        if !valid_id(id) {
+            c.push(
+                field,
+                shown,
+                "must be a non-empty id of letters, digits, '_', '-' and '.' (it names the ramp's detectors)",
+            );
+        } else if let Some((other, _, _)) = ids[..k].iter().find(|(_, o, _)| o == id) {
+            c.push(
+                field,
+                shown,
+                format!("duplicates {other}; ramp ids must be unique (they name the detectors)"),
+            );
+        }
+    }
+    ids
+}
+
+/// A ramp's display name: its `name`, which must not be blank, or its id.
+fn ramp_name(c: &mut Checker, field: String, name: &Option<String>, id: &str) -> String {
+    match name {
+        Some(s) if s.trim().is_empty() => {
+            c.push(field, quoted(s), "must be a non-empty string");
+            s.clone()
+        }
+        Some(s) => s.clone(),
+        None => id.to_string(),
+    }
+}
+
+/// `[[network.on_ramps]]`, in downstream order, with their demand series (`ids`: theirs).
+pub(super) fn on_ramps(
+    c: &mut Checker,
+    n: &RawNetwork,
+    ids: &[(String, String, bool)],
+    b: &Bounds,
+    origin: f64,
+    d: &Demand,
+) -> Vec<OnRamp> {
+    let (ramp_cap, intervals) = (&d.ramp_cap, d.intervals);
+    let mut on_ramps = Vec::with_capacity(n.on_ramps.len());
+    let mut prev_x: Option<f64> = None;
+    for (i, r) in n.on_ramps.iter().enumerate() {
+        let at = |k: &str| format!("network.on_ramps[{i}].{k}");
+        let id = &ids[i].1;
+        let name = ramp_name(c, at("name"), &r.name, id);
+        let x = position(
+            c,
+            &at("x_m"),
+            r.x_m,
+            "the merge point (m, corridor coordinate)",
+        );
+        if let Some(x) = x {
+            b.inside(c, &at("x_m"), x);
+            if let Some(p) = prev_x {
+                c.value(
+                    &at("x_m"),
+                    x,
+                    x > p,
+                    &format!(
+                        "must be > network.on_ramps[{}].x_m = {} (on-ramps are listed in downstream order)",
+                        i - 1,
+                        num(p)
+                    ),
+                );
+            }
+            prev_x = Some(x);
+        }
+        let ramp_m = limits::MAX_RAMP_LENGTH_M;
+        let ramp_allowed = format!("must be in [0, {}] m", num(ramp_m));
+        let accel = c.opt(r.accel_lane_m, defaults::ACCEL_LANE_M);
+        c.check(
+            &at("accel_lane_m"),
+            accel,
+            (0.0..=ramp_m).contains(&accel.v),
+            &ramp_allowed,
+        );
+        let ramp_len = c.req(
+            &at("ramp_length_m"),
+            r.ramp_length_m,
+            "the ramp roadway length upstream of the merge point (m)",
+        );
+        if let Some(l) = ramp_len {
+            c.check(
+                &at("ramp_length_m"),
+                l,
+                (0.0..=ramp_m).contains(&l.v),
+                &ramp_allowed,
+            );
+        }
+        let demand = series(
+            c,
+            &at("demand_vph"),
+            &r.demand_vph,
+            (ramp_cap.0, &ramp_cap.1),
+            intervals,
+            "the ramp demand per interval (veh/h)",
+        );
+        on_ramps.push(OnRamp {
+            name: engine_name(id, &name),
+            x_m: x.map_or(f64::NAN, |x| x - origin),
+            accel_lane_m: accel.v,
+            ramp_length_m: ramp_len.map_or(f64::NAN, |n: Num| n.v),
+            demand_vph: demand,
+        });
+    }
+    on_ramps
+}
+
+/// `[[network.off_ramps]]`, in downstream order, with their exit fractions (`ids`: theirs).
+pub(super) fn off_ramps(
+    c: &mut Checker,
+    n: &RawNetwork,
+    ids: &[(String, String, bool)],
+    b: &Bounds,
+    origin: f64,
+    d: &Demand,
+) -> Vec<OffRamp> {
+    let intervals = d.intervals;
+    let mut off_ramps = Vec::with_capacity(n.off_ramps.len());
+    let mut prev_x: Option<f64> = None;
+    for (i, r) in n.off_ramps.iter().enumerate() {
+        let at = |k: &str| format!("network.off_ramps[{i}].{k}");
+        let id = &ids[i].1;
+        let name = ramp_name(c, at("name"), &r.name, id);
+        let x = position(
+            c,
+            &at("x_m"),
+            r.x_m,
+            "the diverge point (m, corridor coordinate)",
+        );
+        if let Some(x) = x {
+            b.inside(c, &at("x_m"), x);
+            if let Some(p) = prev_x {
+                c.value(
+                    &at("x_m"),
+                    x,
+                    x > p,
+                    &format!(
+                        "must be > network.off_ramps[{}].x_m = {} (off-ramps are listed in downstream order)",
+                        i - 1,
+                        num(p)
+                    ),
+                );
+            }
+            prev_x = Some(x);
+        }
+        let fraction = series(
+            c,
+            &at("exit_fraction"),
+            &r.exit_fraction,
+            (1.0, ""),
+            intervals,
+            "the share of arriving mainline vehicles that exit here, per interval, in [0, 1]",
+        );
+        off_ramps.push(OffRamp {
+            name: engine_name(id, &name),
+            x_m: x.map_or(f64::NAN, |x| x - origin),
+            exit_fraction: fraction,
+        });
+    }
+    off_ramps
+}
