@@ -23,6 +23,7 @@ import numpy as np
 
 from ._platoonsim import (
     BUILTIN_SCENARIOS,
+    MAX_WORLDS,
     MODE_LABELS,
     REGIME_LABELS,
     STRATEGIES,
@@ -46,6 +47,7 @@ __all__ = [
     "KINDS",
     "STRATEGIES",
     "BUILTIN_SCENARIOS",
+    "MAX_WORLDS",
     "__version__",
 ]
 

@@ -40,7 +40,7 @@ from gymnasium import spaces
 from gymnasium.vector import AutoresetMode, VectorEnv
 
 import platoonsim
-from platoonsim.vector import world_seeds
+from platoonsim.vector import check_num_envs, world_seeds
 
 FEATURES = 6
 
@@ -205,8 +205,7 @@ class CavControlVecEnv(VectorEnv):
     metadata = {"render_modes": [], "autoreset_mode": AutoresetMode.NEXT_STEP}
 
     def __init__(self, num_envs: int = 1, threads: int | None = None, **kwargs: Any) -> None:
-        if isinstance(num_envs, bool) or not isinstance(num_envs, (int, np.integer)) or num_envs < 1:
-            raise ValueError(f"num_envs = {num_envs!r}: must be an int of at least 1")
+        check_num_envs(num_envs)
         self.task = _Task(**kwargs)
         self.num_envs = int(num_envs)
         self.threads = threads

@@ -31,6 +31,20 @@ import platoonsim
 from platoonsim.gym import ORGANIZE, PlatoonEnv, observation, reward
 
 
+def check_num_envs(num_envs: Any) -> None:
+    """``num_envs`` of a vector environment: an int from 1 to ``platoonsim.MAX_WORLDS`` (the
+    worlds one native batch steps), refused at construction rather than at the first reset."""
+    if (
+        isinstance(num_envs, bool)
+        or not isinstance(num_envs, (int, np.integer))
+        or not 1 <= num_envs <= platoonsim.MAX_WORLDS
+    ):
+        raise ValueError(
+            f"num_envs = {num_envs!r}: must be an int from 1 to {platoonsim.MAX_WORLDS} "
+            "(the worlds one batch steps)"
+        )
+
+
 def world_seeds(
     seed: int | Sequence[int] | None, n: int, rng: np.random.Generator | None
 ) -> tuple[np.random.Generator, np.ndarray]:
@@ -57,8 +71,7 @@ class PlatoonVecEnv(VectorEnv):
     metadata = {"render_modes": [], "autoreset_mode": AutoresetMode.NEXT_STEP}
 
     def __init__(self, num_envs: int = 1, threads: int | None = None, **kwargs: Any) -> None:
-        if isinstance(num_envs, bool) or not isinstance(num_envs, (int, np.integer)) or num_envs < 1:
-            raise ValueError(f"num_envs = {num_envs!r}: must be an int of at least 1")
+        check_num_envs(num_envs)
         # The single environment checks the parameters and holds the episode's settings.
         self.single = PlatoonEnv(**kwargs)
         if self.single.gate != "native":

@@ -75,3 +75,16 @@ def test_bad_actions_and_seeds_are_rejected():
         env.reset(seed=[1, 2, 3])
     with pytest.raises(ValueError, match="num_envs"):
         PlatoonVecEnv(num_envs=0)
+
+
+def test_too_many_worlds_are_refused_at_construction():
+    # One native batch steps at most MAX_WORLDS worlds: more are refused when the vector
+    # environment is made, not at its first reset (issue 48, D16).
+    from platoonsim.control import CavControlVecEnv
+
+    assert platoonsim.MAX_WORLDS == 4096
+    for make in (PlatoonVecEnv, CavControlVecEnv):
+        with pytest.raises(ValueError, match="num_envs = 5000: must be an int from 1 to 4096"):
+            make(num_envs=5000)
+    with pytest.raises(ValueError, match="num_envs = 5000"):
+        gym.make_vec("platoonsim/Platoon-v0", num_envs=5000, **KW)

@@ -44,6 +44,7 @@ fn _platoonsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("CommandError", m.py().get_type::<CommandError>())?;
     m.add("SimulationError", m.py().get_type::<SimulationError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("MAX_WORLDS", batch::MAX_WORLDS)?;
     m.add(
         "MODE_LABELS",
         platoonsim_sim::snapshot::MODE_LABELS.to_vec(),
