@@ -12,23 +12,20 @@ use platoonsim_sim::config::{OffRamp, OnRamp};
 /// The ramp ids, on-ramps first: (field, id, defaulted), unique across on- and off-ramps
 /// (they name the detectors).
 pub(super) fn ramp_ids(c: &mut Checker, n: &RawNetwork) -> Vec<(String, String, bool)> {
-    let mut ids: Vec<(String, String, bool)> = Vec::new(); // (field, id, defaulted)
-    for (i, r) in n.on_ramps.iter().enumerate() {
-        ids.push(match &r.id {
-            Some(id) => (format!("network.on_ramps[{i}].id"), id.clone(), false),
-            None => (format!("network.on_ramps[{i}].id"), default_on_id(i), true),
-        });
-    }
-    for (i, r) in n.off_ramps.iter().enumerate() {
-        ids.push(match &r.id {
-            Some(id) => (format!("network.off_ramps[{i}].id"), id.clone(), false),
-            None => (
-                format!("network.off_ramps[{i}].id"),
-                default_off_id(i),
-                true,
-            ),
-        });
-    }
+    // (field, id, defaulted)
+    let listed = |kind: &str, i: usize, id: &Option<String>, default: fn(usize) -> String| {
+        let field = format!("network.{kind}_ramps[{i}].id");
+        match id {
+            Some(id) => (field, id.clone(), false),
+            None => (field, default(i), true),
+        }
+    };
+    let on = n.on_ramps.iter().enumerate();
+    let off = n.off_ramps.iter().enumerate();
+    let ids: Vec<(String, String, bool)> = on
+        .map(|(i, r)| listed("on", i, &r.id, default_on_id))
+        .chain(off.map(|(i, r)| listed("off", i, &r.id, default_off_id)))
+        .collect();
     for (k, (field, id, defaulted)) in ids.iter().enumerate() {
         let shown = if *defaulted {
             format!("{} (default)", quoted(id))
@@ -64,6 +61,36 @@ fn ramp_name(c: &mut Checker, field: String, name: &Option<String>, id: &str) ->
     }
 }
 
+/// A ramp's `x_m` (`kind`: "on" or "off"): a position inside the corridor, downstream of the
+/// previous ramp of its list (`prev_x`, updated).
+fn ramp_point(
+    c: &mut Checker,
+    b: &Bounds,
+    kind: &str,
+    i: usize,
+    x: Option<f64>,
+    what: &str,
+    prev_x: &mut Option<f64>,
+) -> Option<f64> {
+    let field = format!("network.{kind}_ramps[{i}].x_m");
+    let x = position(c, &field, x, what)?;
+    b.inside(c, &field, x);
+    if let Some(p) = *prev_x {
+        c.value(
+            &field,
+            x,
+            x > p,
+            &format!(
+                "must be > network.{kind}_ramps[{}].x_m = {} ({kind}-ramps are listed in downstream order)",
+                i - 1,
+                num(p)
+            ),
+        );
+    }
+    *prev_x = Some(x);
+    Some(x)
+}
+
 /// `[[network.on_ramps]]`, in downstream order, with their demand series (`ids`: theirs).
 pub(super) fn on_ramps(
     c: &mut Checker,
@@ -80,28 +107,15 @@ pub(super) fn on_ramps(
         let at = |k: &str| format!("network.on_ramps[{i}].{k}");
         let id = &ids[i].1;
         let name = ramp_name(c, at("name"), &r.name, id);
-        let x = position(
+        let x = ramp_point(
             c,
-            &at("x_m"),
+            b,
+            "on",
+            i,
             r.x_m,
             "the merge point (m, corridor coordinate)",
+            &mut prev_x,
         );
-        if let Some(x) = x {
-            b.inside(c, &at("x_m"), x);
-            if let Some(p) = prev_x {
-                c.value(
-                    &at("x_m"),
-                    x,
-                    x > p,
-                    &format!(
-                        "must be > network.on_ramps[{}].x_m = {} (on-ramps are listed in downstream order)",
-                        i - 1,
-                        num(p)
-                    ),
-                );
-            }
-            prev_x = Some(x);
-        }
         let ramp_m = limits::MAX_RAMP_LENGTH_M;
         let ramp_allowed = format!("must be in [0, {}] m", num(ramp_m));
         let accel = c.opt(r.accel_lane_m, defaults::ACCEL_LANE_M);
@@ -159,28 +173,15 @@ pub(super) fn off_ramps(
         let at = |k: &str| format!("network.off_ramps[{i}].{k}");
         let id = &ids[i].1;
         let name = ramp_name(c, at("name"), &r.name, id);
-        let x = position(
+        let x = ramp_point(
             c,
-            &at("x_m"),
+            b,
+            "off",
+            i,
             r.x_m,
             "the diverge point (m, corridor coordinate)",
+            &mut prev_x,
         );
-        if let Some(x) = x {
-            b.inside(c, &at("x_m"), x);
-            if let Some(p) = prev_x {
-                c.value(
-                    &at("x_m"),
-                    x,
-                    x > p,
-                    &format!(
-                        "must be > network.off_ramps[{}].x_m = {} (off-ramps are listed in downstream order)",
-                        i - 1,
-                        num(p)
-                    ),
-                );
-            }
-            prev_x = Some(x);
-        }
         let fraction = series(
             c,
             &at("exit_fraction"),
