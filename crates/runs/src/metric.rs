@@ -99,6 +99,7 @@ plain_fields! {
     DischargeFlow: discharge_flow_vphpl real;
     MaxSustainedFlow: max_sustained_flow_vphpl real;
     NetworkDischarge: network_discharge_vph absent; // not written on a plain road
+    ZeroFlowIntervals: zero_flow_intervals count;
     MissedExits: missed_exits count;
     Collisions: collisions count;
     MaxDeceleration: max_deceleration_mps2 real;

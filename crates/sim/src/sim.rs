@@ -494,6 +494,17 @@ impl Simulation {
                 0.0
             }
         });
+        let zero_flow_intervals = self
+            .detectors
+            .list
+            .iter()
+            .filter(|d| d.kind == "mainline")
+            .map(|d| {
+                (first..d.intervals())
+                    .filter(|&k| d.total_count(k) == 0)
+                    .count() as u64
+            })
+            .sum();
         let discharge = if window_h > 0.0 {
             window_count as f64 / window_h / lanes
         } else {
@@ -532,6 +543,7 @@ impl Simulation {
             discharge_flow_vphpl: discharge,
             max_sustained_flow_vphpl: max_flow,
             network_discharge_vph: network_discharge,
+            zero_flow_intervals,
             missed_exits: self.measures.missed_exits,
             collisions: self.measures.safety.collisions.events.len() as u64,
             max_deceleration_mps2: sf.braking.max_decel,

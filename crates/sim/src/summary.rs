@@ -61,6 +61,10 @@ pub struct Summary {
     /// end) per hour, mean over the measurement window (veh/h). Absent for a plain road.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub network_discharge_vph: Option<f64>,
+    /// Aggregation intervals of the measurement window in which a mainline detector counted
+    /// no vehicle in any of its lanes, summed over the mainline detectors: a stopped section
+    /// (a deadlock or a queue standing still for a whole interval) while demand is present.
+    pub zero_flow_intervals: u64,
     /// Vehicles that could not reach the lane of their off-ramp in time and drove on to the end.
     pub missed_exits: u64,
     /// Collision events over the whole run: a vehicle pair that starts to overlap, or a vehicle

@@ -244,3 +244,31 @@ fn cavs_join_the_pd_lane_regardless_of_its_speed() {
     let dq = rule.discharge_flow_vphpl / as_written.discharge_flow_vphpl - 1.0;
     assert!(dq.abs() < 0.01, "discharge change {dq}");
 }
+
+/// `zero_flow_intervals` counts the (mainline detector, interval) pairs of the measurement
+/// window whose cross-section count is zero: exactly what the detector records show, positive
+/// on a near-empty road and zero under a steady demand.
+#[test]
+fn zero_flow_intervals_are_the_empty_mainline_intervals_of_the_window() {
+    let count_in_records = |o: &Output, warmup_s: f64| -> u64 {
+        o.detectors
+            .iter()
+            .filter(|r| r.kind == "mainline" && r.lane == "all")
+            .filter(|r| r.interval_start_s >= warmup_s && r.count == 0)
+            .count() as u64
+    };
+    let sparse = Config::homogeneous(0.5, 2.0, 3600.0, 600.0, 3);
+    let o = run(&sparse, None).unwrap();
+    assert!(o.summary.zero_flow_intervals > 0, "2 veh/h/lane leaves empty intervals");
+    assert_eq!(o.summary.zero_flow_intervals, count_in_records(&o, 600.0));
+    // Empty intervals before the warm-up ends are not counted.
+    let before = o
+        .detectors
+        .iter()
+        .filter(|r| r.kind == "mainline" && r.lane == "all" && r.interval_start_s < 600.0)
+        .filter(|r| r.count == 0)
+        .count();
+    assert!(before > 0, "the road is still empty at the start");
+    let steady = run(&short(0.5, 2000.0, 3), None).unwrap();
+    assert_eq!(steady.summary.zero_flow_intervals, 0);
+}

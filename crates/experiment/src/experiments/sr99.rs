@@ -782,7 +782,45 @@ fn checks(cells: &[Cell], rows: &[SummaryRow], mid: &[f64]) -> Vec<Check> {
         ),
         passed: ordered,
     });
+    out.push(stopped_sections(rows));
     out
+}
+
+/// No run has a stopped mainline section: an aggregation interval in which a mainline
+/// detector counted no vehicle (a deadlock, or a queue standing for a whole interval).
+fn stopped_sections(rows: &[SummaryRow]) -> Check {
+    let name = Metric::Field(Field::ZeroFlowIntervals).name();
+    let mut runs = 0usize;
+    let mut stopped = Vec::new();
+    for r in rows.iter().filter(|r| r.metric == name) {
+        runs += r.stats.n;
+        if r.stats.mean > 0.0 {
+            let what = r
+                .labels
+                .0
+                .iter()
+                .map(|(k, v)| format!("{k} {v}"))
+                .collect::<Vec<_>>()
+                .join(", ");
+            stopped.push(format!(
+                "{what}: {} intervals over {} runs",
+                fixed(r.stats.mean * r.stats.n as f64, 0),
+                r.stats.n
+            ));
+        }
+    }
+    let found = if stopped.is_empty() {
+        format!("none in {runs} runs")
+    } else {
+        stopped.join("; ")
+    };
+    Check {
+        statement: format!(
+            "no mainline detector counts zero vehicles in a 5-min interval of the measurement \
+             window (a stopped section, e.g. a mutual wait): {found}"
+        ),
+        passed: stopped.is_empty(),
+    }
 }
 
 #[cfg(test)]
