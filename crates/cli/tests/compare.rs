@@ -95,7 +95,7 @@ fn a_run_against_its_own_detectors_fits_and_scaled_flows_do_not() {
         assert!(compare.join(f).is_file(), "{f}");
     }
     let md = std::fs::read_to_string(compare.join("compare.md")).unwrap();
-    assert!(md.contains("**Verdict:** all 6 criteria hold."));
+    assert!(md.contains("**Verdict:** all 7 criteria hold."));
 
     // Field flows 1.5 times the simulated ones: GEH fails, shown as ✗.
     let scaled = dir.join("scaled.csv");

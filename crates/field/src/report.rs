@@ -18,8 +18,11 @@ pub struct Report<'a> {
     pub field_files: &'a [String],
     /// The period compared, s after midnight.
     pub window: (u32, u32),
+    /// The judged stations' fit (the mainline).
     pub fit: &'a Fit,
     pub criteria: &'a [Criterion],
+    /// The ramp counters' fit and flow criteria: the demand's inputs, shown, not judged.
+    pub ramps: Option<(&'a Fit, &'a [Criterion])>,
     pub bottlenecks: &'a [Pair],
     /// The contour figure (a path relative to the report), if drawn.
     pub figure: Option<&'a str>,
@@ -64,7 +67,7 @@ pub fn markdown(r: &Report<'_>) -> String {
     let _ = writeln!(s, "# Goodness of fit: simulation against field data\n");
     let _ = writeln!(
         s,
-        "Simulation: {} ({}). Field: {}. Period {}–{}. Stations compared: {}.\n",
+        "Simulation: {} ({}). Field: {}. Period {}–{}. Mainline stations compared: {}{}.\n",
         r.runs.join(", "),
         if r.runs.len() > 1 {
             format!("the mean of {} runs", r.runs.len())
@@ -74,7 +77,14 @@ pub fn markdown(r: &Report<'_>) -> String {
         r.field_files.join(", "),
         clock(r.window.0),
         clock(r.window.1),
-        f.stations_compared.len()
+        f.stations_compared.len(),
+        match r.ramps {
+            Some((rf, _)) if !rf.stations_compared.is_empty() => format!(
+                "; ramp counters compared: {} (the demand's inputs: shown apart, not judged)",
+                rf.stations_compared.len()
+            ),
+            _ => String::new(),
+        }
     );
     let _ = writeln!(
         s,
@@ -99,6 +109,10 @@ pub fn markdown(r: &Report<'_>) -> String {
             verdict(c.pass),
             c.source
         );
+    }
+
+    if let Some((rf, rc)) = r.ramps.filter(|(rf, _)| !rf.stations_compared.is_empty()) {
+        ramp_section(&mut s, rf, rc);
     }
 
     let _ = writeln!(s, "\n## Measures\n");
@@ -198,6 +212,30 @@ pub fn markdown(r: &Report<'_>) -> String {
     bottleneck_section(&mut s, r.bottlenecks);
     missing_section(&mut s, r);
     s
+}
+
+/// The ramp counters: their flow criteria and stations, not part of the verdict.
+fn ramp_section(s: &mut String, f: &Fit, criteria: &[Criterion]) {
+    let _ = writeln!(s, "\n## Ramp counters (inputs, not judged)\n");
+    let _ = writeln!(
+        s,
+        "The ramps' counts are what the demand is built from, so a fit to them says little \
+         about the model; they are measured here and left out of the verdict and of every \
+         measure above and below. Stations: {}.\n",
+        list(&f.stations_compared)
+    );
+    let _ = writeln!(s, "| criterion | threshold | measured | would be |");
+    let _ = writeln!(s, "|---|---|---|---|");
+    for c in criteria {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} |",
+            c.name,
+            c.threshold,
+            c.measured,
+            if c.pass { "met" } else { "not met" }
+        );
+    }
 }
 
 fn where_when(b: &Option<Bottleneck>) -> (String, String) {
@@ -320,26 +358,38 @@ mod tests {
         let field = [day("A", 1500.0), day("F", 1.0)].concat();
         let fit = fit(&sim, &field);
         let criteria = judge(&fit, &[], &MatchParams::default());
+        let ramp_fit = crate::fit::fit(&day("R", 500.0), &day("R", 500.0));
+        let ramp_criteria = crate::criteria::judge_flows(&ramp_fit);
         let md = markdown(&Report {
             runs: &["out/run".into()],
             field_files: &["f.csv".into()],
             window: (18_000, 21_600),
             fit: &fit,
             criteria: &criteria,
+            ramps: Some((&ramp_fit, &ramp_criteria)),
             bottlenecks: &[],
             figure: Some("contours.png"),
             notes: &["a note".into()],
         });
         assert!(
-            md.contains("Period 05:00–06:00. Stations compared: 1."),
+            md.contains(
+                "Period 05:00–06:00. Mainline stations compared: 1; ramp counters compared: 1 \
+                 (the demand's inputs: shown apart, not judged)."
+            ),
             "{md}"
         );
+        assert!(md.contains("## Ramp counters (inputs, not judged)"));
+        assert!(md.contains(
+            "| Hourly flows: GEH < 5 | > 85.0 % of station-hours | 100.0 % of 1 station-hours | \
+             met |"
+        ));
         assert!(md.contains(
             "| Hourly flows: GEH < 5 | > 85.0 % of station-hours | 0.0 % of 1 station-hours | \
              ✗ **does not hold** |"
         ));
         assert!(md.contains("| 15-min speeds: Pearson correlation | ≥ 0.8 | 1.000 over 4 station-intervals | ✓ **holds** |"));
-        assert!(md.contains("**Verdict:** 4 of 6 criteria do not hold."));
+        // The ramp's criteria, all met, are not among the verdict's.
+        assert!(md.contains("**Verdict:** 4 of 7 criteria do not hold."));
         assert!(md.contains("| A | 1 | 0.0 % | 14.14 | 1000 | 1500 | -33.3 % | 4 | 0.0 |"));
         assert!(md.contains("![speed contours](contours.png)"));
         assert!(

@@ -274,6 +274,7 @@ fn fit_md(
         window: eval.window,
         fit: &eval.fit,
         criteria: &eval.criteria,
+        ramps: Some((&eval.ramp_fit, &eval.ramp_criteria)),
         bottlenecks: &eval.bottlenecks,
         figure: None,
         notes: &field.notes,

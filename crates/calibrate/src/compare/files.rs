@@ -85,6 +85,7 @@ pub fn write(
         window: eval.window,
         fit: &eval.fit,
         criteria: &eval.criteria,
+        ramps: Some((&eval.ramp_fit, &eval.ramp_criteria)),
         bottlenecks: &eval.bottlenecks,
         figure: figure.as_deref(),
         notes: &inputs.notes,

@@ -52,6 +52,43 @@ fn the_same_data_passes_every_criterion() {
     assert_eq!(e.objective(), Some(0.0));
 }
 
+/// A ramp counter `R` (placed as an on-ramp) with `flow` veh/h, 06:00-09:00.
+fn ramp(flow: f64) -> Vec<Obs> {
+    (0..36u32)
+        .map(|k| Obs {
+            station: "R".into(),
+            start_s: 6 * 3600 + 300 * k,
+            interval_s: 300,
+            flow_vph: flow,
+            speed_kmh: Some(60.0),
+            occupancy: Some(0.05),
+        })
+        .collect()
+}
+
+#[test]
+fn ramp_counters_are_measured_apart_and_left_out_of_the_verdict() {
+    let sim = [corridor(1.0), ramp(500.0)].concat();
+    let field = [corridor(1.0), ramp(1500.0)].concat();
+    let e = evaluate(&sim, &field, &line(), &[], &Options::default());
+    assert_eq!(e.fit.stations_compared, ["A", "B", "C"]);
+    assert_eq!(e.ramp_fit.stations_compared, ["R"]);
+    // The mainline fits perfectly: the verdict holds although the ramp is a third of its
+    // count (GEH 31.6 in every hour).
+    assert!(e.passes(), "{:#?}", e.criteria);
+    assert_eq!(e.objective(), Some(0.0));
+    assert_eq!(e.ramp_criteria.len(), 4);
+    assert!(e.ramp_criteria.iter().all(|c| !c.pass));
+    assert_eq!(e.ramp_fit.geh_max.map(|g| (g * 10.0).round() / 10.0), Some(31.6));
+    // A station placed as a ramp on the field side only is a ramp too.
+    let field_places = vec![placed("R", 1500.0, StationKind::OffRamp)];
+    let mut sim_line = line();
+    sim_line.retain(|p| p.station != "R");
+    let e = evaluate(&sim, &field, &sim_line, &field_places, &Options::default());
+    assert_eq!(e.ramp_fit.stations_compared, ["R"]);
+    assert!(e.passes());
+}
+
 #[test]
 fn field_flows_half_again_fail_the_flow_criteria() {
     let sim = corridor(1.0);
@@ -156,7 +193,8 @@ fn files_report_page_json_and_figure() {
     assert_eq!(json["pass"], false);
     assert_eq!(json["from"], "06:00");
     assert_eq!(json["fit"]["hour_coverage"]["missing_in_field"], 1);
-    assert_eq!(json["criteria"].as_array().unwrap().len(), 6);
+    assert_eq!(json["criteria"].as_array().unwrap().len(), 7);
+    assert_eq!(json["ramp_criteria"].as_array().unwrap().len(), 4);
     assert_eq!(json["sim_bottlenecks"][0]["onset_s"], 7 * 3600);
     if std::env::var_os("PLATOONSIM_COMPARE_KEEP").is_none() {
         let _ = std::fs::remove_dir_all(&dir);
