@@ -14,12 +14,14 @@ fn relax() -> impl Strategy<Value = Relax> {
         (0.05..1.0f64, 0.05..1.0f64, 0.05..1.0f64).prop_map(|(headway, jam, reaction)| Relax {
             headway,
             jam,
-            reaction
+            reaction,
+            buffer: 1.0,
         }),
         Just(Relax {
             headway: 0.0,
             jam: 0.0,
-            reaction: 0.0
+            reaction: 0.0,
+            buffer: 1.0,
         }),
     ]
 }

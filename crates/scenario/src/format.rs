@@ -3,8 +3,8 @@
 
 use crate::network::{detectors, split_name, stretches, RampStations, Spacing, END_DETECTOR};
 use crate::raw::{
-    RawDemand, RawDetector, RawLaneStretch, RawMeasurement, RawNetwork, RawNetworkDetectors,
-    RawOffRamp, RawOnRamp, RawRoad, RawRun, RawScenario, RawStrategy,
+    RawBehaviour, RawDemand, RawDetector, RawLaneStretch, RawMeasurement, RawNetwork,
+    RawNetworkDetectors, RawOffRamp, RawOnRamp, RawRoad, RawRun, RawScenario, RawStrategy,
 };
 use platoonsim_sim::config::{DetectorKind, Network};
 use platoonsim_sim::{Config, LaneChoice, Strategy};
@@ -215,6 +215,16 @@ fn raw_network(n: &Network, config: &Config) -> (RawNetwork, Vec<String>) {
                 x_m: Some(r.x_m + o),
                 exit_fraction: Some(r.exit_fraction.clone()),
                 station: stations.off[i].clone(),
+            })
+            .collect(),
+        behaviour: n
+            .behaviour
+            .iter()
+            .map(|b| RawBehaviour {
+                from_m: Some(b.from_m + o),
+                to_m: Some(b.to_m + o),
+                buffer_factor: Some(b.buffer_factor),
+                speed_factor: Some(b.speed_factor),
             })
             .collect(),
     };

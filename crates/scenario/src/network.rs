@@ -380,6 +380,7 @@ mod tests {
             ramp_speed_kmh: 90.0,
             lane_speed_limits_kmh: Vec::new(),
             cross_lane_friction: None,
+            behaviour: Vec::new(),
         };
         let on = ["OR1".to_string(), "OR2".to_string()];
         let off = ["FR1".to_string()];

@@ -154,6 +154,24 @@ pub struct RawNetwork {
     pub on_ramps: Vec<RawOnRamp>,
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub off_ramps: Vec<RawOffRamp>,
+    /// Section behaviour stretches (docs/network-scenarios.md).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub behaviour: Vec<RawBehaviour>,
+}
+
+/// One `[[network.behaviour]]` stretch: factors on the drivers' headway and desired speed on
+/// `[from_m, to_m)` (corridor coordinates).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RawBehaviour {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub from_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub to_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub buffer_factor: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub speed_factor: Option<f64>,
 }
 
 /// One `[[network.lanes]]` stretch: `count` through lanes on `[from_m, to_m)`.

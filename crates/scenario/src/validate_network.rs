@@ -17,6 +17,9 @@ use std::path::Path;
 mod ramps;
 use ramps::{off_ramps, on_ramps, ramp_ids};
 
+#[path = "validate_behaviour.rs"]
+pub mod behaviour;
+
 /// Defaults of the optional `[network]` keys.
 pub mod defaults {
     pub const INTERVAL_S: f64 = 900.0;
@@ -178,6 +181,7 @@ pub(super) fn check_network(
     let on_ramps = on_ramps(c, n, &ids[..n_on], &b, origin, &d);
     let off_ramps = off_ramps(c, n, &ids[n_on..], &b, origin, &d);
     let spacing = detector_spacing(c, n, length);
+    let behaviour = behaviour::behaviour(c, n, &b, origin);
     let (mainline, on_ramps, off_ramps, interval_s) =
         shifted(c, &d, d.mainline.clone(), on_ramps, off_ramps);
 
@@ -197,6 +201,7 @@ pub(super) fn check_network(
             ramp_speed_kmh: ramp_speed.v,
             lane_speed_limits_kmh: lane_caps,
             cross_lane_friction: n.cross_lane_friction,
+            behaviour,
         },
         on_ids: ids[..n_on].iter().map(|(_, id, _)| id.clone()).collect(),
         off_ids: ids[n_on..].iter().map(|(_, id, _)| id.clone()).collect(),

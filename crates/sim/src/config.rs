@@ -68,6 +68,22 @@ pub struct Network {
     /// v_adj + c_fr (v_F − v_adj) instead. `None` (the default) and 1 are off.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cross_lane_friction: Option<f64>,
+    /// Section behaviour (docs/network-scenarios.md; `behaviour.rs`): stretches, in order and
+    /// not overlapping, with factors on the human car-following buffer θ and on the desired
+    /// speed. Empty: 1 everywhere (the default).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub behaviour: Vec<DriverStretch>,
+}
+
+/// A stretch [from_m, to_m) (engine coordinates) of section behaviour (`behaviour.rs`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct DriverStretch {
+    pub from_m: f64,
+    pub to_m: f64,
+    /// f_θ: factor on the Gipps buffer θ of the human car-following model.
+    pub buffer_factor: f64,
+    /// f_v: factor on the desired speed v_F.
+    pub speed_factor: f64,
 }
 
 /// A through lane open on [from_m, to_m) (engine coordinates).
@@ -155,6 +171,23 @@ impl Network {
             if !(c > 0.0 && c <= 1.0) {
                 return Err(SimError::Config(format!(
                     "network.cross_lane_friction = {c}: must be in (0, 1] (1 = off)"
+                )));
+            }
+        }
+        for (i, b) in self.behaviour.iter().enumerate() {
+            let after = i.checked_sub(1).map_or(0.0, |k| self.behaviour[k].to_m);
+            if !(b.from_m >= after && b.to_m > b.from_m && b.to_m <= length_m) {
+                return Err(SimError::Config(format!(
+                    "network.behaviour[{i}] on [{}, {}): stretches must lie in [0, {length_m}], \
+                     in order, each after the previous one's end ({after})",
+                    b.from_m, b.to_m
+                )));
+            }
+            if !((0.0..=5.0).contains(&b.buffer_factor) && (0.5..=1.5).contains(&b.speed_factor)) {
+                return Err(SimError::Config(format!(
+                    "network.behaviour[{i}]: buffer_factor = {} must be in [0, 5] and \
+                     speed_factor = {} in [0.5, 1.5]",
+                    b.buffer_factor, b.speed_factor
                 )));
             }
         }

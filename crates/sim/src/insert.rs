@@ -364,10 +364,9 @@ impl Inserting<'_> {
         };
         let ramp = &self.road.geom.on_ramps[r];
         let (x, lane) = (ramp.x, ramp.lane as usize);
-        let v_max = head
-            .driver
-            .human
-            .desired_speed
+        let v_max = self
+            .road
+            .section_speed(head.driver.human.desired_speed, x)
             .min(self.road.ramp_speed_mps);
         let list = &self.traffic.lanes[lane];
         let j = list.partition_point(|&o| self.traffic.vehicles[o as usize].x > x);
@@ -411,7 +410,7 @@ impl Inserting<'_> {
                     self.cfg,
                     self.clock.dt,
                     f,
-                    f.driver.human.desired_speed,
+                    self.road.section_speed(f.driver.human.desired_speed, f.x),
                     head,
                     view,
                 )
@@ -419,9 +418,9 @@ impl Inserting<'_> {
                 human::target_accel(
                     &f.driver.human,
                     f.v,
-                    f.driver.human.desired_speed,
+                    self.road.section_speed(f.driver.human.desired_speed, f.x),
                     Some(view),
-                    Relax::NONE,
+                    self.road.section_relax(Relax::NONE, f.x),
                 )
             };
             if a < f.driver.human.comfort_decel {
@@ -500,7 +499,7 @@ impl Inserting<'_> {
     /// limit when the network has lane-based caps (spec 2.7, counted from the rightmost through
     /// lane there), so that it enters in steady state.
     fn entry_desired_speed(&self, veh: &Vehicle, lane: usize) -> f64 {
-        let v_f = veh.driver.human.desired_speed;
+        let v_f = self.road.section_speed(veh.driver.human.desired_speed, 0.0);
         if self.road.lane_caps_mps.is_empty() {
             return v_f;
         }
@@ -523,7 +522,8 @@ impl Inserting<'_> {
         wall: Option<f64>,
         v_max: f64,
     ) -> Option<f64> {
-        let v_des = veh.driver.human.desired_speed;
+        let v_des = self.road.section_speed(veh.driver.human.desired_speed, x);
+        let relax = self.road.section_relax(Relax::NONE, x);
         let mut leader = ld.map(|ld| {
             let l = &self.traffic.vehicles[ld as usize];
             (
@@ -566,10 +566,7 @@ impl Inserting<'_> {
                     };
                     leader.gap_m >= eq && cav::safe_speed(p, leader.gap_m, l.v) >= v
                 }
-                _ => {
-                    human::target_accel(&veh.driver.human, v, v_des, Some(leader), Relax::NONE)
-                        >= 0.0
-                }
+                _ => human::target_accel(&veh.driver.human, v, v_des, Some(leader), relax) >= 0.0,
             }
         };
         if ok(v_max) {

@@ -12,6 +12,7 @@
 //! `metrics`, `organize` (platoon organization: the `Organizer` trait and the strategies), `rng` (named random streams).
 
 mod automation;
+pub mod behaviour;
 pub mod command;
 pub mod config;
 mod decide;

@@ -439,6 +439,7 @@ mod tests {
             ramp_speed_kmh: 90.0,
             lane_speed_limits_kmh: Vec::new(),
             cross_lane_friction: None,
+            behaviour: Vec::new(),
         }
     }
 

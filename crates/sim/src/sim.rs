@@ -113,6 +113,11 @@ impl Simulation {
                     .as_ref()
                     .and_then(|n| n.cross_lane_friction)
                     .filter(|&c| c < 1.0),
+                behaviour: cfg
+                    .road
+                    .network
+                    .as_ref()
+                    .map_or(Vec::new(), |n| n.behaviour.clone()),
             },
             detectors: Detectors {
                 list: detectors,

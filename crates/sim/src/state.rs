@@ -88,6 +88,8 @@ pub(crate) struct RoadState {
     pub lane_caps_mps: Vec<f64>,
     /// Cross-lane friction c_fr (spec 2.7), `None` when off (not given, or 1).
     pub friction: Option<f64>,
+    /// Section behaviour stretches (`behaviour.rs`), engine coordinates; empty: none.
+    pub behaviour: Vec<crate::config::DriverStretch>,
 }
 
 impl RoadState {
@@ -95,12 +97,35 @@ impl RoadState {
     /// lane's speed limit when the network has lane-based caps, counted from the rightmost
     /// through lane `right` at its position (`NO_LANE`: none there; the first cap). Without
     /// caps exactly `v_f`.
+    /// At `x`, the section's speed factor applies first (`behaviour.rs`).
     #[inline]
-    pub fn desired_speed_in(&self, v_f: f64, lane: usize, right: u8) -> f64 {
+    pub fn desired_speed_in(&self, v_f: f64, lane: usize, right: u8, x: f64) -> f64 {
+        let v_f = self.section_speed(v_f, x);
         if self.lane_caps_mps.is_empty() {
             return v_f;
         }
         self.lane_capped(v_f, lane, right)
+    }
+
+    /// `v_f` times the section's speed factor at `x` (`behaviour.rs`); `v_f` itself
+    /// without section behaviour.
+    #[inline]
+    pub fn section_speed(&self, v_f: f64, x: f64) -> f64 {
+        if self.behaviour.is_empty() {
+            return v_f;
+        }
+        v_f * crate::behaviour::factors_at(&self.behaviour, x).1
+    }
+
+    /// `r` with the section's buffer factor at `x` (`behaviour.rs`); `r` itself without
+    /// section behaviour.
+    #[inline]
+    pub fn section_relax(&self, r: platoonsim_model::Relax, x: f64) -> platoonsim_model::Relax {
+        if self.behaviour.is_empty() {
+            return r;
+        }
+        let f_theta = crate::behaviour::factors_at(&self.behaviour, x).0;
+        crate::behaviour::with_buffer_factor(r, f_theta)
     }
 
     /// `v_f` capped by the desired-speed cap of `lane`. Requires caps.

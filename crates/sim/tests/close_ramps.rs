@@ -38,6 +38,7 @@ fn close_ramps(seed: u64) -> Config {
         ramp_speed_kmh: 60.0,
         lane_speed_limits_kmh: Vec::new(),
         cross_lane_friction: None,
+        behaviour: Vec::new(),
     });
     cfg.detectors = vec![platoonsim_sim::DetectorSpec::mainline("end", 2900.0)];
     cfg.measurement_detector = 0;

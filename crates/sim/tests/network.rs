@@ -62,6 +62,7 @@ pub fn toy(penetration: f64, mainline_vph: Vec<f64>, seed: u64) -> Config {
         ramp_speed_kmh: 90.0,
         lane_speed_limits_kmh: Vec::new(),
         cross_lane_friction: None,
+        behaviour: Vec::new(),
     });
     let m = |name: &str, x: f64| DetectorSpec::mainline(name, x);
     cfg.detectors = vec![
@@ -642,4 +643,80 @@ fn a_driver_in_its_exit_lane_does_not_leave_it_for_a_lane_drop_beyond_the_exit()
         out.summary.vehicles_entered
     );
     assert_eq!(out.summary.vehicles_waiting, 0);
+}
+
+/// Flow-weighted mean speed (km/h) and largest 5-min flow (veh/h) at `detector` after `from_s`.
+fn speed_and_peak(out: &Output, detector: &str, from_s: f64) -> (f64, f64) {
+    let rows: Vec<_> = out
+        .detectors
+        .iter()
+        .filter(|r| r.detector == detector && r.lane == "all" && r.interval_start_s >= from_s)
+        .collect();
+    let n: u64 = rows.iter().map(|r| r.count).sum();
+    let v = rows
+        .iter()
+        .filter_map(|r| r.speed_kmh.map(|v| v * r.count as f64))
+        .sum::<f64>()
+        / n as f64;
+    (v, rows.iter().map(|r| r.flow_vph).fold(0.0, f64::max))
+}
+
+fn with_stretch(mut cfg: Config, from_m: f64, to_m: f64, h: f64, v: f64) -> Config {
+    cfg.road.network.as_mut().unwrap().behaviour = vec![platoonsim_sim::config::DriverStretch {
+        from_m,
+        to_m,
+        buffer_factor: h,
+        speed_factor: v,
+    }];
+    cfg
+}
+
+/// Section behaviour (issue 45 item 1): on a stretch with speed factor 0.8 every driver's
+/// desired speed is 0.8 v_F, so the free-flow speed there is 0.8 of what it is elsewhere and
+/// nobody exceeds 0.8 × 120 km/h; with buffer factor 5 (θ = 0.5 s instead of 0.1 s) the
+/// stretch carries less: 3600/(1.2 + 0.5 + 0.5) against 3600/(1.2 + 0.1 + 0.5) veh/h/lane for
+/// the mean driver (docs/calibration.md section 1), 18 % less.
+#[test]
+fn a_behaviour_stretch_lowers_the_speed_or_the_capacity_on_it_alone() {
+    // Free flow: the speed factor.
+    let base = run(&toy(0.0, vec![1500.0], 3), None).unwrap();
+    let slow = run(
+        &with_stretch(toy(0.0, vec![1500.0], 3), 1700.0, 3800.0, 1.0, 0.8),
+        None,
+    )
+    .unwrap();
+    assert_eq!(slow.summary.collisions, 0);
+    let (v_in_base, _) = speed_and_peak(&base, "G-up", 600.0);
+    let (v_in, _) = speed_and_peak(&slow, "G-up", 600.0);
+    let (v_out, _) = speed_and_peak(&slow, "F-up", 600.0);
+    let (v_out_base, _) = speed_and_peak(&base, "F-up", 600.0);
+    assert!(
+        (v_in / v_in_base - 0.8).abs() < 0.02,
+        "{v_in} vs {v_in_base}"
+    );
+    assert!(
+        (v_out / v_out_base - 1.0).abs() < 0.01,
+        "{v_out} vs {v_out_base}"
+    );
+    let fastest = slow
+        .detectors
+        .iter()
+        .filter(|r| r.detector == "G-up" && r.lane == "all" && r.interval_start_s >= 600.0)
+        .filter_map(|r| r.speed_kmh)
+        .fold(0.0, f64::max);
+    assert!(fastest <= 0.8 * 120.0, "{fastest}");
+    // Saturated demand: the buffer factor makes the stretch the bottleneck.
+    let demand = vec![7000.0];
+    let base = run(&toy(0.0, demand.clone(), 3), None).unwrap();
+    let tight = run(
+        &with_stretch(toy(0.0, demand, 3), 0.0, 2000.0, 5.0, 1.0),
+        None,
+    )
+    .unwrap();
+    assert_eq!(tight.summary.collisions, 0, "{:#?}", tight.collision_events);
+    // F-up (1,450 m) lies in the 3-lane stretch upstream of the lane added at 2,000 m.
+    let (_, q_base) = speed_and_peak(&base, "F-up", 600.0);
+    let (_, q) = speed_and_peak(&tight, "F-up", 600.0);
+    // Measured: 4,704 against 5,268 veh/h (−10.7 %; heterogeneous drivers, seed 3).
+    assert!(q < 0.95 * q_base, "{q} vs {q_base} veh/h");
 }

@@ -57,6 +57,7 @@ fn small_corridor(seed: u64) -> Config {
         ramp_speed_kmh: 90.0,
         lane_speed_limits_kmh: Vec::new(),
         cross_lane_friction: None,
+        behaviour: Vec::new(),
     });
     cfg.detectors = vec![
         DetectorSpec::mainline("A-up", 750.0),

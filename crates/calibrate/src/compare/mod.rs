@@ -98,7 +98,9 @@ pub fn ramp_stations(sim_places: &[Placed], field_places: &[Placed]) -> BTreeSet
 
 /// `obs` split into (mainline, ramps) by [`ramp_stations`].
 fn split(obs: &[Obs], ramps: &BTreeSet<String>) -> (Vec<Obs>, Vec<Obs>) {
-    obs.iter().cloned().partition(|o| !ramps.contains(&o.station))
+    obs.iter()
+        .cloned()
+        .partition(|o| !ramps.contains(&o.station))
 }
 
 /// The mainline stations both sides compare, placed on each side: (simulated, field).

@@ -79,7 +79,10 @@ fn ramp_counters_are_measured_apart_and_left_out_of_the_verdict() {
     assert_eq!(e.objective(), Some(0.0));
     assert_eq!(e.ramp_criteria.len(), 4);
     assert!(e.ramp_criteria.iter().all(|c| !c.pass));
-    assert_eq!(e.ramp_fit.geh_max.map(|g| (g * 10.0).round() / 10.0), Some(31.6));
+    assert_eq!(
+        e.ramp_fit.geh_max.map(|g| (g * 10.0).round() / 10.0),
+        Some(31.6)
+    );
     // A station placed as a ramp on the field side only is a ramp too.
     let field_places = vec![placed("R", 1500.0, StationKind::OffRamp)];
     let mut sim_line = line();

@@ -38,7 +38,12 @@ pub(crate) fn follower_accel_after(
     c: &Vehicle,
     changer: Leader,
 ) -> f64 {
-    let v_des = road.desired_speed_in(v_des_of(f), f.lane as usize, sensed[fs as usize].here.right);
+    let v_des = road.desired_speed_in(
+        v_des_of(f),
+        f.lane as usize,
+        sensed[fs as usize].here.right,
+        f.x,
+    );
     if !f.automated() {
         return safegap::human_follower_accel(&f.driver.human, &f.driver.lc, f.v, v_des, changer);
     }

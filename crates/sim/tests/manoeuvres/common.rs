@@ -106,6 +106,7 @@ pub fn corridor(
         ramp_speed_kmh: 90.0,
         lane_speed_limits_kmh: Vec::new(),
         cross_lane_friction: None,
+        behaviour: Vec::new(),
     });
     Simulation::new(cfg).unwrap()
 }
