@@ -20,10 +20,7 @@
 //! the average speeds ahead in the adjacent lanes, c_fr ∈ (0, 1] (`network.cross_lane_friction`;
 //! value not published, 1 = off, the default).
 //!
-//! Relaxation (spec 2.5/4.6) multiplies τ, d_jam, τ_r by the factors of a [`Relax`]; the
-//! section behaviour of a network stretch multiplies θ by its `buffer` factor (θ' = f_θ θ,
-//! docs/network-scenarios.md), which changes the headway the Gipps term keeps without
-//! changing how fast the driver responds (τ_r).
+//! Relaxation (spec 2.5/4.6) multiplies τ, d_jam, τ_r by the factors of a [`Relax`].
 //!
 //! | symbol | field | default | distribution (spec 2.6) | unit |
 //! |---|---|---|---|---|
@@ -213,7 +210,7 @@ fn gipps_params(p: &HumanParams, r: Relax) -> GippsParams {
     GippsParams {
         reaction: (r.reaction * p.reaction_s).max(MIN_TIME_S),
         jam: r.jam * p.jam_gap_m,
-        buffer: (r.buffer * p.buffer_s).max(0.0),
+        buffer: p.buffer_s.max(0.0),
         b_f,
         b_hat: (p.leader_brake_factor * b_f).min(-MIN_BRAKE_MPS2),
     }

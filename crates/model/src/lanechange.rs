@@ -351,7 +351,6 @@ pub fn gap_relax(p: &LaneChangeParams) -> Relax {
         headway: p.relax_headway,
         jam: p.relax_jam,
         reaction: p.relax_reaction,
-        buffer: 1.0,
     }
 }
 
@@ -419,7 +418,6 @@ pub fn relax_at(p: &LaneChangeParams, elapsed_s: f64) -> Relax {
         headway: recover(p.relax_headway),
         jam: recover(p.relax_jam),
         reaction: recover(p.relax_reaction),
-        buffer: 1.0,
     }
 }
 

@@ -51,9 +51,6 @@ pub struct Relax {
     pub jam: f64,
     /// Factor on the reaction time τ_r (φ_r).
     pub reaction: f64,
-    /// Factor on the Gipps buffer θ: not part of the relaxation (1 there); the section
-    /// behaviour of a network stretch (`buffer_factor`, docs/network-scenarios.md).
-    pub buffer: f64,
 }
 
 impl Relax {
@@ -62,7 +59,6 @@ impl Relax {
         headway: 1.0,
         jam: 1.0,
         reaction: 1.0,
-        buffer: 1.0,
     };
 }
 

@@ -12,7 +12,6 @@ const RELAXED: Relax = Relax {
     headway: 0.4,
     jam: 0.6,
     reaction: 0.2,
-    buffer: 1.0,
 };
 
 /// The spec 2.6 mean driver with θ = 0.15 s (the hand computations below use it).
@@ -161,7 +160,6 @@ fn relaxation_permits_a_smaller_gap() {
         headway: 0.5,
         jam: 0.5,
         reaction: 1.0,
-        buffer: 1.0,
     };
     let g_code = equilibrium_gap(&p, v, code);
     assert!(g_code < g_none && g_code > g_rel);

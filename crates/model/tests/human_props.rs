@@ -14,14 +14,12 @@ fn relax() -> impl Strategy<Value = Relax> {
         (0.05..1.0f64, 0.05..1.0f64, 0.05..1.0f64).prop_map(|(headway, jam, reaction)| Relax {
             headway,
             jam,
-            reaction,
-            buffer: 1.0,
+            reaction
         }),
         Just(Relax {
             headway: 0.0,
             jam: 0.0,
-            reaction: 0.0,
-            buffer: 1.0,
+            reaction: 0.0
         }),
     ]
 }

@@ -103,7 +103,6 @@ fn equilibrium_gap_is_where_newell_and_gipps_both_allow_holding_speed() {
             headway: 0.4,
             jam: 0.6,
             reaction: 0.2,
-            buffer: 1.0,
         },
     ] {
         for v in [0.0, 0.5, 5.0, 13.0, 22.0, 30.0, 33.0] {

@@ -22,6 +22,14 @@
 //! the driver's own θ. f_v applies to every vehicle, as a section's speed regime would.
 //! Outside every stretch both are 1. Stretches do not overlap.
 //!
+//! **How it is applied.** Once per step, before sensing, [`Sections::apply`] gives every
+//! vehicle on the road the parameters of the stretch at its position: θ and v_F are the
+//! vehicle's own (drawn) values times the stretch's factors, rewritten only when the vehicle
+//! enters another stretch. So the car-following, lane-change and safety rules read the
+//! section's values without any per-call lookup, and a scenario without stretches pays one
+//! branch per step. A vehicle waiting to enter is judged with the factors at its entry point
+//! (`insert.rs`). A desired speed set from outside (`steer.rs`) becomes the vehicle's own.
+//!
 //! | symbol | key (`[[network.behaviour]]`) | default | allowed | unit |
 //! |---|---|---|---|---|
 //! | – | `from_m`, `to_m` | – | inside the corridor, from < to, in order, no overlap | m |
@@ -29,7 +37,8 @@
 //! | f_v | `speed_factor` | 1 | [0.5, 1.5] | – |
 
 use crate::config::DriverStretch;
-use platoonsim_model::Relax;
+use crate::state::Traffic;
+use platoonsim_model::human::HumanParams;
 
 /// The factors (f_θ, f_v) at engine position `x`: those of the stretch containing it, else
 /// (1, 1). `stretches` sorted by position and not overlapping (checked by the config).
@@ -42,12 +51,103 @@ pub fn factors_at(stretches: &[DriverStretch], x: f64) -> (f64, f64) {
     }
 }
 
-/// `r` with the buffer factor `f_theta` on θ (the other factors as they are).
+/// The driver parameters `p` on the stretch containing `x`: θ scaled by its f_θ. `None`
+/// outside every stretch (drive by `p` itself).
 #[inline]
-pub fn with_buffer_factor(r: Relax, f_theta: f64) -> Relax {
-    Relax {
-        buffer: r.buffer * f_theta,
-        ..r
+pub fn params_at(stretches: &[DriverStretch], p: &HumanParams, x: f64) -> Option<HumanParams> {
+    let i = stretches.partition_point(|s| s.to_m <= x);
+    match stretches.get(i) {
+        Some(s) if s.from_m <= x => Some(HumanParams {
+            buffer_s: p.buffer_s * s.buffer_factor,
+            ..*p
+        }),
+        _ => None,
+    }
+}
+
+/// The index of the stretch containing `x`, if any.
+#[inline]
+fn stretch_at(stretches: &[DriverStretch], x: f64) -> Option<usize> {
+    let i = stretches.partition_point(|s| s.to_m <= x);
+    stretches.get(i).filter(|s| s.from_m <= x).map(|_| i)
+}
+
+/// What a slot's vehicle brought and what was last written (per slot).
+#[derive(Clone, Copy, Debug)]
+struct Slot {
+    id: u64,
+    /// The vehicle's own v_F and θ.
+    v_f: f64,
+    theta: f64,
+    /// The stretch applied (`None`: none), and the v_F written then.
+    at: Option<usize>,
+    written_v_f: f64,
+}
+
+/// The section behaviour of a run: its stretches and, per slot, the vehicle's own values.
+#[derive(Clone, Debug)]
+pub(crate) struct Sections {
+    stretches: Vec<DriverStretch>,
+    slots: Vec<Option<Slot>>,
+}
+
+impl Sections {
+    /// `None` without stretches (nothing to apply).
+    pub fn new(stretches: &[DriverStretch]) -> Option<Sections> {
+        (!stretches.is_empty()).then(|| Sections {
+            stretches: stretches.to_vec(),
+            slots: Vec::new(),
+        })
+    }
+
+    /// The slots were renumbered (`Simulation::compact`): `order[new] = old`.
+    pub fn renumber(&mut self, order: &[u32]) {
+        self.slots = order
+            .iter()
+            .map(|&old| self.slots.get(old as usize).copied().flatten())
+            .collect();
+    }
+
+    /// Give every vehicle on the road the θ and v_F of the stretch at its position.
+    pub fn apply(&mut self, traffic: &mut Traffic) {
+        for lane in &traffic.lanes {
+            for &s in lane {
+                let k = s as usize;
+                if k >= self.slots.len() {
+                    self.slots.resize(k + 1, None);
+                }
+                let veh = &mut traffic.vehicles[k];
+                let (id, x) = (veh.id, veh.x);
+                let h = &mut veh.driver.human;
+                let slot = match &mut self.slots[k] {
+                    Some(sl) if sl.id == id => sl,
+                    other => other.insert(Slot {
+                        id,
+                        v_f: h.desired_speed,
+                        theta: h.buffer_s,
+                        at: None,
+                        written_v_f: h.desired_speed,
+                    }),
+                };
+                if h.desired_speed != slot.written_v_f {
+                    // Set from outside since the last write: the vehicle's own from now on.
+                    let f_v = slot.at.map_or(1.0, |i| self.stretches[i].speed_factor);
+                    slot.v_f = h.desired_speed / f_v;
+                    slot.written_v_f = h.desired_speed;
+                }
+                let at = stretch_at(&self.stretches, x);
+                if at != slot.at {
+                    let (f_theta, f_v) = at.map_or((1.0, 1.0), |i| {
+                        let st = &self.stretches[i];
+                        (st.buffer_factor, st.speed_factor)
+                    });
+                    h.buffer_s = slot.theta * f_theta;
+                    h.desired_speed = slot.v_f * f_v;
+                    slot.at = at;
+                    slot.written_v_f = h.desired_speed;
+                }
+            }
+        }
     }
 }
 
@@ -85,17 +185,18 @@ mod tests {
 
     #[test]
     fn the_buffer_factor_scales_the_buffer_alone() {
-        let r = Relax {
-            headway: 0.5,
-            jam: 0.7,
-            reaction: 0.8,
-            buffer: 1.0,
-        };
-        let b = with_buffer_factor(r, 2.5);
+        let s = [st(100.0, 200.0, 2.5, 0.9)];
+        let p = HumanParams::default();
+        let q = params_at(&s, &p, 150.0).unwrap();
+        assert_eq!(q.buffer_s, 2.5 * p.buffer_s);
         assert_eq!(
-            (b.headway, b.jam, b.reaction, b.buffer),
-            (0.5, 0.7, 0.8, 2.5)
+            HumanParams {
+                buffer_s: p.buffer_s,
+                ..q
+            },
+            p
         );
-        assert_eq!(with_buffer_factor(Relax::NONE, 1.0), Relax::NONE);
+        assert_eq!(params_at(&s, &p, 250.0), None);
+        assert_eq!(params_at(&[], &p, 150.0), None);
     }
 }

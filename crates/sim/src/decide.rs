@@ -205,14 +205,13 @@ impl View<'_> {
     /// Current relaxation factors of a vehicle (spec 4.6).
     #[inline]
     fn relax_now(&self, v: &Vehicle) -> Relax {
-        let r = match v.lcs.relax.started() {
+        match v.lcs.relax.started() {
             None => Relax::NONE,
             Some(since) => lcm::relax_at(
                 &v.driver.lc,
                 (self.clock.step - since) as f64 * self.clock.dt,
             ),
-        };
-        self.road.section_relax(r, v.x)
+        }
     }
 
     fn decide_one(&self, s: u32, walls: &mut SideWalls) -> Decision {
@@ -542,7 +541,7 @@ impl View<'_> {
         // (spec 4.6) [D].
         let takeover = v.automated();
         let relax = if takeover {
-            self.road.section_relax(lcm::gap_relax(&v.driver.lc), v.x)
+            lcm::gap_relax(&v.driver.lc)
         } else {
             self.relax_now(v)
         };
@@ -667,19 +666,17 @@ impl View<'_> {
         human::friction_desired_speed(v_des, v_adj, c_fr)
     }
 
-    /// The desired speed of vehicle `s` in `lane` (spec 2.7): v_F (times the section's speed
-    /// factor where the network has section behaviour, `behaviour.rs`), capped by the lane's
-    /// speed limit when the network has lane-based caps (counted from the rightmost through
-    /// lane at the vehicle's position; an acceleration lane, right of it, takes the first cap).
-    /// Without either exactly v_F.
+    /// The desired speed of vehicle `s` in `lane` (spec 2.7): v_F, capped by the lane's speed
+    /// limit when the network has lane-based caps (counted from the rightmost through lane at
+    /// the vehicle's position; an acceleration lane, right of it, takes the first cap). Without
+    /// caps exactly v_F.
     #[inline]
     pub(crate) fn v_des_in(&self, s: u32, v: &Vehicle, lane: usize) -> f64 {
-        let v_f = self.road.section_speed(v_des_of(v), v.x);
         if self.road.lane_caps_mps.is_empty() {
-            return v_f; // no lookup of the vehicle's geometry on the hot path
+            return v_des_of(v); // no lookup of the vehicle's geometry on the hot path
         }
         self.road
-            .lane_capped(v_f, lane, self.sensed[s as usize].here.right)
+            .lane_capped(v_des_of(v), lane, self.sensed[s as usize].here.right)
     }
 }
 

@@ -272,7 +272,7 @@ impl View<'_> {
         }
         // v_ant ≤ the driver's desired speed in the target lane ≤ its own desired speed, so no
         // side can beat the absolute gain gate: nothing to scan.
-        if self.road.section_speed(v_des_of(v), v.x) - v_cur < v.driver.lc.min_speed_gain_mps {
+        if v_des_of(v) - v_cur < v.driver.lc.min_speed_gain_mps {
             return [None, None];
         }
         let here = &self.sensed[s as usize].here;

@@ -105,7 +105,6 @@ fn try_change(
                 v.driver.human.desired_speed,
                 to,
                 scratch.sensed[s as usize].here.right,
-                v.x,
             ),
             lead,
             lcm::gap_relax(&v.driver.lc),
@@ -239,7 +238,6 @@ fn coop_still_safe(
             f.driver.human.desired_speed,
             to,
             scratch.sensed[tf as usize].here.right,
-            f.x,
         );
         let lag = Leader {
             gap_m: v.rear() - f.x,
@@ -260,7 +258,6 @@ fn coop_still_safe(
                 v.driver.human.desired_speed,
                 to,
                 scratch.sensed[s as usize].here.right,
-                v.x,
             );
             if !coop::join_safe(cav, v.v, v.a, v_des, lead, l.is_cav(), gap(v), b_co, dt) {
                 return false;

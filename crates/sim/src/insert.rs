@@ -410,7 +410,7 @@ impl Inserting<'_> {
                     self.cfg,
                     self.clock.dt,
                     f,
-                    self.road.section_speed(f.driver.human.desired_speed, f.x),
+                    f.driver.human.desired_speed,
                     head,
                     view,
                 )
@@ -418,9 +418,9 @@ impl Inserting<'_> {
                 human::target_accel(
                     &f.driver.human,
                     f.v,
-                    self.road.section_speed(f.driver.human.desired_speed, f.x),
+                    f.driver.human.desired_speed,
                     Some(view),
-                    self.road.section_relax(Relax::NONE, f.x),
+                    Relax::NONE,
                 )
             };
             if a < f.driver.human.comfort_decel {
@@ -523,7 +523,8 @@ impl Inserting<'_> {
         v_max: f64,
     ) -> Option<f64> {
         let v_des = self.road.section_speed(veh.driver.human.desired_speed, x);
-        let relax = self.road.section_relax(Relax::NONE, x);
+        let section = self.road.section_human(&veh.driver.human, x);
+        let hp = section.as_ref().unwrap_or(&veh.driver.human);
         let mut leader = ld.map(|ld| {
             let l = &self.traffic.vehicles[ld as usize];
             (
@@ -566,7 +567,7 @@ impl Inserting<'_> {
                     };
                     leader.gap_m >= eq && cav::safe_speed(p, leader.gap_m, l.v) >= v
                 }
-                _ => human::target_accel(&veh.driver.human, v, v_des, Some(leader), relax) >= 0.0,
+                _ => human::target_accel(hp, v, v_des, Some(leader), Relax::NONE) >= 0.0,
             }
         };
         if ok(v_max) {

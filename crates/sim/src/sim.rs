@@ -27,6 +27,8 @@ pub struct Simulation {
     pub(crate) road: RoadState,
     /// Mainline entrance first, then one per on-ramp.
     pub(crate) entrances: Vec<Entrance>,
+    /// Section behaviour (`behaviour.rs`); `None` without stretches.
+    pub(crate) sections: Option<crate::behaviour::Sections>,
     pub(crate) scratch: Scratch,
     pub(crate) detectors: Detectors,
     pub(crate) measures: Measures,
@@ -98,6 +100,11 @@ impl Simulation {
                 ..Traffic::default()
             },
             entrances: Entrance::all(&cfg),
+            sections: cfg
+                .road
+                .network
+                .as_ref()
+                .and_then(|n| crate::behaviour::Sections::new(&n.behaviour)),
             scratch: Scratch {
                 ramp_factor: vec![[1.0; 2]; geom.on_ramps.len()],
                 ..Scratch::default()
@@ -289,6 +296,9 @@ impl Simulation {
     /// 6. **detectors**: crossings and occupancy; interval close and broadcast.
     /// 7. **invariants**: no overlap (an overlap is counted as a collision), all states finite.
     pub fn step(&mut self) -> Result<(), SimError> {
+        if let Some(sec) = &mut self.sections {
+            sec.apply(&mut self.traffic);
+        }
         if let Some(b) = &self.traffic.auto.beacons {
             b.receive(
                 self.clock.step,
@@ -673,14 +683,15 @@ impl Simulation {
 
     /// Renumber the slots in lane order, front first (memory locality only: neighbours in a
     /// lane become neighbours in memory). Nothing depends on slot numbers across steps: every
-    /// slot-indexed array is rebuilt by the next sense phase before it is read (insertion reads
-    /// `Sensed::platoon_pos` only of vehicles that were on the road at that phase: the mainline entrance
-    /// inserts first and on-ramps are listed in downstream order), identities are vehicle ids,
+    /// slot-indexed array is rebuilt by the next sense phase before it is read, or renumbered
+    /// here (the beacon log, the section behaviour's record of each vehicle); insertion reads
+    /// `Sensed::platoon_pos` only of vehicles that were on the road at that phase: the mainline
+    /// entrance inserts first and on-ramps are listed in downstream order; identities are vehicle ids,
     /// and no result is accumulated in slot order.
     fn compact(&mut self) {
         let on_road = self.vehicles_in_network();
         let mut packed = Vec::with_capacity(on_road.max(self.traffic.vehicles.len()));
-        let logging = self.traffic.auto.beacons.is_some();
+        let logging = self.traffic.auto.beacons.is_some() || self.sections.is_some();
         let mut order = Vec::new();
         for lane in &mut self.traffic.lanes {
             for s in lane.iter_mut() {
@@ -694,6 +705,9 @@ impl Simulation {
         self.traffic.vehicles = packed;
         if let Some(b) = &mut self.traffic.auto.beacons {
             b.renumber(&order);
+        }
+        if let Some(sec) = &mut self.sections {
+            sec.renumber(&order);
         }
         self.traffic.free.clear();
         self.scratch.changed_this_step.fill(u64::MAX);

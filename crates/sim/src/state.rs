@@ -97,19 +97,16 @@ impl RoadState {
     /// lane's speed limit when the network has lane-based caps, counted from the rightmost
     /// through lane `right` at its position (`NO_LANE`: none there; the first cap). Without
     /// caps exactly `v_f`.
-    /// At `x`, the section's speed factor applies first (`behaviour.rs`).
     #[inline]
-    pub fn desired_speed_in(&self, v_f: f64, lane: usize, right: u8, x: f64) -> f64 {
-        let v_f = self.section_speed(v_f, x);
+    pub fn desired_speed_in(&self, v_f: f64, lane: usize, right: u8) -> f64 {
         if self.lane_caps_mps.is_empty() {
             return v_f;
         }
         self.lane_capped(v_f, lane, right)
     }
 
-    /// `v_f` times the section's speed factor at `x` (`behaviour.rs`); `v_f` itself
-    /// without section behaviour.
-    #[inline]
+    /// For a vehicle not yet on the road (insertion): `v_f` times the section's speed factor
+    /// at `x`; on the road [`crate::behaviour::Sections`] has set it already.
     pub fn section_speed(&self, v_f: f64, x: f64) -> f64 {
         if self.behaviour.is_empty() {
             return v_f;
@@ -117,15 +114,17 @@ impl RoadState {
         v_f * crate::behaviour::factors_at(&self.behaviour, x).1
     }
 
-    /// `r` with the section's buffer factor at `x` (`behaviour.rs`); `r` itself without
-    /// section behaviour.
-    #[inline]
-    pub fn section_relax(&self, r: platoonsim_model::Relax, x: f64) -> platoonsim_model::Relax {
+    /// For a vehicle not yet on the road: its driver parameters with the section's buffer
+    /// factor at `x`; `None` without one there (use its own).
+    pub fn section_human(
+        &self,
+        p: &platoonsim_model::human::HumanParams,
+        x: f64,
+    ) -> Option<platoonsim_model::human::HumanParams> {
         if self.behaviour.is_empty() {
-            return r;
+            return None;
         }
-        let f_theta = crate::behaviour::factors_at(&self.behaviour, x).0;
-        crate::behaviour::with_buffer_factor(r, f_theta)
+        crate::behaviour::params_at(&self.behaviour, p, x)
     }
 
     /// `v_f` capped by the desired-speed cap of `lane`. Requires caps.

@@ -38,12 +38,7 @@ pub(crate) fn follower_accel_after(
     c: &Vehicle,
     changer: Leader,
 ) -> f64 {
-    let v_des = road.desired_speed_in(
-        v_des_of(f),
-        f.lane as usize,
-        sensed[fs as usize].here.right,
-        f.x,
-    );
+    let v_des = road.desired_speed_in(v_des_of(f), f.lane as usize, sensed[fs as usize].here.right);
     if !f.automated() {
         return safegap::human_follower_accel(&f.driver.human, &f.driver.lc, f.v, v_des, changer);
     }
