@@ -259,7 +259,10 @@ fn zero_flow_intervals_are_the_empty_mainline_intervals_of_the_window() {
     };
     let sparse = Config::homogeneous(0.5, 2.0, 3600.0, 600.0, 3);
     let o = run(&sparse, None).unwrap();
-    assert!(o.summary.zero_flow_intervals > 0, "2 veh/h/lane leaves empty intervals");
+    assert!(
+        o.summary.zero_flow_intervals > 0,
+        "2 veh/h/lane leaves empty intervals"
+    );
     assert_eq!(o.summary.zero_flow_intervals, count_in_records(&o, 600.0));
     // Empty intervals before the warm-up ends are not counted.
     let before = o
