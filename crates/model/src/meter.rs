@@ -16,14 +16,15 @@
 //! Sources. One vehicle per green is the usual US practice for a single-lane meter (Caltrans
 //! Ramp Meter Design Manual, 2000; FHWA Ramp Management and Control Handbook, FHWA-HOP-05-072,
 //! 2006, chapter 5). ALINEA: Papageorgiou, Hadj-Salem & Blosseville (1991), "ALINEA: a local
-//! feedback control law for on-ramp metering", Transportation Research Record 1320; an
-//! integral regulator of the downstream occupancy, whose clamping to [r_min, r_max] each period
-//! keeps it from winding up. The queue override is the field practice of a queue detector near
-//! the ramp's entry that raises the rate when the queue reaches it (Caltrans Ramp Meter Design
-//! Manual; FHWA Handbook chapter 5); Smaragdis & Papageorgiou (2003), Transportation Research
-//! Record 1856, discuss it for ALINEA. The green-start rule is this project's discretization
-//! of a continuous meter to the step: on a saturated ramp the greens keep their phase, so the
-//! mean rate is r exactly and each headway is c within one step \[D\].
+//! feedback control law for on-ramp metering", Transportation Research Record (volume 1320
+//! \[R\]); an integral regulator of the downstream occupancy, whose clamping to
+//! [r_min, r_max] each period keeps it from winding up. The queue override is the field
+//! practice of a queue detector near the ramp's entry that raises the rate when the queue
+//! reaches it (Caltrans Ramp Meter Design Manual; FHWA Handbook chapter 5); Smaragdis &
+//! Papageorgiou (2003, Transportation Research Record \[R\]) combine it with ALINEA. The
+//! green-start rule is this project's discretization of a continuous meter to the step: on a
+//! saturated ramp the greens keep their phase, so the mean rate is r exactly and each headway
+//! is c within one step \[D\].
 //!
 //! | symbol | field | default | unit | source |
 //! |---|---|---|---|---|
