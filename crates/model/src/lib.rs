@@ -16,6 +16,7 @@
 //! | [`driver`] | the lane-change decision procedure, rule by rule | 4.2, 4.3, 4.7 |
 //! | [`safety`] | emergency braking limit, time to collision, TET/TIT exposure | docs/safety.md |
 //! | [`energy`] | fuel (VT-CPFM-1), battery-electric energy, platoon drag reduction | docs/energy.md |
+//! | [`meter`] | ramp metering: one car per green, ALINEA, queue override | docs/network-scenarios.md |
 //!
 //! Conventions: SI units inside (m, s, m/s, m/s²); decelerations are negative
 //! numbers (`max_decel = -4.0`); gaps are *net* gaps (leader's rear bumper to the
@@ -28,6 +29,7 @@ pub mod driver;
 pub mod energy;
 pub mod human;
 pub mod lanechange;
+pub mod meter;
 pub mod safegap;
 pub mod safety;
 

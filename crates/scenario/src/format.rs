@@ -3,10 +3,10 @@
 
 use crate::network::{detectors, split_name, stretches, RampStations, Spacing, END_DETECTOR};
 use crate::raw::{
-    RawBehaviour, RawDemand, RawDetector, RawLaneStretch, RawMeasurement, RawNetwork,
-    RawNetworkDetectors, RawOffRamp, RawOnRamp, RawRoad, RawRun, RawScenario, RawStrategy,
+    RawBehaviour, RawDemand, RawDetector, RawLaneStretch, RawMeasurement, RawMeter, RawNetwork,
+    RawNetworkDetectors, RawOffRamp, RawOnRamp, RawRoad, RawRun, RawScenario, RawStrategy, RawTime,
 };
-use platoonsim_sim::config::{DetectorKind, Network};
+use platoonsim_sim::config::{DetectorKind, Meter, MeterLaw, Network};
 use platoonsim_sim::{Config, LaneChoice, Strategy};
 use toml::{Table, Value};
 
@@ -202,6 +202,7 @@ fn raw_network(n: &Network, config: &Config) -> (RawNetwork, Vec<String>) {
                 ramp_length_m: Some(r.ramp_length_m),
                 demand_vph: Some(r.demand_vph.clone()),
                 station: stations.on[i].clone(),
+                meter: r.meter.as_ref().map(raw_meter),
             })
             .collect(),
         off_ramps: n
@@ -229,6 +230,29 @@ fn raw_network(n: &Network, config: &Config) -> (RawNetwork, Vec<String>) {
             .collect(),
     };
     (raw, generated)
+}
+
+/// A meter with every key written out (its hours in simulated seconds).
+fn raw_meter(m: &Meter) -> RawMeter {
+    let mut raw = RawMeter {
+        kind: Some(m.law.name().to_string()),
+        queue_max_veh: m.queue_max_veh.map(i64::from),
+        from: Some(RawTime::Seconds(m.from_s)),
+        to: m.to_s.map(RawTime::Seconds),
+        ..RawMeter::default()
+    };
+    match &m.law {
+        MeterLaw::Fixed { rate_vph } => raw.rate_vph = Some(*rate_vph),
+        MeterLaw::Alinea { law, detector_m } => {
+            raw.occupancy_target_pct = Some(law.occupancy_target_pct);
+            raw.gain_vph = Some(law.gain_vph);
+            raw.min_rate_vph = Some(law.min_rate_vph);
+            raw.max_rate_vph = Some(law.max_rate_vph);
+            raw.period_s = Some(law.period_s);
+            raw.detector_m = Some(*detector_m);
+        }
+    }
+    raw
 }
 
 /// A resolved scenario as TOML text: one `[section]` per table, distributions as inline tables.

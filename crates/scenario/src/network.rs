@@ -360,6 +360,7 @@ mod tests {
                     accel_lane_m: 250.0,
                     ramp_length_m: 300.0,
                     demand_vph: vec![0.0],
+                    meter: None,
                 },
                 OnRamp {
                     name: "b".into(),
@@ -367,6 +368,7 @@ mod tests {
                     accel_lane_m: 250.0,
                     ramp_length_m: 300.0,
                     demand_vph: vec![0.0],
+                    meter: None,
                 },
             ],
             off_ramps: vec![OffRamp {

@@ -228,6 +228,68 @@ pub struct RawOnRamp {
         deserialize_with = "station_id"
     )]
     pub station: Option<String>,
+    /// A ramp meter: `{ kind = "fixed", rate_vph = 900 }` or `{ kind = "alinea", ... }`
+    /// (docs/network-scenarios.md, "Ramp meters").
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub meter: Option<RawMeter>,
+}
+
+/// The `meter` of an on-ramp, as written; `validate_meters.rs` checks it against its `kind`.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RawMeter {
+    /// `"fixed"` or `"alinea"`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kind: Option<String>,
+    /// Fixed: the rate (veh/h), one vehicle per green.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rate_vph: Option<f64>,
+    /// ALINEA: o* (%), K_R (veh/h per %), r_min and r_max (veh/h), T (s), and where its
+    /// detector is (m downstream of the merge point).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub occupancy_target_pct: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gain_vph: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_rate_vph: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_rate_vph: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub period_s: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub detector_m: Option<f64>,
+    /// Queue override: the most vehicles that may wait on the ramp.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub queue_max_veh: Option<i64>,
+    /// When the meter runs: a clock time ("06:30", with `run.clock_start`) or simulated
+    /// seconds.
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "meter_time"
+    )]
+    pub from: Option<RawTime>,
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "meter_time"
+    )]
+    pub to: Option<RawTime>,
+}
+
+/// A time of a meter's hours: a clock time or simulated seconds.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum RawTime {
+    Clock(String),
+    Seconds(f64),
+}
+
+/// A [`RawTime`] with a message that says what is expected.
+fn meter_time<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<RawTime>, D::Error> {
+    RawTime::deserialize(d).map(Some).map_err(|_| {
+        serde::de::Error::custom(
+            "expected a clock time \"HH:MM\" or \"HH:MM:SS\", or simulated seconds (a number)",
+        )
+    })
 }
 
 /// One `[[network.off_ramps]]` entry.

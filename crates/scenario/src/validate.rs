@@ -250,7 +250,7 @@ pub fn validate_in(
     let net = raw
         .network
         .as_ref()
-        .map(|n| network::check_network(&mut c, n, run.penetration.v, base_dir));
+        .map(|n| network::check_network(&mut c, n, &run, base_dir));
     let road = road::check_road(&mut c, &raw.road, net.as_ref());
     let frame = &road.frame;
 

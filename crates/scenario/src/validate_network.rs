@@ -165,9 +165,10 @@ fn demand_offset(
 pub(super) fn check_network(
     c: &mut Checker,
     n: &RawNetwork,
-    penetration: f64,
+    run: &super::run::Run,
     base_dir: Option<&Path>,
 ) -> Checked {
+    let penetration = run.penetration.v;
     // The sections in the order their problems are reported.
     let b = bounds(c, n);
     let origin = b.start.unwrap_or(f64::NAN);
@@ -178,7 +179,7 @@ pub(super) fn check_network(
     let (lanes, through) = through_lanes(&stretches);
     let ids = ramp_ids(c, n);
     let n_on = n.on_ramps.len();
-    let on_ramps = on_ramps(c, n, &ids[..n_on], &b, origin, &d);
+    let on_ramps = on_ramps(c, n, &ids[..n_on], &b, origin, &d, run);
     let off_ramps = off_ramps(c, n, &ids[n_on..], &b, origin, &d);
     let spacing = detector_spacing(c, n, length);
     let behaviour = behaviour::behaviour(c, n, &b, origin);

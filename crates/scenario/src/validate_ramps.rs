@@ -6,8 +6,12 @@ use super::{defaults, position, series, Bounds, Demand};
 use crate::limits;
 use crate::network::{default_off_id, default_on_id, engine_name, valid_id};
 use crate::raw::{num, RawNetwork};
+use crate::validate::run::Run;
 use crate::validate::{quoted, Checker, Num};
 use platoonsim_sim::config::{OffRamp, OnRamp};
+
+#[path = "validate_meters.rs"]
+mod meters;
 
 /// The ramp ids, on-ramps first: (field, id, defaulted), unique across on- and off-ramps
 /// (they name the detectors).
@@ -99,6 +103,7 @@ pub(super) fn on_ramps(
     b: &Bounds,
     origin: f64,
     d: &Demand,
+    run: &Run,
 ) -> Vec<OnRamp> {
     let (ramp_cap, intervals) = (&d.ramp_cap, d.intervals);
     let mut on_ramps = Vec::with_capacity(n.on_ramps.len());
@@ -146,12 +151,22 @@ pub(super) fn on_ramps(
             intervals,
             "the ramp demand per interval (veh/h)",
         );
+        let place = meters::Place {
+            x_m: x,
+            end_m: b.span.map(|(_, e)| e),
+            accel_lane_m: accel.v,
+        };
+        let meter = r
+            .meter
+            .as_ref()
+            .and_then(|m| meters::check(c, i, m, &place, run));
         on_ramps.push(OnRamp {
             name: engine_name(id, &name),
             x_m: x.map_or(f64::NAN, |x| x - origin),
             accel_lane_m: accel.v,
             ramp_length_m: ramp_len.map_or(f64::NAN, |n: Num| n.v),
             demand_vph: demand,
+            meter,
         });
     }
     on_ramps

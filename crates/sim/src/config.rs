@@ -11,6 +11,9 @@ use platoonsim_model::lanechange::LaneChangeDists;
 use platoonsim_model::safety::SafetyParams;
 use serde::Serialize;
 
+mod meter;
+pub use meter::{Meter, MeterLaw, MAX_METER_RATE_VPH};
+
 /// A straight multi-lane road (the paper's homogeneous segment). Positions in metres from
 /// the entrance; lanes numbered from the right, 0 = rightmost, `lanes - 1` = leftmost (the PD
 /// lane).
@@ -108,6 +111,11 @@ pub struct OnRamp {
     pub ramp_length_m: f64,
     /// Demand per interval (veh/h), before scaling.
     pub demand_vph: Vec<f64>,
+    /// A ramp meter (docs/network-scenarios.md); `None`, the default, releases the queue as
+    /// the insertion rule admits, and is not written (configurations without meters keep
+    /// their identity).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub meter: Option<Meter>,
 }
 
 /// An off-ramp (diverge at `x_m`). A vehicle decides on entry, for each off-ramp downstream in
@@ -224,6 +232,9 @@ impl Network {
                 &r.demand_vph,
                 f64::MAX,
             )?;
+            if let Some(m) = &r.meter {
+                m.check(i, r.x_m, length_m)?;
+            }
         }
         for (i, r) in self.off_ramps.iter().enumerate() {
             if i > 0 && r.x_m < self.off_ramps[i - 1].x_m {

@@ -133,6 +133,15 @@ impl Detector {
         acc.speed_sum += v;
     }
 
+    /// The occupancy of the running interval of `span_s` (share of it, mean over the covered
+    /// lanes, as the records' `all` row), which then starts again: a ramp meter's detector,
+    /// read every control period, keeps no history.
+    pub(crate) fn take_occupancy(&mut self, span_s: f64) -> f64 {
+        let occupied: f64 = self.current.iter().map(|a| a.occupied_s).sum();
+        self.current.fill(Acc::default());
+        (occupied / (span_s * self.covered as f64)).clamp(0.0, 1.0)
+    }
+
     /// Close the running interval.
     pub fn close_interval(&mut self) {
         let done = std::mem::replace(&mut self.current, vec![Acc::default(); self.lanes]);

@@ -15,6 +15,7 @@
 
 use crate::config::Config;
 use crate::events::Event;
+use crate::meter::Gate;
 use crate::network::NO_LANE;
 use crate::record::Recorder;
 use crate::rng::{Purpose, Stream};
@@ -268,6 +269,8 @@ pub(crate) struct Inserting<'a> {
     pub watch: &'a mut Watch,
     /// The loop detectors: an on-ramp counter counts each vehicle placed from its ramp.
     pub detectors: &'a mut crate::state::Detectors,
+    /// The ramp meters: a metered ramp's head goes only at a green.
+    pub meters: &'a mut crate::meter::Meters,
 }
 
 impl Inserting<'_> {
@@ -359,6 +362,14 @@ impl Inserting<'_> {
     /// the ramp speed limit, if that is a steady state behind the vehicle (or wall) ahead and
     /// leaves the vehicle behind (a lane add, or a merged auxiliary lane) a comfortable gap.
     fn insert_ramp(&mut self, e: usize, r: usize) {
+        let now = (self.clock.step + 1) as f64 * self.clock.dt;
+        let gate = match self.meters.of_ramp(r) {
+            None => Gate::Free,
+            Some(m) => self.meters.list[m].gate(now, self.entrances[e].queue.len()),
+        };
+        if gate == Gate::Red {
+            return;
+        }
         let Some(head) = self.entrances[e].queue.front() else {
             return;
         };
@@ -431,6 +442,9 @@ impl Inserting<'_> {
             .queue
             .pop_front()
             .expect("queue has a head");
+        if let Some(m) = self.meters.of_ramp(r) {
+            self.meters.list[m].released(gate, now, self.clock.dt);
+        }
         if let Some(d) = self.detectors.entry_of_ramp[r] {
             self.detectors.list[d].count_exit(speed, veh.is_cav());
         }

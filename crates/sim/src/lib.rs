@@ -8,7 +8,7 @@
 //! [`VehicleView`]s (module `view`), and after each step an [`Observer`]'s [`StepView`].
 //!
 //! Modules by phase: `sense` (neighbours, platoons), `decide` (lane-change decisions and
-//! accelerations), `execute` (lane changes), `insert` (arrivals, insertion), `detector`,
+//! accelerations), `execute` (lane changes), `insert` (arrivals, insertion), `meter` (ramp meters), `detector`,
 //! `metrics`, `organize` (platoon organization: the `Organizer` trait and the strategies), `rng` (named random streams).
 
 mod automation;
@@ -28,6 +28,7 @@ mod here;
 mod insert;
 mod integrate;
 mod invariants;
+mod meter;
 pub mod metrics;
 pub mod network;
 pub mod organize;
@@ -49,8 +50,8 @@ mod yielding;
 
 pub use command::Command;
 pub use config::{
-    Config, Demand, DetectorKind, DetectorSpec, FlowAwareConfig, LaneExtent, Network, OffRamp,
-    OnRamp, PdConfig, Road, Strategy,
+    Config, Demand, DetectorKind, DetectorSpec, FlowAwareConfig, LaneExtent, Meter, MeterLaw,
+    Network, OffRamp, OnRamp, PdConfig, Road, Strategy,
 };
 pub use energy::{EnergyMeter, EnergySummary, TripEnergy};
 pub use error::SimError;
@@ -63,7 +64,7 @@ pub use sim::Simulation;
 pub use snapshot::VehicleColumns;
 pub use summary::{
     BrakingPeaks, CollisionEvent, CollisionKind, CountedMeasure, CountedMeasures, DetectorRecord,
-    Output, Summary,
+    MeterSummary, Output, Summary,
 };
 pub use vehicle::{Kind, Mode, ModeLabel};
 pub use view::VehicleView;

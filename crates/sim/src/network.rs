@@ -417,6 +417,7 @@ mod tests {
             accel_lane_m: 250.0,
             ramp_length_m: 300.0,
             demand_vph: vec![100.0],
+            meter: None,
         };
         Network {
             origin_m: 0.0,

@@ -38,6 +38,8 @@ pub struct Simulation {
     pub(crate) watch: Watch,
     /// Fuel and electricity per vehicle (`energy.rs`); only with `energy.enabled`.
     pub(crate) energy: Option<Box<crate::energy::EnergyMeter>>,
+    /// The ramp meters (`meter.rs`); empty without any.
+    pub(crate) meters: crate::meter::Meters,
 }
 
 impl Simulation {
@@ -86,7 +88,9 @@ impl Simulation {
         let lane_caps_mps = cfg.road.network.as_ref().map_or(Vec::new(), |n| {
             n.lane_speed_limits_kmh.iter().map(|c| c / 3.6).collect()
         });
+        let meters = crate::meter::Meters::new(&cfg, &geom, n_lanes);
         let mut sim = Simulation {
+            meters,
             clock: Clock {
                 dt,
                 step: 0,
@@ -361,6 +365,7 @@ impl Simulation {
             rec: &mut self.rec,
             watch: &mut self.watch,
             detectors: &mut self.detectors,
+            meters: &mut self.meters,
         }
         .insert();
         crate::detect::observe_detectors(
@@ -369,7 +374,14 @@ impl Simulation {
             self.scratch.lanes_sorted,
             &mut self.detectors,
         );
+        if !self.meters.list.is_empty() {
+            self.meters
+                .observe(self.clock.dt, &self.traffic, self.scratch.lanes_sorted);
+        }
         self.clock.step += 1;
+        if !self.meters.list.is_empty() {
+            self.meters.control(self.clock.step, self.clock.dt);
+        }
         if self.clock.step.is_multiple_of(COMPACT_EVERY_STEPS) {
             self.compact();
         }
@@ -580,6 +592,7 @@ impl Simulation {
                 .then_some(sf.exposure.min_ttc_s),
             cacc_fallbacks: self.measures.cacc_fallbacks,
             energy: self.energy.as_ref().map(|e| e.summary()),
+            meters: self.meters.summaries(self.clock.dt),
             vehicle_updates: self.measures.vehicle_updates,
             steps: self.clock.step,
             wall_seconds,

@@ -104,9 +104,37 @@ pub struct Summary {
     /// Fuel and electricity (docs/energy.md), with `energy.enabled` only.
     #[serde(flatten)]
     pub energy: Option<crate::energy::EnergySummary>,
+    /// The ramp meters' accounts over the whole run, in ramp order; empty (and not written)
+    /// without meters.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub meters: Vec<MeterSummary>,
     pub vehicle_updates: u64,
     pub steps: u64,
     pub wall_seconds: f64,
+}
+
+/// One ramp meter over the whole run (`summary.json`'s `meters`; docs/outputs.md). "Active":
+/// inside the meter's hours; "metering": active and not in queue override.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MeterSummary {
+    /// The on-ramp, named as in the configuration (`"OR7: Calvine Rd WB"`).
+    pub ramp: String,
+    /// `fixed` or `alinea`.
+    pub kind: &'static str,
+    /// Time the meter was active (s).
+    pub active_s: f64,
+    /// Vehicles it released while active (at a green, or freely in a fixed meter's override).
+    pub released: u64,
+    /// Time mean of the rate it ran while metering (veh/h); `None` if it never metered.
+    pub mean_rate_vph: Option<f64>,
+    /// The lowest rate it ran while metering (veh/h).
+    pub min_rate_vph: Option<f64>,
+    /// Time in queue override (s).
+    pub override_s: f64,
+    /// Time mean of the vehicles waiting on the ramp while active; `None` if never active.
+    pub queue_mean_veh: Option<f64>,
+    /// The most vehicles waiting on the ramp while active.
+    pub queue_max_veh: u64,
 }
 
 /// One measure counted in episodes, by kind (the braking vehicle's, or the conflict's

@@ -20,6 +20,7 @@ fn close_ramps(seed: u64) -> Config {
         accel_lane_m: accel,
         ramp_length_m: 300.0,
         demand_vph: vec![900.0],
+        meter: None,
     };
     cfg.road.network = Some(Network {
         origin_m: 0.0,

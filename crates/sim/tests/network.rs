@@ -31,6 +31,7 @@ pub fn toy(penetration: f64, mainline_vph: Vec<f64>, seed: u64) -> Config {
         accel_lane_m: 250.0,
         ramp_length_m: 300.0,
         demand_vph: vec![vph],
+        meter: None,
     };
     cfg.road.lanes = 5;
     cfg.road.length_m = 4000.0;

@@ -45,6 +45,7 @@ fn small_corridor(seed: u64) -> Config {
             accel_lane_m: 250.0,
             ramp_length_m: 300.0,
             demand_vph: vec![400.0],
+            meter: None,
         }],
         off_ramps: vec![OffRamp {
             name: "F".into(),

@@ -89,6 +89,7 @@ pub fn corridor(
                 accel_lane_m: accel,
                 ramp_length_m: 300.0,
                 demand_vph: vec![0.0],
+                meter: None,
             })
             .into_iter()
             .collect(),
