@@ -139,8 +139,13 @@ pub fn run_with(
             opts.scenario
         ))
     })?;
+    let start_values = space.values(&space.start);
+    let prior_sd: Vec<Option<f64>> = p.params.iter().map(|q| q.prior_sd).collect();
+    // The ramp counters are the demand's inputs: the objective fits the mainline alone, as
+    // `compare` judges it (docs/compare.md).
+    let judged = mainline_obs(&space.base, field);
     let target = Target {
-        field: &field.obs,
+        field: &judged,
         weights: p.weights,
         clock_start_s,
         warmup_s: space.base.warmup_s,
@@ -202,7 +207,10 @@ pub fn run_with(
                 .collect::<Result<Vec<_>, _>>()?;
             let specs = evaluate::specs(&configs, &seeds);
             let outcomes = evaluate::run(&batch, &specs, first)?;
-            let terms = evaluate::objectives(&reader, &outcomes, configs.len(), &target)?;
+            let mut terms = evaluate::objectives(&reader, &outcomes, configs.len(), &target)?;
+            for (t, v) in terms.iter_mut().zip(&values) {
+                t.values[4] = Some(objective::prior(v, &start_values, &prior_sd));
+            }
             Ok(values
                 .into_iter()
                 .zip(terms)
@@ -285,6 +293,31 @@ pub fn run_with(
     Ok(done)
 }
 
+/// The field observations of the mainline stations: without the stations the scenario counts
+/// at a ramp (a `station` on a ramp) or the placement lists as a ramp.
+fn mainline_obs(base: &platoonsim_sim::Config, field: &Field) -> Vec<platoonsim_field::Obs> {
+    use platoonsim_sim::config::DetectorKind;
+    let sim_ramps = base
+        .detectors
+        .iter()
+        .filter(|d| !matches!(d.kind, DetectorKind::Mainline))
+        .map(|d| platoonsim_field::Placed {
+            station: d.name.clone(),
+            x_m: d.position_m,
+            kind: platoonsim_field::StationKind::OnRamp,
+            lanes: 0,
+            name: d.name.clone(),
+        })
+        .collect::<Vec<_>>();
+    let ramps = crate::compare::ramp_stations(&sim_ramps, &field.places);
+    field
+        .obs
+        .iter()
+        .filter(|o| !ramps.contains(&o.station))
+        .cloned()
+        .collect()
+}
+
 /// The lowest objective's index (the first of equals).
 pub fn best_index(trace: &[Row]) -> usize {
     let mut best = 0;
@@ -312,4 +345,51 @@ fn estimate_demand(p: &Params, field: &Field, scenario: &str) -> Result<demand::
         .map_err(|e| Error::Other(format!("{}: [demand]: {e}", p.origin)))?;
     demand::demand(&config, field, &p.demand)
         .map_err(|e| Error::Other(format!("{}: {e}", p.origin)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use platoonsim_field::StationKind;
+    use platoonsim_sim::config::{DetectorKind, DetectorSpec};
+
+    fn obs(station: &str) -> Obs {
+        Obs {
+            station: station.into(),
+            start_s: 0,
+            interval_s: 300,
+            flow_vph: 100.0,
+            speed_kmh: Some(90.0),
+            occupancy: None,
+        }
+    }
+
+    #[test]
+    fn the_objective_fits_the_mainline_stations_not_the_ramp_counters() {
+        // "R1" counts an off-ramp in the scenario; "R2" is an on-ramp by the field's placement.
+        let mut base = platoonsim_sim::Config::homogeneous(0.0, 1000.0, 600.0, 0.0, 1);
+        base.detectors.push(DetectorSpec {
+            name: "R1".into(),
+            position_m: 100.0,
+            kind: DetectorKind::OffRamp { ramp: 0 },
+            exit: true,
+        });
+        let field = Field {
+            obs: vec![obs("discharge"), obs("R1"), obs("R2"), obs("upstream")],
+            places: vec![Placed {
+                station: "R2".into(),
+                x_m: 50.0,
+                kind: StationKind::OnRamp,
+                lanes: 1,
+                name: "R2".into(),
+            }],
+            files: Vec::new(),
+            notes: Vec::new(),
+        };
+        let kept: Vec<String> = mainline_obs(&base, &field)
+            .into_iter()
+            .map(|o| o.station)
+            .collect();
+        assert_eq!(kept, ["discharge", "upstream"]);
+    }
 }

@@ -10,6 +10,7 @@
 //! | `flow_rmsne` | the same for the flows, pairs with a field flow > 0 | as above |
 //! | `flow_geh` | mean GEH √(2 (q_sim − q_obs)² / (q_sim + q_obs)) of the flows in veh/h at the data's own interval ([`fit::geh`]) | UK DMRB vol. 12; FHWA Toolbox III |
 //! | `compare` | `platoonsim compare`'s scalar ([`fit::Fit::objective`]): mean GEH of hourly volumes / 5 + RMSNE of 15-min speeds; needs whole clock hours of data | docs/compare.md |
+//! | `prior` | mean over the fitted keys with a `prior_sd` of ((x − x₀)/σ)², x₀ the key's start value ([`prior`]): a Gaussian prior's negative log density up to a constant, which keeps such a key (a section factor) at its start unless the data pays for the move; 0 when no key has one | ridge / MAP estimation; FHWA Toolbox III orders global before link-specific parameters |
 //!
 //! The first three work at any interval (a short run, 5- or 10-minute data); `compare` is the
 //! report's own measure and needs runs of at least one clock hour on a 15-minute grid. A
@@ -24,6 +25,7 @@
 //! | `flow_rmsne` | 0.0 | off: the relative flow error is what GEH measures more robustly |
 //! | `flow_geh` | 0.1 | a mean GEH of 5 (the usual acceptance threshold) weighs like a speed RMSNE of 0.5 |
 //! | `compare` | 0.0 | off: it needs hour-long runs |
+//! | `prior` | 0.1 | a key two prior widths from its start costs 0.4, a mean GEH of 4 |
 
 use platoonsim_field::fit;
 use platoonsim_field::Obs;
@@ -31,15 +33,15 @@ use std::collections::BTreeMap;
 use toml::{Table, Value};
 
 /// The terms' names, in `trace.csv` order.
-pub const TERMS: [&str; 4] = ["speed_rmsne", "flow_rmsne", "flow_geh", "compare"];
+pub const TERMS: [&str; 5] = ["speed_rmsne", "flow_rmsne", "flow_geh", "compare", "prior"];
 
 /// Weights of the terms (see the module documentation for the defaults).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Weights(pub [f64; 4]);
+pub struct Weights(pub [f64; 5]);
 
 impl Default for Weights {
     fn default() -> Weights {
-        Weights([1.0, 0.0, 0.1, 0.0])
+        Weights([1.0, 0.0, 0.1, 0.0, 0.1])
     }
 }
 
@@ -61,10 +63,13 @@ impl Weights {
                 _ => return Err((key, format!("{v} is not a weight (a number >= 0)"))),
             }
         }
-        if w.0.iter().all(|&x| x == 0.0) {
+        // The prior alone fits nothing: it only keeps keys where they start.
+        if w.0[..4].iter().all(|&x| x == 0.0) {
             return Err((
                 "objective".into(),
-                "every weight is 0: nothing to fit".into(),
+                "every weight of a data term (speed_rmsne, flow_rmsne, flow_geh, compare) is 0: \
+                 nothing to fit"
+                    .into(),
             ));
         }
         Ok(w)
@@ -84,7 +89,7 @@ impl Weights {
 /// its weight is 0), and the number of matched pairs.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Terms {
-    pub values: [Option<f64>; 4],
+    pub values: [Option<f64>; 5],
     pub pairs: usize,
 }
 
@@ -137,7 +142,14 @@ pub fn terms(field: &[Obs], sim: &[Obs], w: &Weights) -> Result<Terms, String> {
             fit::fit(sim, &fit::within(field, span.0, span.1)).objective()
         }
     };
-    let values = [fit::rmsne(&speed), fit::rmsne(&flow), Some(geh), compare];
+    // The prior depends on the candidate, not on the runs: the caller fills it ([`prior`]).
+    let values = [
+        fit::rmsne(&speed),
+        fit::rmsne(&flow),
+        Some(geh),
+        compare,
+        Some(0.0),
+    ];
     for (i, v) in values.iter().enumerate() {
         match v {
             // A non-finite term would make every candidate equal ("best objective NaN") and
@@ -172,9 +184,34 @@ pub fn terms(field: &[Obs], sim: &[Obs], w: &Weights) -> Result<Terms, String> {
     })
 }
 
+/// The `prior` term: the mean over the keys with a prior width σ of ((x − x₀)/σ)², for the
+/// values `x`, start values `x0` and widths `sd` (`None`: no prior on that key); 0 without any.
+pub fn prior(x: &[f64], x0: &[f64], sd: &[Option<f64>]) -> f64 {
+    let z: Vec<f64> = x
+        .iter()
+        .zip(x0)
+        .zip(sd)
+        .filter_map(|((x, x0), sd)| sd.map(|s| ((x - x0) / s).powi(2)))
+        .collect();
+    if z.is_empty() {
+        0.0
+    } else {
+        z.iter().sum::<f64>() / z.len() as f64
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_prior_is_the_mean_squared_standardized_distance_from_the_start() {
+        // Keys 0 and 2 have a prior: ((1.5 − 1)/0.25)² = 4 and ((0.9 − 1)/0.5)² = 0.04.
+        let p = prior(&[1.5, 7.0, 0.9], &[1.0, 3.0, 1.0], &[Some(0.25), None, Some(0.5)]);
+        assert!((p - 2.02).abs() < 1e-12, "{p}");
+        assert_eq!(prior(&[1.0, 1.0], &[1.0, 1.0], &[Some(0.1), Some(0.2)]), 0.0);
+        assert_eq!(prior(&[5.0], &[1.0], &[None]), 0.0);
+    }
 
     fn obs(station: &str, t: u32, flow: f64, speed: Option<f64>) -> Obs {
         Obs {
@@ -207,7 +244,7 @@ mod tests {
         close(t.values[2].unwrap(), (80_000.0f64 / 2200.0).sqrt() / 2.0);
         // Unweighted, compare's term is not computed.
         assert_eq!(t.values[3], None);
-        let w = Weights([1.0, 2.0, 0.5, 0.0]);
+        let w = Weights([1.0, 2.0, 0.5, 0.0, 0.0]);
         assert_eq!(
             t.objective(&w),
             t.values[0].unwrap() + 2.0 * t.values[1].unwrap() + 0.5 * t.values[2].unwrap()
@@ -242,7 +279,7 @@ mod tests {
         // A field row outside the simulated hour is not compared.
         let mut more = field.clone();
         more.push(obs("a", 28_800, 5000.0, Some(10.0)));
-        let w = Weights([0.0, 0.0, 0.0, 1.0]);
+        let w = Weights([0.0, 0.0, 0.0, 1.0, 0.0]);
         let t = terms(&more, &sim, &w).unwrap();
         let want = fit::fit(&sim, &field).objective().unwrap();
         // GEH of 1100 vs 1000 / 5 + RMSNE 0.1

@@ -14,6 +14,7 @@
 //! [params]                     # the fitted keys: bounds, optional start (default: the scenario's value)
 //! "human.buffer_s" = { min = 0.0, max = 0.6 }
 //! "human.desired_speed_kmh.mean" = { min = 90, max = 125, start = 110 }
+//! "network.behaviour[0].buffer_factor" = { min = 0, max = 5, prior_sd = 0.5 }  # kept near its start
 //! [objective]                  # weights of the terms (super::objective)
 //! speed_rmsne = 1.0
 //! flow_geh = 0.1
@@ -43,6 +44,9 @@ pub struct Param {
     pub min: f64,
     pub max: f64,
     pub start: Option<f64>,
+    /// Width σ of a Gaussian prior around the start value, in the key's unit (the objective's
+    /// `prior` term); `None`: no prior.
+    pub prior_sd: Option<f64>,
 }
 
 /// A validated parameters file (scenario keys are checked against the scenario later).
@@ -265,10 +269,12 @@ fn params(v: Option<&Value>) -> Result<Vec<Param>, (String, String)> {
             return Err((key, format!("{v} is not a table {{ min = .., max = .. }}")));
         };
         for f in b.keys() {
-            if !["min", "max", "start"].contains(&f.as_str()) {
+            if !["min", "max", "start", "prior_sd"].contains(&f.as_str()) {
                 return Err((
                     format!("{key}.{f}"),
-                    "unknown key; a fitted key has min, max and an optional start".into(),
+                    "unknown key; a fitted key has min, max, an optional start and an optional \
+                     prior_sd"
+                        .into(),
                 ));
             }
         }
@@ -298,11 +304,21 @@ fn params(v: Option<&Value>) -> Result<Vec<Param>, (String, String)> {
                 ));
             }
         }
+        let prior_sd = get("prior_sd")?;
+        if let Some(s) = prior_sd {
+            if s <= 0.0 {
+                return Err((
+                    format!("{key}.prior_sd"),
+                    format!("{s} is not a prior width: it must be > 0 (in the key's unit)"),
+                ));
+            }
+        }
         out.push(Param {
             key: k.clone(),
             min,
             max,
             start,
+            prior_sd,
         });
     }
     Ok(out)
