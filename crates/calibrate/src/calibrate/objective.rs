@@ -207,9 +207,16 @@ mod tests {
     #[test]
     fn the_prior_is_the_mean_squared_standardized_distance_from_the_start() {
         // Keys 0 and 2 have a prior: ((1.5 − 1)/0.25)² = 4 and ((0.9 − 1)/0.5)² = 0.04.
-        let p = prior(&[1.5, 7.0, 0.9], &[1.0, 3.0, 1.0], &[Some(0.25), None, Some(0.5)]);
+        let p = prior(
+            &[1.5, 7.0, 0.9],
+            &[1.0, 3.0, 1.0],
+            &[Some(0.25), None, Some(0.5)],
+        );
         assert!((p - 2.02).abs() < 1e-12, "{p}");
-        assert_eq!(prior(&[1.0, 1.0], &[1.0, 1.0], &[Some(0.1), Some(0.2)]), 0.0);
+        assert_eq!(
+            prior(&[1.0, 1.0], &[1.0, 1.0], &[Some(0.1), Some(0.2)]),
+            0.0
+        );
         assert_eq!(prior(&[5.0], &[1.0], &[None]), 0.0);
     }
 
