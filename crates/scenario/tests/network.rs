@@ -784,3 +784,19 @@ fn section_behaviour_stretches_are_refused_when_they_overlap_or_leave_their_rang
         ]
     );
 }
+
+#[test]
+fn the_calibration_example_corridor_loads_with_its_stretch() {
+    let c = load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/calibrate/corridor.toml"
+    ))
+    .unwrap();
+    let n = c.road.network.as_ref().unwrap();
+    assert_eq!(n.behaviour.len(), 1);
+    assert_eq!(
+        (n.behaviour[0].from_m, n.behaviour[0].to_m),
+        (1000.0, 3000.0)
+    );
+    assert_eq!(c.clock_start_s, Some(7 * 3600));
+}

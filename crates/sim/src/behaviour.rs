@@ -22,7 +22,7 @@
 //! the driver's own θ. f_v applies to every vehicle, as a section's speed regime would.
 //! Outside every stretch both are 1. Stretches do not overlap.
 //!
-//! **How it is applied.** Once per step, before sensing, [`Sections::apply`] gives every
+//! **How it is applied.** Once per step, before sensing, `Sections::apply` gives every
 //! vehicle on the road the parameters of the stretch at its position: θ and v_F are the
 //! vehicle's own (drawn) values times the stretch's factors, rewritten only when the vehicle
 //! enters another stretch. So the car-following, lane-change and safety rules read the
