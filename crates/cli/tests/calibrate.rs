@@ -201,9 +201,9 @@ fn trace_is_the_same_at_any_jobs_and_sharding() {
 /// `[demand]`: the entrance demands and exit fractions are estimated from the counts and set
 /// in every candidate and in calibrated.toml. The corridor's true demand is 1,600 veh/h at
 /// the entrance for the first 20 minutes and 15 % exiting at `off` throughout; the estimate is
-/// the instantaneous balance of the counts (no travel time), so the first interval, which
-/// starts on an empty road, reads a little low: within 6 % at the entrance, within 0.01 for
-/// the fraction, whose counts are direct.
+/// the balance of the counts with the vehicles stored on the road (the first interval starts
+/// on an empty road that fills): within 6 % at the entrance, within 0.01 for the fraction,
+/// whose counts are direct.
 #[test]
 fn demand_step_sets_the_estimated_series() {
     let d = scratch("demand");

@@ -19,13 +19,20 @@
 //! unique where the counts cannot tell two unknowns apart (an unmeasured on-ramp and an
 //! unmeasured off-ramp between the same two stations), choosing the smallest flows.
 //!
-//! This is the uncongested, instantaneous balance: no travel time between stations, no
-//! storage in a queue. It is in the spirit of SUMO's routeSampler, which picks routes to match
-//! counts; in congestion, counts downstream of a bottleneck measure its discharge rather than
-//! the demand, and the estimate is the served flow.
+//! **Storage** (issue 45 item 4). The balance above is instantaneous; flow is conserved only
+//! with the vehicles stored on the road: what entered upstream of x and has not passed x is
+//! still between them. Counts inside a queue are its discharge, not the demand, while the
+//! queue grows. So a station's equation, when the caller gives the growth rate G(x) of the
+//! vehicles stored on the mainline between the entrance and x (veh/h, `Counts::storage_vph`),
+//! reads q(x) = count + G(x): the demand that arrived upstream is what passed plus what
+//! queued. [`stored_vehicles`] gives the storage from the stations' densities (k = q/v); the
+//! caller differences it between intervals. Without it (no speeds), this is the uncongested
+//! balance, in the spirit of SUMO's routeSampler, and in a queue the estimate is the served
+//! flow.
 //!
-//! The exit fraction of off-ramp j is eⱼ / q(xⱼ) (the flow arriving at its diverge), clamped
-//! to [0, 1]; 0 where no flow arrives.
+//! The exit fraction of off-ramp j is eⱼ / (q(xⱼ) − G(xⱼ)) (the flow arriving at its diverge:
+//! the demand upstream less what queued before it, G interpolated between the stations),
+//! clamped to [0, 1]; 0 where no flow arrives.
 //!
 //! | parameter | value | unit |
 //! |---|---|---|
@@ -54,6 +61,10 @@ pub struct Corridor {
 pub struct Counts {
     /// (x, flow in veh/h) of every mainline station with a count.
     pub mainline: Vec<(f64, f64)>,
+    /// Parallel to `mainline` (or empty: all 0): the growth rate G(x) of the vehicles stored
+    /// on the mainline between the entrance and the station over the interval (veh/h; < 0
+    /// while a queue drains). The station's equation is q(x) = count + G(x).
+    pub storage_vph: Vec<f64>,
     /// (ramp id, flow in veh/h) of every measured on- or off-ramp.
     pub ramps: Vec<(String, f64)>,
 }
@@ -93,7 +104,8 @@ pub fn estimate(c: &Corridor, intervals: &[Counts]) -> Result<Estimate, DemandEr
         }
         for (j, (_, x)) in c.off_ramps.iter().enumerate() {
             let e = u[1 + n_on + j];
-            let arriving = balance(c, &u, *x);
+            // What arrives at the diverge: the demand upstream less what queued before it.
+            let arriving = balance(c, &u, *x) - storage_at(c, counts, *x);
             let f = if arriving > 0.0 {
                 (e / arriving).clamp(0.0, 1.0)
             } else {
@@ -104,6 +116,31 @@ pub fn estimate(c: &Corridor, intervals: &[Counts]) -> Result<Estimate, DemandEr
         }
     }
     Ok(out)
+}
+
+/// G(x): the storage growth between the entrance and x, linear between the stations that
+/// give one (0 at the entrance, the last station's beyond it); 0 without any.
+fn storage_at(c: &Corridor, counts: &Counts, x: f64) -> f64 {
+    let mut pts: Vec<(f64, f64)> = counts
+        .mainline
+        .iter()
+        .zip(&counts.storage_vph)
+        .map(|(&(xs, _), &g)| (xs, g))
+        .collect();
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut prev = (c.entrance_x, 0.0);
+    for &(xs, g) in &pts {
+        if x <= xs {
+            let w = if xs > prev.0 {
+                (x - prev.0) / (xs - prev.0)
+            } else {
+                1.0
+            };
+            return prev.1 + w * (g - prev.1);
+        }
+        prev = (xs, g);
+    }
+    prev.1
 }
 
 /// q(x): the mainline flow just upstream of x under the unknowns u.
@@ -127,9 +164,13 @@ fn solve_interval(c: &Corridor, counts: &Counts) -> Result<Vec<f64>, String> {
     let (n_on, n_off) = (c.on_ramps.len(), c.off_ramps.len());
     let n = 1 + n_on + n_off;
     let mut rows: Vec<(Vec<f64>, f64)> = Vec::new();
-    for &(x, q) in &counts.mainline {
+    for (s, &(x, q)) in counts.mainline.iter().enumerate() {
         if !(q.is_finite() && q >= 0.0) {
             return Err(format!("the mainline count at x = {x} m is {q}"));
+        }
+        let g = counts.storage_vph.get(s).copied().unwrap_or(0.0);
+        if !g.is_finite() {
+            return Err(format!("the storage growth at x = {x} m is {g}"));
         }
         if x <= c.entrance_x {
             return Err(format!(
@@ -145,7 +186,7 @@ fn solve_interval(c: &Corridor, counts: &Counts) -> Result<Vec<f64>, String> {
         for (j, (_, xj)) in c.off_ramps.iter().enumerate() {
             a[1 + n_on + j] = -f64::from(u8::from(*xj < x));
         }
-        rows.push((a, q));
+        rows.push((a, q + g));
     }
     for (id, q) in &counts.ramps {
         let col = c
@@ -191,6 +232,26 @@ fn solve_interval(c: &Corridor, counts: &Counts) -> Result<Vec<f64>, String> {
     let a = DMatrix::from_fn(rows.len(), n, |r, k| rows[r].0[k]);
     let b = DVector::from_iterator(rows.len(), rows.iter().map(|r| r.1));
     Ok(nnls(&a, &b).iter().copied().collect())
+}
+
+/// Vehicles stored on the mainline between the entrance (x = 0) and `x`, from the densities
+/// (veh/km, all lanes) at stations `(x, k)` sorted by position: k is taken constant from the
+/// entrance to the first station and linear between stations (the trapezoid rule); 0 without
+/// a station at or before `x`; stations past `x` are not counted.
+pub fn stored_vehicles(stations: &[(f64, f64)], x: f64) -> f64 {
+    let mut n = 0.0;
+    let mut prev: Option<(f64, f64)> = None;
+    for &(xs, k) in stations {
+        if xs > x {
+            break;
+        }
+        n += match prev {
+            None => k * xs / 1000.0,
+            Some((xp, kp)) => 0.5 * (kp + k) * (xs - xp) / 1000.0,
+        };
+        prev = Some((xs, k));
+    }
+    n
 }
 
 /// min ‖Ax − b‖ subject to x ≥ 0: Lawson & Hanson's active-set algorithm (1974, ch. 23).

@@ -39,6 +39,7 @@ fn counts(measured: &[&str], noise: f64) -> Vec<Counts> {
                 .filter(|(id, _)| measured.contains(id))
                 .map(|(id, i)| (id.to_string(), u[*i]))
                 .collect(),
+            storage_vph: Vec::new(),
         })
         .collect()
 }
@@ -110,6 +111,7 @@ fn flows_are_never_negative() {
         &[Counts {
             mainline: vec![(500.0, 2000.0), (1500.0, 1800.0)],
             ramps: vec![],
+            storage_vph: Vec::new(),
         }],
     )
     .unwrap();
@@ -132,11 +134,13 @@ fn errors_name_the_ramp_or_station() {
     let e = bad(Counts {
         mainline: vec![],
         ramps: vec![("Z".into(), 10.0)],
+        storage_vph: Vec::new(),
     });
     assert!(e.contains("'Z'") && e.contains("A, C, B, D"), "{e}");
     let e = bad(Counts {
         mainline: vec![(-5.0, 10.0)],
         ramps: vec![],
+        storage_vph: Vec::new(),
     });
     assert!(e.contains("x = -5"), "{e}");
     let e = bad(Counts::default());
@@ -171,4 +175,62 @@ fn nnls_equals_the_best_of_every_active_set() {
         }
         close(cost(&x), best, 1e-9);
     }
+}
+
+#[test]
+fn a_growing_queue_restores_the_demand_behind_its_discharge() {
+    // One station 2 km in, inside a queue that discharges 1,800 veh/h while it gains 150
+    // vehicles in the 15-min interval (600 veh/h): 2,400 veh/h arrived at the entrance.
+    let c = Corridor {
+        entrance_x: 0.0,
+        on_ramps: vec![],
+        off_ramps: vec![],
+    };
+    let one = |g: Vec<f64>| {
+        estimate(
+            &c,
+            &[Counts {
+                mainline: vec![(2000.0, 1800.0)],
+                ramps: vec![],
+                storage_vph: g,
+            }],
+        )
+        .unwrap()
+        .mainline_vph[0]
+    };
+    close(one(vec![600.0]), 2400.0, 1e-3);
+    close(one(Vec::new()), 1800.0, 1e-3); // the served flow, as before
+    close(one(vec![-300.0]), 1500.0, 1e-3); // a draining queue: less arrived than passed
+}
+
+#[test]
+fn stored_vehicles_integrate_the_densities_from_the_entrance() {
+    // 20 veh/km from the entrance to 1 km, then linear to 60 veh/km at 3 km: 20 + 80.
+    let st = [(1000.0, 20.0), (3000.0, 60.0), (5000.0, 10.0)];
+    close(stored_vehicles(&st, 3000.0), 100.0, 1e-9);
+    close(stored_vehicles(&st, 999.0), 0.0, 1e-9);
+    close(stored_vehicles(&st, 1000.0), 20.0, 1e-9);
+    close(stored_vehicles(&st, 6000.0), 170.0, 1e-9);
+}
+
+#[test]
+fn an_exit_fraction_is_of_the_flow_that_reaches_the_diverge_not_of_the_queued_demand() {
+    // 2,400 veh/h arrive, 600 veh/h of them queue before the station at 2 km; the exit at 3 km
+    // counts 240 veh/h of the 1,800 that reach it: 0.1333, not 240/2400 = 0.1.
+    let c = Corridor {
+        entrance_x: 0.0,
+        on_ramps: vec![],
+        off_ramps: vec![("X".into(), 3000.0)],
+    };
+    let e = estimate(
+        &c,
+        &[Counts {
+            mainline: vec![(2000.0, 1800.0)],
+            ramps: vec![("X".into(), 240.0)],
+            storage_vph: vec![600.0],
+        }],
+    )
+    .unwrap();
+    close(e.mainline_vph[0], 2400.0, 1e-3);
+    close(e.exit_fraction[0][0], 240.0 / 1800.0, 1e-6);
 }

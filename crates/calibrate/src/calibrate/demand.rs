@@ -11,12 +11,18 @@
 //! * Intervals: the network's `interval_s`, from `run.clock_start`, as many as cover
 //!   `run.duration_s`. A station's count in an interval is the mean flow of its field
 //!   intervals inside it, used only if they cover it entirely (a gap is never filled).
+//! * Storage (issue 45 item 4): a station's density in an interval is the mean of q/v over its
+//!   5-min data (all of them with a speed, else none); the vehicles stored between the
+//!   entrance and each station ([`platoonsim_field::demand::stored_vehicles`]) are differenced
+//!   between the neighbouring intervals (centred; one-sided at the ends), and that growth rate
+//!   is added to the station's count: inside a growing queue the demand is what passed plus
+//!   what queued. `demand.csv` reports the growth at the last station (`storage_vph`).
 //! * Set keys: `network.mainline_vph`, `network.on_ramps[i].demand_vph`,
 //!   `network.off_ramps[j].exit_fraction`, and `network.demand_offset_s = 0`,
 //!   `network.base_demand_multiplier = 1`, `network.demand_scale = 1` (the estimate is the
 //!   flow itself, at clock time).
 
-use platoonsim_field::demand::{estimate, Corridor, Counts, Estimate};
+use platoonsim_field::demand::{estimate, stored_vehicles, Corridor, Counts, Estimate};
 use platoonsim_field::{Obs, StationKind};
 use platoonsim_scenario::network::split_name;
 use platoonsim_sim::{Config, DetectorKind};
@@ -29,6 +35,9 @@ pub struct Demand {
     pub estimate: Estimate,
     /// Interval starts (s after midnight).
     pub starts: Vec<u32>,
+    /// Per interval, the growth rate of the vehicles stored on the corridor up to its last
+    /// station with a count (veh/h): what the estimate added for queues.
+    pub storage_vph: Vec<f64>,
     /// On-ramp and off-ramp ids, in corridor order.
     pub on_ids: Vec<String>,
     pub off_ids: Vec<String>,
@@ -98,16 +107,51 @@ pub fn demand(
     let starts: Vec<u32> = (0..n)
         .map(|k| clock + (k as f64 * interval).round() as u32)
         .collect();
+    // Vehicles stored up to each station, per interval (None: no density for the interval).
+    let stored: Vec<BTreeMap<&str, f64>> = starts
+        .iter()
+        .map(|&t0| {
+            let t1 = t0 + interval.round() as u32;
+            let mut k: Vec<(f64, f64)> = mainline
+                .iter()
+                .filter_map(|(st, &x)| covering_density(field, st, t0, t1).map(|d| (x, d)))
+                .collect();
+            k.sort_by(|a, b| a.0.total_cmp(&b.0));
+            mainline
+                .iter()
+                .map(|(st, &x)| (*st, stored_vehicles(&k, x)))
+                .collect()
+        })
+        .collect();
+    let growth = |k: usize, station: &str| -> f64 {
+        let (a, b) = (k.saturating_sub(1), (k + 1).min(n - 1));
+        if a == b {
+            return 0.0;
+        }
+        let (na, nb) = (stored[a].get(station), stored[b].get(station));
+        match (na, nb) {
+            (Some(na), Some(nb)) => (nb - na) / ((b - a) as f64 * interval / 3600.0),
+            _ => 0.0,
+        }
+    };
+    let mut storage_vph = Vec::with_capacity(n);
     let mut counts = Vec::with_capacity(n);
-    for &t0 in &starts {
+    for (k, &t0) in starts.iter().enumerate() {
         let t1 = t0 + interval.round() as u32;
         let mean = |station: &str| covering_mean(field, station, t0, t1);
         let mut c = Counts::default();
+        let mut last: Option<(f64, f64)> = None;
         for (station, &x) in &mainline {
             if let Some(q) = mean(station) {
                 c.mainline.push((x, q));
+                let g = growth(k, station);
+                c.storage_vph.push(g);
+                if last.is_none_or(|(xl, _)| x > xl) {
+                    last = Some((x, g));
+                }
             }
         }
+        storage_vph.push(last.map_or(0.0, |(_, g)| g));
         for (ramp, station) in ramps {
             if let Some(q) = mean(station) {
                 c.ramps.push((ramp.clone(), q));
@@ -145,10 +189,26 @@ pub fn demand(
     Ok(Demand {
         set,
         starts,
+        storage_vph,
         on_ids: corridor.on_ramps.iter().map(|r| r.0.clone()).collect(),
         off_ids: corridor.off_ramps.iter().map(|r| r.0.clone()).collect(),
         estimate: est,
     })
+}
+
+/// The mean density (veh/km, all lanes) of `station` over [t0, t1): the mean of q/v over its
+/// data, if they cover the interval and every one has a speed > 0.
+fn covering_density(field: &[Obs], station: &str, t0: u32, t1: u32) -> Option<f64> {
+    let mut covered = 0u32;
+    let mut sum = 0.0;
+    for o in field.iter().filter(|o| o.station == station) {
+        if o.start_s >= t0 && o.start_s + o.interval_s <= t1 {
+            let v = o.speed_kmh.filter(|&v| v > 0.0)?;
+            covered += o.interval_s;
+            sum += o.flow_vph / v * f64::from(o.interval_s);
+        }
+    }
+    (covered == t1 - t0 && covered > 0).then(|| sum / f64::from(covered))
 }
 
 /// The mean flow of a station's intervals inside [t0, t1), if they cover it exactly.
@@ -165,7 +225,7 @@ fn covering_mean(field: &[Obs], station: &str, t0: u32, t1: u32) -> Option<f64> 
 }
 
 /// `demand.csv`: one row per interval (clock time), the entrance flow, each on-ramp's flow
-/// and each off-ramp's exit flow and fraction.
+/// and each off-ramp's exit flow and fraction, then the storage growth the estimate added.
 pub fn csv(d: &Demand) -> Result<Vec<u8>, String> {
     let mut w = csv::Writer::from_writer(Vec::new());
     let mut header = vec!["time".to_string(), "mainline_vph".to_string()];
@@ -174,6 +234,7 @@ pub fn csv(d: &Demand) -> Result<Vec<u8>, String> {
         header.push(format!("{i}_exit_vph"));
         header.push(format!("{i}_exit_fraction"));
     }
+    header.push("storage_vph".to_string());
     w.write_record(&header).map_err(|e| e.to_string())?;
     for (k, &t) in d.starts.iter().enumerate() {
         let mut row = vec![
@@ -185,6 +246,7 @@ pub fn csv(d: &Demand) -> Result<Vec<u8>, String> {
             row.push(format!("{}", d.estimate.exit_vph[j][k]));
             row.push(format!("{}", d.estimate.exit_fraction[j][k]));
         }
+        row.push(format!("{}", d.storage_vph[k]));
         w.write_record(&row).map_err(|e| e.to_string())?;
     }
     w.into_inner().map_err(|e| e.to_string())
