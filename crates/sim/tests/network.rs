@@ -249,13 +249,21 @@ fn detectors_count_cavs() {
     );
 }
 
-/// Flow (veh/h) at a detector over the intervals that start at or after `from_s`.
-fn flow_after(out: &Output, detector: &str, from_s: f64) -> f64 {
-    let rows: Vec<_> = out
-        .detectors
+/// The cross-section records of `detector` for the intervals that start at or after `from_s`.
+fn rows_after<'a>(
+    out: &'a Output,
+    detector: &'a str,
+    from_s: f64,
+) -> Vec<&'a platoonsim_sim::DetectorRecord> {
+    out.detectors
         .iter()
         .filter(|r| r.detector == detector && r.lane == "all" && r.interval_start_s >= from_s)
-        .collect();
+        .collect()
+}
+
+/// Flow (veh/h) at a detector over the intervals that start at or after `from_s`.
+fn flow_after(out: &Output, detector: &str, from_s: f64) -> f64 {
+    let rows = rows_after(out, detector, from_s);
     let n: u64 = rows.iter().map(|r| r.count).sum();
     let s: f64 = rows.iter().map(|r| r.interval_s).sum();
     n as f64 * 3600.0 / s
@@ -648,11 +656,7 @@ fn a_driver_in_its_exit_lane_does_not_leave_it_for_a_lane_drop_beyond_the_exit()
 
 /// Flow-weighted mean speed (km/h) and largest 5-min flow (veh/h) at `detector` after `from_s`.
 fn speed_and_peak(out: &Output, detector: &str, from_s: f64) -> (f64, f64) {
-    let rows: Vec<_> = out
-        .detectors
-        .iter()
-        .filter(|r| r.detector == detector && r.lane == "all" && r.interval_start_s >= from_s)
-        .collect();
+    let rows = rows_after(out, detector, from_s);
     let n: u64 = rows.iter().map(|r| r.count).sum();
     let v = rows
         .iter()
@@ -699,10 +703,8 @@ fn a_behaviour_stretch_lowers_the_speed_or_the_capacity_on_it_alone() {
         (v_out / v_out_base - 1.0).abs() < 0.01,
         "{v_out} vs {v_out_base}"
     );
-    let fastest = slow
-        .detectors
+    let fastest = rows_after(&slow, "G-up", 600.0)
         .iter()
-        .filter(|r| r.detector == "G-up" && r.lane == "all" && r.interval_start_s >= 600.0)
         .filter_map(|r| r.speed_kmh)
         .fold(0.0, f64::max);
     assert!(fastest <= 0.8 * 120.0, "{fastest}");
