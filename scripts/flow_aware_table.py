@@ -2,8 +2,8 @@
 """Choose Flow-Aware thresholds per penetration from a sweep of (rho_q, rho_v) on a corridor.
 
 Reads the `runs.csv` of `platoonsim sweep sweeps/flow-aware-sr99.toml` (columns penetration,
-strategy, flow_threshold_vphpl, speed_threshold_kmh, seed, network_discharge_vph,
-avg_platoon_length), pairs every Flow-Aware run with the baseline run of the same penetration
+strategy.kind, strategy.flow_threshold_vphpl, strategy.speed_threshold_kmh, seed,
+network_discharge_vph, avg_platoon_length; the short names also do), pairs every Flow-Aware run with the baseline run of the same penetration
 and seed, and per penetration chooses, as `platoonsim experiment calibrate-flow-aware` does on
 the homogeneous road (docs/experiments.md), the pair with the largest mean L gain whose mean
 discharge change is at least -TOLERANCE %. Writes the thresholds table (the format of
@@ -31,6 +31,13 @@ def main():
         sys.exit(f"error: --tolerance {a.tolerance}: must be a number >= 0 (percent)")
     with open(a.runs, newline="") as f:
         rows = list(csv.DictReader(f))
+    # A sweep's runs.csv names its axes by their keys (`strategy.kind`, ...).
+    for r in rows:
+        for k in ("strategy.kind", "strategy.flow_threshold_vphpl", "strategy.speed_threshold_kmh"):
+            if k in r:
+                r["strategy" if k == "strategy.kind" else k.split(".", 1)[1]] = r[k]
+        # A bundle's level is named by its values ("0.2, 1": penetration, demand scale).
+        r["penetration"] = r["penetration"].split(",")[0].strip()
     need = {"penetration", "strategy", "flow_threshold_vphpl", "speed_threshold_kmh", "seed",
             "network_discharge_vph", "avg_platoon_length", "collisions"}
     missing = need - set(rows[0] if rows else [])
