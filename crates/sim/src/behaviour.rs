@@ -84,20 +84,17 @@ struct Slot {
     written_v_f: f64,
 }
 
-/// The section behaviour of a run: its stretches and, per slot, the vehicle's own values.
+/// The section behaviour's record of each slot's vehicle (its own values); the stretches
+/// are the road's (`RoadState::behaviour`).
 #[derive(Clone, Debug)]
 pub(crate) struct Sections {
-    stretches: Vec<DriverStretch>,
     slots: Vec<Option<Slot>>,
 }
 
 impl Sections {
     /// `None` without stretches (nothing to apply).
     pub fn new(stretches: &[DriverStretch]) -> Option<Sections> {
-        (!stretches.is_empty()).then(|| Sections {
-            stretches: stretches.to_vec(),
-            slots: Vec::new(),
-        })
+        (!stretches.is_empty()).then(|| Sections { slots: Vec::new() })
     }
 
     /// The slots were renumbered (`Simulation::compact`): `order[new] = old`.
@@ -109,7 +106,7 @@ impl Sections {
     }
 
     /// Give every vehicle on the road the θ and v_F of the stretch at its position.
-    pub fn apply(&mut self, traffic: &mut Traffic) {
+    pub fn apply(&mut self, stretches: &[DriverStretch], traffic: &mut Traffic) {
         for lane in &traffic.lanes {
             for &s in lane {
                 let k = s as usize;
@@ -131,14 +128,14 @@ impl Sections {
                 };
                 if h.desired_speed != slot.written_v_f {
                     // Set from outside since the last write: the vehicle's own from now on.
-                    let f_v = slot.at.map_or(1.0, |i| self.stretches[i].speed_factor);
+                    let f_v = slot.at.map_or(1.0, |i| stretches[i].speed_factor);
                     slot.v_f = h.desired_speed / f_v;
                     slot.written_v_f = h.desired_speed;
                 }
-                let at = stretch_at(&self.stretches, x);
+                let at = stretch_at(stretches, x);
                 if at != slot.at {
                     let (f_theta, f_v) = at.map_or((1.0, 1.0), |i| {
-                        let st = &self.stretches[i];
+                        let st = &stretches[i];
                         (st.buffer_factor, st.speed_factor)
                     });
                     h.buffer_s = slot.theta * f_theta;

@@ -301,7 +301,7 @@ impl Simulation {
     /// 7. **invariants**: no overlap (an overlap is counted as a collision), all states finite.
     pub fn step(&mut self) -> Result<(), SimError> {
         if let Some(sec) = &mut self.sections {
-            sec.apply(&mut self.traffic);
+            sec.apply(&self.road.behaviour, &mut self.traffic);
         }
         if let Some(b) = &self.traffic.auto.beacons {
             b.receive(
