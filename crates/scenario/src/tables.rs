@@ -28,6 +28,9 @@ pub struct BuiltinTable {
 pub const SR99_DEMAND_SCALES: &str = "sr99_demand_scales";
 /// The Flow-Aware thresholds calibrated on the homogeneous road (`strategy.thresholds_table`).
 pub const FLOW_AWARE_THRESHOLDS: &str = "flow_aware_thresholds";
+/// The Flow-Aware thresholds calibrated on the SR-99 corridor (`strategy.thresholds_table` of
+/// `sr99`).
+pub const FLOW_AWARE_THRESHOLDS_SR99: &str = "flow_aware_thresholds_sr99";
 
 /// The built-in tables.
 pub const BUILTIN_TABLES: &[BuiltinTable] = &[
@@ -40,6 +43,11 @@ pub const BUILTIN_TABLES: &[BuiltinTable] = &[
         name: FLOW_AWARE_THRESHOLDS,
         path: thresholds::TABLE_PATH,
         text: thresholds::TABLE,
+    },
+    BuiltinTable {
+        name: FLOW_AWARE_THRESHOLDS_SR99,
+        path: thresholds::TABLE_SR99_PATH,
+        text: thresholds::TABLE_SR99,
     },
 ];
 
@@ -112,11 +120,18 @@ mod tests {
     fn builtin_tables_are_found_by_name_and_have_rows() {
         assert_eq!(demand_scales(SR99_DEMAND_SCALES, None).unwrap().len(), 6);
         assert_eq!(thresholds(FLOW_AWARE_THRESHOLDS, None).unwrap().len(), 3);
+        let sr99 = thresholds(FLOW_AWARE_THRESHOLDS_SR99, None).unwrap();
+        let pens: Vec<f64> = sr99.iter().map(|r| r.penetration).collect();
+        assert_eq!(pens, [0.2, 0.4, 0.6, 0.8]);
+        assert_eq!(
+            (sr99[3].flow_threshold_vphpl, sr99[3].speed_threshold_kmh),
+            (1500.0, 97.0)
+        );
         let e = thresholds("homogeneous_thresholds", None).unwrap_err();
         assert_eq!(
             e.to_string(),
             "no built-in table 'homogeneous_thresholds' (built-in tables: sr99_demand_scales, \
-             flow_aware_thresholds) and not a path (a path contains '/' or ends in .toml)"
+             flow_aware_thresholds, flow_aware_thresholds_sr99) and not a path (a path contains '/' or ends in .toml)"
         );
     }
 

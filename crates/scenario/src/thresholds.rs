@@ -1,12 +1,17 @@
 //! Flow-Aware thresholds by penetration (issue 3 item 4): the format of the tables that
 //! `platoonsim experiment calibrate-flow-aware` writes, and the built-in one calibrated on the
-//! homogeneous road (`scenarios/flow_aware_thresholds.toml`). A scenario uses a table only if
+//! homogeneous road (`scenarios/flow_aware_thresholds.toml`) and the one calibrated on the SR-99
+//! corridor (`scenarios/flow_aware_thresholds_sr99.toml`). A scenario uses a table only if
 //! it names one in `strategy.thresholds_table` ([`crate::tables`]).
 
 /// The embedded table's text.
 pub const TABLE: &str = include_str!("../scenarios/flow_aware_thresholds.toml");
 /// The embedded table's source in the repository (what `--write-table` replaces).
 pub const TABLE_PATH: &str = "crates/scenario/scenarios/flow_aware_thresholds.toml";
+/// The table calibrated on the SR-99 corridor (issue 43 item 5, `sweeps/flow-aware-sr99.toml`).
+pub const TABLE_SR99: &str = include_str!("../scenarios/flow_aware_thresholds_sr99.toml");
+/// Its source in the repository.
+pub const TABLE_SR99_PATH: &str = "crates/scenario/scenarios/flow_aware_thresholds_sr99.toml";
 
 /// One calibrated row.
 #[derive(Clone, Copy, Debug, PartialEq)]
