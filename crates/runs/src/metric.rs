@@ -166,6 +166,57 @@ energy_fields! {
     HumanDynamicsExcess: human_dynamics_excess_pct maybe;
 }
 
+/// The numeric fields of the mechanism summary (flattened into [`Summary`] with
+/// `measurement.mechanism`; its by-lane arrays are not metrics).
+macro_rules! mechanism_fields {
+    ($($variant:ident: $field:ident $how:ident;)*) => {
+        /// A field of the mechanism summary (`platoonsim_sim::mechanism::MechanismSummary`),
+        /// named as the field.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        pub enum MechanismField {
+            $($variant),*
+        }
+
+        impl MechanismField {
+            /// Every numeric mechanism field, in the summary's order.
+            pub const ALL: &'static [MechanismField] = &[$(MechanismField::$variant),*];
+
+            /// The field's name in `summary.json`.
+            pub const fn name(self) -> &'static str {
+                match self {
+                    $(MechanismField::$variant => stringify!($field)),*
+                }
+            }
+
+            fn read(self, s: &Summary) -> Option<f64> {
+                let m = s.mechanism.as_ref()?;
+                match self {
+                    $(MechanismField::$variant => read!($how, m.$field)),*
+                }
+            }
+        }
+    };
+}
+
+mechanism_fields! {
+    MechanismFrom: mechanism_from_m real;
+    MechanismTo: mechanism_to_m real;
+    CavWait: cav_wait_veh_s_per_h real;
+    CavWaitShare: cav_wait_share maybe;
+    SectionLaneChanges: section_lane_changes_per_h real;
+    DisturbedFollowers: disturbed_followers_per_h real;
+    SectionLaneChangesPerCav: section_lane_changes_per_cav maybe;
+    LaneNeedPerCav: lane_need_per_cav maybe;
+    OrganizedLaneDischarge: organized_lane_discharge_vph real;
+}
+
+/// The by-lane arrays of the mechanism summary: written to `summary.json`, not metrics.
+pub const MECHANISM_ARRAYS: [&str; 3] = [
+    "cav_wait_veh_s_per_h_by_lane",
+    "cav_wait_share_by_lane",
+    "discharge_by_lane_vph",
+];
+
 /// Which of a counted measure's six fields ([`CountedMeasures::field_names`], in that order).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Part {
@@ -220,6 +271,7 @@ pub const HISTOGRAM: &str = "braking_peaks";
 pub enum Metric {
     Field(Field),
     Energy(EnergyField),
+    Mechanism(MechanismField),
     Counted(Counted, Part),
     BrakingPeaks(Kind, usize),
 }
@@ -240,6 +292,7 @@ impl Metric {
         match self {
             Metric::Field(f) => Cow::Borrowed(f.name()),
             Metric::Energy(e) => Cow::Borrowed(e.name()),
+            Metric::Mechanism(m) => Cow::Borrowed(m.name()),
             Metric::Counted(m, p) => {
                 let i = Part::ALL.iter().position(|x| *x == p).unwrap_or(0);
                 let names = CountedMeasures::field_names(m.name());
@@ -256,6 +309,9 @@ impl Metric {
         }
         if let Some(e) = EnergyField::ALL.iter().find(|e| e.name() == name) {
             return Some(Metric::Energy(*e));
+        }
+        if let Some(m) = MechanismField::ALL.iter().find(|m| m.name() == name) {
+            return Some(Metric::Mechanism(*m));
         }
         for m in Counted::ALL {
             let names = CountedMeasures::field_names(m.name());
@@ -283,6 +339,7 @@ impl Metric {
     pub fn allowed_names() -> String {
         let mut names: Vec<String> = Field::ALL.iter().map(|f| f.name().to_string()).collect();
         names.extend(EnergyField::ALL.iter().map(|e| e.name().to_string()));
+        names.extend(MechanismField::ALL.iter().map(|m| m.name().to_string()));
         for m in Counted::ALL {
             names.extend(CountedMeasures::field_names(m.name()));
         }
@@ -295,7 +352,7 @@ impl Metric {
     pub fn is_count(self) -> bool {
         match self {
             Metric::Field(f) => f.is_count(),
-            Metric::Energy(_) => false,
+            Metric::Energy(_) | Metric::Mechanism(_) => false,
             Metric::Counted(_, p) => matches!(p, Part::Total | Part::Cav | Part::Human),
             Metric::BrakingPeaks(..) => true,
         }
@@ -308,6 +365,7 @@ impl Metric {
         match self {
             Metric::Field(f) => f.read(s),
             Metric::Energy(e) => e.read(s),
+            Metric::Mechanism(m) => m.read(s),
             Metric::Counted(m, p) => {
                 let c = s.counted.get(m.name())?;
                 Some(match p {
@@ -346,6 +404,7 @@ mod tests {
     fn full_summary() -> Summary {
         let mut cfg = Config::homogeneous(0.5, 1500.0, 300.0, 60.0, 2);
         cfg.energy.enabled = true;
+        cfg.mechanism = true;
         let mut s = platoonsim_sim::run(&cfg, None).unwrap().summary;
         s.network_discharge_vph = Some(1234.5);
         s.braking_peaks.cav = vec![3, 0, 1];
@@ -359,10 +418,15 @@ mod tests {
     fn every_numeric_summary_field_is_a_metric_or_excluded() {
         let s = full_summary();
         assert!(s.energy.is_some(), "the test needs the energy fields");
+        assert!(s.mechanism.is_some(), "the test needs the mechanism fields");
         let json = serde_json::to_value(&s).unwrap();
         let mut seen = Vec::new();
         for (k, v) in json.as_object().unwrap() {
             if crate::record::NOT_METRICS.contains(&k.as_str()) {
+                continue;
+            }
+            if MECHANISM_ARRAYS.contains(&k.as_str()) {
+                assert!(v.is_array(), "{k}");
                 continue;
             }
             let written: Vec<(String, f64)> = match v {
@@ -398,6 +462,7 @@ mod tests {
         }
         let mut all: Vec<Metric> = Field::ALL.iter().map(|f| Metric::Field(*f)).collect();
         all.extend(EnergyField::ALL.iter().map(|e| Metric::Energy(*e)));
+        all.extend(MechanismField::ALL.iter().map(|m| Metric::Mechanism(*m)));
         for m in Counted::ALL {
             all.extend(Part::ALL.map(|p| Metric::Counted(m, p)));
         }

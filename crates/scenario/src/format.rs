@@ -87,6 +87,7 @@ pub fn to_raw(config: &Config, description: Option<String>) -> RawScenario {
                 .get(config.measurement_detector)
                 .map(|d| d.name.clone()),
             aggregation_s: Some(config.aggregation_s),
+            mechanism: config.mechanism.then_some(true),
         },
         strategy,
         human: config.human,

@@ -348,6 +348,10 @@ pub struct RawMeasurement {
     pub detector: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub aggregation_s: Option<f64>,
+    /// Measure where an organizing strategy's discharge change comes from (docs/outputs.md,
+    /// "The mechanism measures"); default false.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mechanism: Option<bool>,
 }
 
 /// `[strategy]`: platoon organization. Only `kind` decides whether it acts; the other keys

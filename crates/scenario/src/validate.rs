@@ -335,6 +335,7 @@ pub fn validate_in(
         lane_change: raw.lane_change,
         safety: raw.safety,
         energy: raw.energy,
+        mechanism: raw.measurement.mechanism.unwrap_or(false),
         clock_start_s: run.clock_start_s,
     };
     if c.problems.is_empty() {

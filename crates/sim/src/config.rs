@@ -413,6 +413,10 @@ pub struct Config {
     /// so that configurations without it keep their identity.
     #[serde(skip_serializing_if = "EnergyParams::is_default")]
     pub energy: EnergyParams,
+    /// The mechanism measures (`measurement.mechanism`, `mechanism.rs`); off by default, and
+    /// then not written, so that configurations without them keep their identity.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub mechanism: bool,
     /// Clock time of t = 0 (s after midnight, `run.clock_start`), when the scenario names one:
     /// outputs then carry clock time next to simulated time. A label of the outputs only: the
     /// engine never reads it, so it is not serialized and no run's identity depends on it.
@@ -688,6 +692,7 @@ impl Config {
             lane_change: LaneChangeDists::default(),
             safety: SafetyParams::default(),
             energy: EnergyParams::default(),
+            mechanism: false,
             clock_start_s: None,
         }
     }

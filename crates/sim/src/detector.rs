@@ -158,6 +158,16 @@ impl Detector {
         self.history.len()
     }
 
+    /// Counts of the covered lanes over the completed intervals from `first` on, the lowest
+    /// covered lane first (the order of the records' lane numbers), with that lane's index.
+    pub fn lane_counts(&self, first: usize) -> (usize, Vec<u64>) {
+        let counts = (0..self.lanes)
+            .filter(|&l| self.mask & (1 << l) != 0)
+            .map(|l| self.history.iter().skip(first).map(|h| h[l].count).sum())
+            .collect();
+        (self.first_lane, counts)
+    }
+
     /// Cross-section count of completed interval `k`.
     pub fn total_count(&self, k: usize) -> u64 {
         self.history[k].iter().map(|a| a.count).sum()

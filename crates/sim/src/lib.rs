@@ -28,6 +28,7 @@ mod here;
 mod insert;
 mod integrate;
 mod invariants;
+pub mod mechanism;
 mod meter;
 pub mod metrics;
 pub mod network;

@@ -40,6 +40,8 @@ pub struct Simulation {
     pub(crate) energy: Option<Box<crate::energy::EnergyMeter>>,
     /// The ramp meters (`meter.rs`); empty without any.
     pub(crate) meters: crate::meter::Meters,
+    /// The mechanism measures (`mechanism.rs`); only with `measurement.mechanism`.
+    pub(crate) mechanism: Option<Box<crate::mechanism::Mechanism>>,
 }
 
 impl Simulation {
@@ -154,6 +156,9 @@ impl Simulation {
                 .energy
                 .enabled
                 .then(|| Box::new(crate::energy::EnergyMeter::new(&cfg))),
+            mechanism: cfg
+                .mechanism
+                .then(|| Box::new(crate::mechanism::Mechanism::of(&cfg))),
             cfg,
         };
         let organizer = organize::build(&sim.cfg);
@@ -405,6 +410,18 @@ impl Simulation {
             let origin_m = self.cfg.road.origin_m();
             e.on_step(&step_view(&self.clock, origin_m, &self.traffic, &[]));
         }
+        if let Some(m) = self.mechanism.as_mut() {
+            let vehicles = &self.traffic.vehicles;
+            m.on_step(
+                self.clock.step,
+                crate::record::step_time(self.clock.step, self.clock.dt),
+                self.traffic
+                    .lanes
+                    .iter()
+                    .map(|l| crate::view::lane(l, vehicles)),
+                &self.road.geom,
+            );
+        }
         let checked = crate::invariants::check_invariants(
             &self.clock,
             self.origin_m(),
@@ -592,6 +609,17 @@ impl Simulation {
                 .then_some(sf.exposure.min_ttc_s),
             cacc_fallbacks: self.measures.cacc_fallbacks,
             energy: self.energy.as_ref().map(|e| e.summary()),
+            mechanism: self.mechanism.as_ref().map(|m| {
+                let (lowest, counts) = det.lane_counts(first);
+                m.summary_at(
+                    det.position_m,
+                    lowest,
+                    &counts,
+                    window_h,
+                    &self.road.geom,
+                    cfg.road.origin_m(),
+                )
+            }),
             meters: self.meters.summaries(self.clock.dt),
             vehicle_updates: self.measures.vehicle_updates,
             steps: self.clock.step,

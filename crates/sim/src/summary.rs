@@ -104,6 +104,10 @@ pub struct Summary {
     /// Fuel and electricity (docs/energy.md), with `energy.enabled` only.
     #[serde(flatten)]
     pub energy: Option<crate::energy::EnergySummary>,
+    /// Where an organizing strategy's discharge change comes from (`mechanism.rs`,
+    /// docs/outputs.md), with `measurement.mechanism` only.
+    #[serde(flatten)]
+    pub mechanism: Option<crate::mechanism::MechanismSummary>,
     /// The ramp meters' accounts over the whole run, in ramp order; empty (and not written)
     /// without meters.
     #[serde(skip_serializing_if = "Vec::is_empty")]
