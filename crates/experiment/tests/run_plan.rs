@@ -128,7 +128,7 @@ fn quick_reproduction_plan() {
             "sensitivity 36 56d66ec324985097",
             "flow-aware 9 04672a019d734710",
             "sr99 4 5c0bef189432ff6b",
-            "sr99-demand 2 6f0b19c0557c0d35",
+            "sr99-demand 2 8f3f890413b050bc",
             "behaviour 72 183fbfb21483514b",
             "energy 24 c0d69109d0e4ee15",
         ]
@@ -149,7 +149,7 @@ fn full_reproduction_plan() {
             "sensitivity 120 26446aa8afa83a28",
             "flow-aware 30 8ed6de6a70a240e4",
             "sr99 140 7a6295686e4cd10b",
-            "sr99-demand 660 677be20f4e8d9637",
+            "sr99-demand 660 4bb43ba10342c3fe",
             "behaviour 240 b51f94e919b2937d",
             "energy 320 c72f2af98160a2f0",
         ]

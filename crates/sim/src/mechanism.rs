@@ -20,8 +20,8 @@
 //! The ΔQ split by lane is read from the measurement detector at the end
 //! ([`crate::Simulation::finish`]): per lane, its count over the window in veh/h.
 //!
-//! The script this replaces (`scripts/pd_mechanism.py`, trajectories sampled every second)
-//! gives the same quantities at the sampling period; here they are exact at Δt.
+//! Everything is read at every step (Δt), not at a trajectory sampling period: a new
+//! follower's short braking peak is not missed between samples (docs/reproduction-notes.md).
 //!
 //! | parameter | symbol | unit | value | source |
 //! |---|---|---|---|---|

@@ -17,6 +17,7 @@ pub mod energy;
 mod figures;
 mod flow_aware;
 mod grid;
+mod mechanism;
 mod rules;
 mod sensitivity;
 pub mod sr99;

@@ -78,6 +78,14 @@ pub(super) fn run(s: &Settings, runner: &Runner<'_>, seeds: &[u64]) -> Result<Do
                 M::AVG_PLATOON_LENGTH,
                 "platoon_length_ratio",
             );
+            let lanes = f64::from(cells[i].config.road.lanes);
+            super::mechanism::add_lane_split(
+                &mut outcomes,
+                i,
+                i + k,
+                "discharge_change_pct",
+                lanes,
+            );
         }
     }
     Ok(Done::new(cells, outcomes))
@@ -212,6 +220,22 @@ pub(super) fn markdown(
         trs2.push(r);
     }
     md.push_str(&md_table(&header2, &trs2));
+
+    md.push_str("\n### PD's mechanism\n\n");
+    md.push_str(&super::mechanism::legend(
+        "the control section (where PD acts)",
+    ));
+    let keys: Vec<(String, String)> = DEMANDS
+        .iter()
+        .map(|&d| (num(d), format!("{} veh/h/lane", num(d))))
+        .collect();
+    md.push_str(&super::mechanism::table(
+        &keys,
+        StrategyKind::PD,
+        DQ,
+        true,
+        &|k: &str, s, c| row_of(k, s, c),
+    ));
 
     md.push_str(
         "\nThe dedicated lane (ours, not in the paper; docs/organizers.md): the same set-up, the \

@@ -213,15 +213,17 @@ impl Scales {
 }
 
 /// The `sr99` scenario at a penetration, strategy and demand scale, resolved exactly as
-/// `platoonsim run sr99 --penetration P --strategy K --demand-scale F` (seed 1; the duration
-/// from the settings if given).
+/// `platoonsim run sr99 --penetration P --strategy K --demand-scale F --set
+/// measurement.mechanism=true` (seed 1; the duration from the settings if given): the
+/// configuration of `sweeps/sr99.toml`'s cells, so that `sr99-demand` reuses `sr99`'s runs.
 pub fn config(s: &Settings, p: f64, k: StrategyKind, scale: f64) -> Result<Config, Error> {
     let o = Overrides {
         penetration: Some(p),
         seed: Some(1),
         strategy: Some(k),
         duration_s: s.network_duration_s,
-        set: std::iter::once(demand_scale_set(scale))
+        set: [demand_scale_set(scale), "measurement.mechanism=true".into()]
+            .into_iter()
             .chain(s.preset_set())
             .collect(),
         ..Overrides::default()
@@ -513,6 +515,28 @@ pub(super) fn markdown(s: &Settings, cells: &[Cell], rows: &[SummaryRow]) -> (St
         md.push_str("No penetration between 0 and 100 % was run.\n");
     } else {
         md.push_str(&md_table(&header, &trs));
+    }
+
+    if !mid.is_empty() {
+        md.push_str("\n## The organizing strategies' mechanism\n\n");
+        md.push_str(&super::mechanism::legend(
+            "the whole corridor (the PD zone)",
+        ));
+        let keys: Vec<(String, String)> = mid
+            .iter()
+            .map(|&p| (num(p), format!("{} % CAV", num(100.0 * p))))
+            .collect();
+        for k in [StrategyKind::PD, StrategyKind::FLOW_AWARE] {
+            md.push_str(&format!("{}:\n\n", strategy_name(k)));
+            md.push_str(&super::mechanism::table(
+                &keys,
+                k,
+                Col::Derived(CHANGES[0].0),
+                false,
+                &|key: &str, st, c| row(cells, rows, key, st, c),
+            ));
+            md.push('\n');
+        }
     }
 
     md.push_str(&bottleneck_section(s, cells, rows));
