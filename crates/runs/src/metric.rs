@@ -118,96 +118,74 @@ plain_fields! {
     Steps: steps count;
 }
 
-/// The fields of the energy summary (flattened into [`Summary`] with `energy.enabled`).
-macro_rules! energy_fields {
-    ($($variant:ident: $field:ident $how:ident;)*) => {
-        /// A field of the energy summary (`platoonsim_sim::EnergySummary`), named as the field.
+/// The numeric fields of an optional part of [`Summary`] that is flattened into it (the
+/// energy summary, the mechanism measures): an enum named `$name` over the fields of
+/// `s.$part`, present only when the part is.
+macro_rules! part_fields {
+    ($(#[$doc:meta])* $name:ident, $part:ident { $($variant:ident: $field:ident $how:ident;)* }) => {
+        $(#[$doc])*
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-        pub enum EnergyField {
+        pub enum $name {
             $($variant),*
         }
 
-        impl EnergyField {
-            /// Every energy field, in the summary's order.
-            pub const ALL: &'static [EnergyField] = &[$(EnergyField::$variant),*];
+        impl $name {
+            /// Every field, in the summary's order.
+            pub const ALL: &'static [$name] = &[$($name::$variant),*];
 
             /// The field's name in `summary.json`.
             pub const fn name(self) -> &'static str {
                 match self {
-                    $(EnergyField::$variant => stringify!($field)),*
+                    $($name::$variant => stringify!($field)),*
                 }
             }
 
             fn read(self, s: &Summary) -> Option<f64> {
-                let e = s.energy.as_ref()?;
+                let part = s.$part.as_ref()?;
                 match self {
-                    $(EnergyField::$variant => read!($how, e.$field)),*
+                    $($name::$variant => read!($how, part.$field)),*
                 }
             }
         }
     };
 }
 
-energy_fields! {
-    FuelPer100km: fuel_l_per_100km maybe;
-    FuelPer100kmCav: fuel_l_per_100km_cav maybe;
-    FuelPer100kmHuman: fuel_l_per_100km_human maybe;
-    EnergyPer100km: energy_kwh_per_100km maybe;
-    EnergyPer100kmCav: energy_kwh_per_100km_cav maybe;
-    EnergyPer100kmHuman: energy_kwh_per_100km_human maybe;
-    Fuel: fuel_l real;
-    Energy: energy_kwh real;
-    EnergyDistance: energy_distance_km real;
-    CavDragReduction: cav_drag_reduction_pct maybe;
-    HumanDragReduction: human_drag_reduction_pct maybe;
-    CavDragSaving: cav_drag_saving_pct maybe;
-    HumanDragSaving: human_drag_saving_pct maybe;
-    CavDynamicsExcess: cav_dynamics_excess_pct maybe;
-    HumanDynamicsExcess: human_dynamics_excess_pct maybe;
+part_fields! {
+    /// A field of the energy summary (`platoonsim_sim::EnergySummary`, with `energy.enabled`),
+    /// named as the field.
+    EnergyField, energy {
+        FuelPer100km: fuel_l_per_100km maybe;
+        FuelPer100kmCav: fuel_l_per_100km_cav maybe;
+        FuelPer100kmHuman: fuel_l_per_100km_human maybe;
+        EnergyPer100km: energy_kwh_per_100km maybe;
+        EnergyPer100kmCav: energy_kwh_per_100km_cav maybe;
+        EnergyPer100kmHuman: energy_kwh_per_100km_human maybe;
+        Fuel: fuel_l real;
+        Energy: energy_kwh real;
+        EnergyDistance: energy_distance_km real;
+        CavDragReduction: cav_drag_reduction_pct maybe;
+        HumanDragReduction: human_drag_reduction_pct maybe;
+        CavDragSaving: cav_drag_saving_pct maybe;
+        HumanDragSaving: human_drag_saving_pct maybe;
+        CavDynamicsExcess: cav_dynamics_excess_pct maybe;
+        HumanDynamicsExcess: human_dynamics_excess_pct maybe;
+    }
 }
 
-/// The numeric fields of the mechanism summary (flattened into [`Summary`] with
-/// `measurement.mechanism`; its by-lane arrays are not metrics).
-macro_rules! mechanism_fields {
-    ($($variant:ident: $field:ident $how:ident;)*) => {
-        /// A field of the mechanism summary (`platoonsim_sim::mechanism::MechanismSummary`),
-        /// named as the field.
-        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-        pub enum MechanismField {
-            $($variant),*
-        }
-
-        impl MechanismField {
-            /// Every numeric mechanism field, in the summary's order.
-            pub const ALL: &'static [MechanismField] = &[$(MechanismField::$variant),*];
-
-            /// The field's name in `summary.json`.
-            pub const fn name(self) -> &'static str {
-                match self {
-                    $(MechanismField::$variant => stringify!($field)),*
-                }
-            }
-
-            fn read(self, s: &Summary) -> Option<f64> {
-                let m = s.mechanism.as_ref()?;
-                match self {
-                    $(MechanismField::$variant => read!($how, m.$field)),*
-                }
-            }
-        }
-    };
-}
-
-mechanism_fields! {
-    MechanismFrom: mechanism_from_m real;
-    MechanismTo: mechanism_to_m real;
-    CavWait: cav_wait_veh_s_per_h real;
-    CavWaitShare: cav_wait_share maybe;
-    SectionLaneChanges: section_lane_changes_per_h real;
-    DisturbedFollowers: disturbed_followers_per_h real;
-    SectionLaneChangesPerCav: section_lane_changes_per_cav maybe;
-    LaneNeedPerCav: lane_need_per_cav maybe;
-    OrganizedLaneDischarge: organized_lane_discharge_vph real;
+part_fields! {
+    /// A numeric field of the mechanism measures (`platoonsim_sim::mechanism::MechanismSummary`,
+    /// with `measurement.mechanism`; its by-lane arrays are not metrics), named as the field.
+    MechanismField, mechanism {
+        MechanismFrom: mechanism_from_m real;
+        MechanismTo: mechanism_to_m real;
+        CavWait: cav_wait_veh_s_per_h real;
+        CavWaitShare: cav_wait_share maybe;
+        SectionLaneChanges: section_lane_changes_per_h real;
+        DisturbedFollowers: disturbed_followers_per_h real;
+        SectionLaneChangesPerCav: section_lane_changes_per_cav maybe;
+        LaneNeedPerCav: lane_need_per_cav maybe;
+        OrganizedLaneDischarge: organized_lane_discharge_vph real;
+    }
 }
 
 /// The by-lane arrays of the mechanism summary: written to `summary.json`, not metrics.
