@@ -1,18 +1,20 @@
 //! The files of a run directory as `platoonsim view` reads them: the first byte picks the file
-//! the rest replaces (trajectories.csv, detectors.csv or trips.csv); the others are those of a
-//! short valid run (seeds/run/). The page is built in memory, never written.
+//! the rest replaces (trajectories.csv, detectors.csv, trips.csv or road.json); the others are
+//! those of a short valid run (seeds/run/). The page is built in memory, never written.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
-const FILES: [&str; 3] = ["trajectories.csv", "detectors.csv", "trips.csv"];
+const FILES: [&str; 4] = [
+    "trajectories.csv",
+    "detectors.csv",
+    "trips.csv",
+    "road.json",
+];
 const RUN: [(&str, &[u8]); 4] = [
-    (
-        "scenario.json",
-        include_bytes!("../seeds/run/scenario.json"),
-    ),
+    ("road.json", include_bytes!("../seeds/run/road.json")),
     (
         "trajectories.csv",
         include_bytes!("../seeds/run/trajectories.csv"),

@@ -378,10 +378,10 @@ class Simulation:
     def finish(self, out_dir: str | os.PathLike[str] | None = None) -> dict[str, Any]:
         """End the run now and return the summary (the fields of summary.json). Vehicles still
         on the road count with what they did so far, as at the end of a CLI run. With
-        ``out_dir``, also write summary.json, detectors.csv, scenario.json, scenario.toml and
-        (if vehicles collided) collisions.csv there, removing an earlier run's files, as
-        ``platoonsim run --out`` does (the same writer). Later calls return the same summary
-        (and may write it elsewhere)."""
+        ``out_dir``, also write summary.json, detectors.csv, scenario.json, scenario.toml,
+        road.json and (if vehicles collided) collisions.csv there, removing an earlier run's
+        files, as ``platoonsim run --out`` does (the same writer). Later calls return the same
+        summary (and may write it elsewhere)."""
         text = self._core.finish(None if out_dir is None else os.fspath(out_dir))
         self._summary = json.loads(text)
         return dict(self._summary)

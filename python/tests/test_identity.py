@@ -53,7 +53,7 @@ def test_finish_writes_the_cli_files(tmp_path):
     sim.run_until(450.0)
     sim.step(int(sim.config["duration_s"] * 10))
     summary = sim.finish(py_dir)
-    for name in ("detectors.csv", "scenario.json", "scenario.toml"):
+    for name in ("detectors.csv", "scenario.json", "scenario.toml", "road.json"):
         assert (py_dir / name).read_bytes() == (cli_dir / name).read_bytes(), name
     import json
 

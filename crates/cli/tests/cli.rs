@@ -382,6 +382,7 @@ fn run_writes_summary_detectors_and_scenario() {
         names,
         [
             "detectors.csv",
+            "road.json",
             "scenario.json",
             "scenario.toml",
             "summary.json"

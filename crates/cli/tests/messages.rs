@@ -163,6 +163,7 @@ fn a_run_cleans_stale_tmp_files_and_writes_the_summary_last() {
     for name in [
         "scenario.json",
         "scenario.toml",
+        "road.json",
         "detectors.csv",
         "trips.csv",
         "trajectories.csv",

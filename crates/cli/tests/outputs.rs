@@ -13,10 +13,11 @@ use std::fs;
 use std::path::{Path, PathBuf};
 
 /// Every name `run` writes or removes (`output::RUN_FILES`).
-const RUN_FILES: [&str; 11] = [
+const RUN_FILES: [&str; 12] = [
     "summary.json",
     "scenario.json",
     "scenario.toml",
+    "road.json",
     "detectors.csv",
     "detectors.parquet",
     "trips.csv",
@@ -105,7 +106,8 @@ fn run_never_removes_or_replaces_a_fifo_a_device_or_a_link_at_any_of_its_names()
             assert_eq!(others.len(), 1, "{name} as a {what}: {others:?}");
         }
         // A link to a regular file elsewhere: the link stays a link; the target is the new
-        // file when the run writes the name (summary.json, scenario.*, detectors.csv), and is
+        // file when the run writes the name (summary.json, scenario.*, road.json,
+        // detectors.csv), and is
         // removed when the run removes a stale output there (the other tables).
         let out = dir.join(format!("link-{i}"));
         let elsewhere = dir.join(format!("elsewhere-{i}"));
@@ -119,7 +121,7 @@ fn run_never_removes_or_replaces_a_fifo_a_device_or_a_link_at_any_of_its_names()
         assert_eq!(kind(&out.join(name)), "link", "{name}");
         let written = matches!(
             *name,
-            "summary.json" | "scenario.json" | "scenario.toml" | "detectors.csv"
+            "summary.json" | "scenario.json" | "scenario.toml" | "road.json" | "detectors.csv"
         );
         if written {
             let new = fs::read(&target).unwrap();
@@ -271,6 +273,7 @@ fn an_output_that_is_an_input_is_refused() {
         "trajectories.csv",
         "summary.json",
         "scenario.json",
+        "road.json",
         "detectors.csv",
         "trips.csv",
     ] {

@@ -112,7 +112,7 @@ fn a_fifo_is_refused_by_every_reader() {
         "trips.csv",
         "detectors.csv",
         "trajectories.csv",
-        "scenario.json",
+        "road.json",
     ] {
         let file = dir.join(name);
         let keep = dir.join(format!("{name}.keep"));

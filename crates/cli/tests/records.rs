@@ -256,7 +256,12 @@ fn records_are_reproducible_and_do_not_change_the_other_outputs() {
     let o = platoonsim(&args);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!stdout(&o).contains("Also written"), "{}", stdout(&o));
-    for file in ["detectors.csv", "scenario.json", "scenario.toml"] {
+    for file in [
+        "detectors.csv",
+        "scenario.json",
+        "scenario.toml",
+        "road.json",
+    ] {
         assert_eq!(
             std::fs::read(a.join(file)).unwrap(),
             std::fs::read(plain.join(file)).unwrap(),

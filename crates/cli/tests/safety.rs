@@ -102,7 +102,7 @@ fn a_run_with_collisions_writes_them_and_exits_with_3() {
         "{paragraph}"
     );
     assert!(
-        paragraph.contains("scenario.toml, collisions.csv."),
+        paragraph.contains("scenario.toml, road.json, collisions.csv."),
         "{paragraph}"
     );
 

@@ -92,8 +92,9 @@ fn view_refuses_a_run_without_trajectories_and_a_bad_file() {
     assert_eq!(o.status.code(), Some(2));
 }
 
-/// Files that no run writes (issue 35 item 7): an unknown vehicle kind, a lane the scenario's
-/// road does not have (trajectories from another run) and a truncated detectors.csv.
+/// Files that no run writes (issue 35 item 7): an unknown vehicle kind, a lane the run's road
+/// does not have (trajectories from another run), a truncated detectors.csv and a missing
+/// road.json (a run directory older than it).
 #[test]
 fn view_refuses_unknown_kinds_a_mismatched_scenario_and_a_truncated_table() {
     let dir = scratch("view_mismatch");
@@ -129,8 +130,8 @@ fn view_refuses_unknown_kinds_a_mismatched_scenario_and_a_truncated_table() {
         ),
         (
             with(col("lane"), "9"),
-            "line 2, column lane: '9' is not a lane of the road in scenario.json (1 to 3): \
-             trajectories.csv and scenario.json are not from the same run",
+            "line 2, column lane: '9' is not a lane of the road in road.json (1 to 3): \
+             trajectories.csv and road.json are not from the same run",
         ),
     ] {
         std::fs::write(&traj, text).unwrap();
@@ -152,4 +153,14 @@ fn view_refuses_unknown_kinds_a_mismatched_scenario_and_a_truncated_table() {
     assert!(!dir.join("view.html").exists());
     std::fs::write(&det, table).unwrap();
     assert!(platoonsim(&["view", s(&dir)]).status.success());
+    // A run directory from before road.json: the error names the file and the way out.
+    std::fs::remove_file(dir.join("road.json")).unwrap();
+    let o = platoonsim(&["view", s(&dir)]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(
+        e.contains("road.json not found: the run directory predates road.json")
+            && e.contains("platoonsim run ... --trajectories"),
+        "{e}"
+    );
 }

@@ -47,8 +47,12 @@ impl FromStr for Lane {
     }
 }
 
-/// The `kind` cell of a detector record: where the detector stands.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+/// The `kind` cell of a detector record: where the detector stands. In `road.json` it is the
+/// same word (serde's kebab case of the variant is [`DetectorKind::as_str`]).
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize,
+)]
+#[serde(rename_all = "kebab-case")]
 pub enum DetectorKind {
     Mainline,
     OnRamp,
@@ -107,6 +111,11 @@ mod tests {
             assert_eq!(k.to_string().parse::<DetectorKind>(), Ok(k));
         }
         assert_eq!(DetectorKind::OnRamp.as_str(), "on-ramp");
+        for k in DetectorKind::ALL {
+            let json = serde_json::to_string(&k).unwrap();
+            assert_eq!(json, format!("\"{k}\""));
+            assert_eq!(serde_json::from_str::<DetectorKind>(&json).unwrap(), k);
+        }
         assert!("onramp".parse::<DetectorKind>().is_err());
     }
 }

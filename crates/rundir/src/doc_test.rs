@@ -1,5 +1,5 @@
-//! docs/outputs.md is held to this crate: for every file, each column has a row in that file's
-//! table on the page, and the typed word cells list every word.
+//! docs/outputs.md is held to this crate: for every file, each column (for `road.json`, each
+//! field) has a row in that file's table on the page, and the typed word cells list every word.
 
 use crate::*;
 
@@ -60,6 +60,41 @@ fn every_column_has_a_row_in_docs_outputs_md() {
     assert!(gaps.is_empty(), "not in docs/outputs.md: {gaps:?}");
 }
 
+/// The fields of a JSON value, a list's elements' as `list[].field`.
+fn json_fields(v: &serde_json::Value, prefix: &str, out: &mut Vec<String>) {
+    match v {
+        serde_json::Value::Object(m) => {
+            for (k, v) in m {
+                let path = format!("{prefix}{k}");
+                out.push(path.clone());
+                json_fields(v, &format!("{path}."), out);
+            }
+        }
+        serde_json::Value::Array(items) => {
+            for item in items.iter().filter(|i| i.is_object()) {
+                json_fields(item, &format!("{}[].", prefix.trim_end_matches('.')), out);
+            }
+        }
+        _ => {}
+    }
+}
+
+#[test]
+fn every_road_json_field_has_a_row_in_docs_outputs_md() {
+    let json = serde_json::to_value(crate::road::sample()).unwrap();
+    let mut fields = Vec::new();
+    json_fields(&json, "", &mut fields);
+    fields.sort();
+    fields.dedup();
+    assert!(
+        fields.contains(&"segments[].ends".to_string()),
+        "{fields:?}"
+    );
+    let fields: Vec<&str> = fields.iter().map(String::as_str).collect();
+    let gaps = missing(ROAD_JSON, &fields);
+    assert!(gaps.is_empty(), "not in docs/outputs.md: {gaps:?}");
+}
+
 #[test]
 fn the_word_cells_are_listed_in_docs_outputs_md() {
     let rows = documented_columns(DOC, DETECTORS.csv);
@@ -69,11 +104,21 @@ fn the_word_cells_are_listed_in_docs_outputs_md() {
             .map(|(_, m)| m.clone())
             .unwrap_or_default()
     };
+    let road = documented_columns(DOC, ROAD_JSON);
+    let road_kind = road
+        .iter()
+        .find(|(name, _)| name == "detectors[].kind")
+        .map(|(_, m)| m.clone())
+        .unwrap_or_default();
     for kind in DetectorKind::ALL {
         let word = format!("`{kind}`");
         assert!(
             meaning("kind").contains(&word),
             "{word} not in the kind row"
+        );
+        assert!(
+            road_kind.contains(&word),
+            "{word} not in road.json's detectors[].kind row"
         );
     }
     assert!(meaning("lane").contains(&format!("`{}`", Lane::ALL)));

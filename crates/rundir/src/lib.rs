@@ -5,15 +5,17 @@
 //! `time-space` read it, sweeps keep its detector records, users read it with pandas. This
 //! crate names its files and their columns, and types the cells that are words (the detector
 //! records' [`Lane`] and [`DetectorKind`]); [`trajectory`] is the one reader of
-//! `trajectories.csv` (the viewer's and `time-space`'s). It depends on no engine crate (only on
-//! `csv`), so that every reader (the viewer too) and the one writer
-//! (`platoonsim_runs::run_dir`) use it. docs/outputs.md describes the files; a test of the CLI holds it to this crate.
+//! `trajectories.csv` (the viewer's and `time-space`'s); [`road`] types `road.json`, the road
+//! as the engine built it. It depends on no engine crate (only on `csv` and `serde`), so that
+//! every reader (the viewer too) and the one writer (`platoonsim_runs::run_dir`) use it.
+//! docs/outputs.md describes the files; a test of the CLI holds it to this crate.
 //!
 //! Outside tests, the file names below are spelled out in this crate only.
 
 mod cells;
 #[cfg(test)]
 mod doc_test;
+pub mod road;
 pub mod trajectory;
 
 pub use cells::{DetectorKind, Lane};
@@ -26,6 +28,8 @@ pub const SUMMARY: &str = "summary.json";
 pub const SCENARIO_JSON: &str = "scenario.json";
 /// `scenario.toml`: the same as a complete scenario file.
 pub const SCENARIO_TOML: &str = "scenario.toml";
+/// `road.json`: the road as the engine built it ([`road::RoadSketch`]).
+pub const ROAD_JSON: &str = "road.json";
 /// `collisions.csv`: only if the run had collisions (its absence means "no collision").
 pub const COLLISIONS: &str = "collisions.csv";
 /// `view.html`: the replay page `platoonsim view` writes into the directory.
@@ -77,10 +81,11 @@ pub const TRAJECTORIES: Table = Table {
 pub const TABLES: [Table; 3] = [DETECTORS, TRIPS, TRAJECTORIES];
 
 /// Every file a run may write into its directory (the tables in both formats).
-pub const RUN_FILES: [&str; 11] = [
+pub const RUN_FILES: [&str; 12] = [
     SUMMARY,
     SCENARIO_JSON,
     SCENARIO_TOML,
+    ROAD_JSON,
     DETECTORS.csv,
     DETECTORS.parquet,
     TRIPS.csv,

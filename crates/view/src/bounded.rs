@@ -9,5 +9,5 @@ pub(crate) use platoonsim_bounded::{read, read_text, regular_file};
 /// records' bound (5 million rows) and a trip for each of the 10 million arrivals a run may
 /// bring.
 pub const MAX_TABLE_BYTES: u64 = 2 << 30;
-/// The largest `scenario.json` read (a resolved SR-99 is about 100 KiB).
-pub const MAX_SCENARIO_BYTES: u64 = 16 << 20;
+/// The largest `road.json` read (SR-99's is about 15 KiB).
+pub const MAX_ROAD_BYTES: u64 = 16 << 20;

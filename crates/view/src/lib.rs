@@ -1,13 +1,14 @@
-//! The replay viewer: [`build`] reads a run directory (`trajectories.csv` and `scenario.json`,
-//! with `detectors.csv`, `trips.csv` and `collisions.csv` where present) and returns one
+//! The replay viewer: [`build`] reads a run directory (`trajectories.csv` and `road.json`, with
+//! `detectors.csv`, `trips.csv` and `collisions.csv` where present) and returns one
 //! self-contained HTML page that replays the run on a Canvas 2D (no network access, no server).
 //!
 //! The page is the files under `assets/` (embedded at compile time) with two blocks filled
 //! in: a JSON block (`page.rs`) describing the road, the frames and the tables, and a base64 block
 //! with the vehicle samples packed into typed arrays and gzip-compressed (`tracks.rs`, `pack.rs`).
-//! This crate depends on no engine crate (the file names come from `platoonsim-rundir`, which
-//! depends on nothing): it reads the files by their header names, so a file
-//! with extra columns still works, and what it shows is what the run wrote.
+//! This crate depends on no engine crate (the file names and the road's type come from
+//! `platoonsim-rundir`, which depends on none): it reads the tables by their header names, so a
+//! file with extra columns still works, and draws the road the engine wrote (`road.json`), so
+//! what it shows is what the run wrote.
 
 mod bounded;
 mod pack;
@@ -17,7 +18,7 @@ mod tables;
 mod tracks;
 
 use anyhow::{bail, Context, Result};
-use platoonsim_rundir::{COLLISIONS, DETECTORS, SCENARIO_JSON, TRAJECTORIES, TRIPS};
+use platoonsim_rundir::{COLLISIONS, DETECTORS, TRAJECTORIES, TRIPS};
 use std::path::Path;
 
 /// A built page and what went into it.
@@ -45,18 +46,7 @@ pub fn build(dir: &Path) -> Result<View> {
             dir.display()
         );
     }
-    let scenario_path = dir.join(SCENARIO_JSON);
-    let scenario_text = bounded::read_text(&scenario_path, bounded::MAX_SCENARIO_BYTES)
-        .with_context(|| {
-            format!(
-                "cannot read {} (the run's resolved scenario, written by `platoonsim run`)",
-                scenario_path.display()
-            )
-        })?;
-    let scenario: serde_json::Value = serde_json::from_str(&scenario_text)
-        .with_context(|| format!("{} is not valid JSON", scenario_path.display()))?;
-    let road = road::Road::from_scenario(&scenario)
-        .with_context(|| format!("in {}", scenario_path.display()))?;
+    let road = road::read(dir)?;
 
     let file = bounded::open_records(
         &traj,

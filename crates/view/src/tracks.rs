@@ -106,7 +106,7 @@ pub fn read_and_pack<R: Read>(input: R, path: &Path, road: &Road) -> Result<Pack
                      same run",
                     road.lanes,
                     TRAJECTORIES.csv,
-                    json = platoonsim_rundir::SCENARIO_JSON,
+                    json = platoonsim_rundir::ROAD_JSON,
                 ),
             }
             .into());
@@ -392,10 +392,7 @@ mod tests {
     use super::*;
 
     fn rows_of(csv: &str) -> Result<Packed> {
-        let road = Road::from_scenario(&serde_json::json!({
-            "road": {"lanes": 2, "length_m": 1000.0}
-        }))
-        .unwrap();
+        let road = crate::road::plain(2, 1000.0);
         read_and_pack(csv.as_bytes(), Path::new("trajectories.csv"), &road)
     }
 

@@ -37,8 +37,8 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Simulate one scenario; write summary.json, detectors.csv, scenario.json and
-    /// scenario.toml (and on request trips.csv, trajectories.csv; collisions.csv if vehicles
+    /// Simulate one scenario; write summary.json, detectors.csv, scenario.json, scenario.toml
+    /// and road.json (and on request trips.csv, trajectories.csv; collisions.csv if vehicles
     /// collided) to the output directory and print a short summary. Exits with 3 if the run
     /// had collisions (unless --allow-collisions).
     Run(RunArgs),
@@ -350,7 +350,7 @@ fn pair(v: &Option<Vec<f64>>) -> Option<(String, Option<(f64, f64)>)> {
 
 #[derive(Debug, Args)]
 pub struct ViewArgs {
-    /// A run's output directory holding trajectories.csv and scenario.json (detectors.csv,
+    /// A run's output directory holding trajectories.csv and road.json (detectors.csv,
     /// trips.csv and collisions.csv are used when present).
     #[arg(value_name = "RUN_DIR")]
     pub dir: PathBuf,

@@ -58,11 +58,13 @@ pub fn paragraph(config: &Config, s: &Summary, dir: &Path) -> String {
          TET {tet:.1} s, TIT {tit:.1} s², minimum TTC {min_ttc}; largest deceleration \
          {max_decel:.2} m/s² over the whole run. \
          Collisions: {collisions}. {updates} vehicle updates in {wall:.2} s{rate}. \
-         Files in {dir}: {summary}, {detectors}, {scenario_json}, {scenario_toml}{collisions_file}.",
+         Files in {dir}: {summary}, {detectors}, {scenario_json}, {scenario_toml}, {road_json}\
+         {collisions_file}.",
         summary = rundir::SUMMARY,
         detectors = rundir::DETECTORS.csv,
         scenario_json = rundir::SCENARIO_JSON,
         scenario_toml = rundir::SCENARIO_TOML,
+        road_json = rundir::ROAD_JSON,
         name = printable(&s.scenario),
         dur = s.duration_s,
         dt = s.dt_s,

@@ -9,6 +9,7 @@
 //! | `*.parquet` | with [`Format::Parquet`]: the tables detectors, trips and trajectories as Parquet instead of CSV ([`parquet`]) |
 //! | `scenario.json` | the resolved [`Config`] |
 //! | `scenario.toml` | the same as a complete scenario file (`platoonsim run DIR/scenario.toml` reruns it) |
+//! | `road.json` | the road as the engine built it, for the viewer ([`road_sketch`]) |
 //! | `trips.csv` | with the trip records: one row per vehicle that entered the road, then one per vehicle still in an entrance queue at the end ([`trips_csv`]) |
 //! | `trajectories.csv` | with the trajectory records: one row per vehicle and sample ([`write_trajectories`]) |
 //! | `collisions.csv` | only if the run had collisions: one row per [`CollisionEvent`] ([`collisions_csv`]) |
@@ -20,16 +21,18 @@ use crate::columnar::Format;
 use crate::detectors::Scope;
 use crate::Error;
 use platoonsim_rundir::{
-    COLLISIONS, COLLISION_COLUMNS, DETECTORS, RUN_FILES, SCENARIO_JSON, SCENARIO_TOML, SUMMARY,
-    TABLES, TRAJECTORIES, TRAJECTORY_HEADER, TRIPS,
+    COLLISIONS, COLLISION_COLUMNS, DETECTORS, ROAD_JSON, RUN_FILES, SCENARIO_JSON, SCENARIO_TOML,
+    SUMMARY, TABLES, TRAJECTORIES, TRAJECTORY_HEADER, TRIPS,
 };
 use platoonsim_sim::{CollisionEvent, Config, DetectorRecord, Output, TrajectoryPoint};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 pub mod parquet;
+mod road;
 mod trips;
 
+pub use road::road_sketch;
 pub use trips::{entrance_name, off_ramp_name, trips_csv};
 
 fn cannot_write(path: &Path, e: impl std::fmt::Display) -> Error {
@@ -86,7 +89,8 @@ pub fn remove_stale_tmp(dir: &Path) -> Result<(), Error> {
 }
 
 /// Write every output file of a run into `dir` except `summary.json`, the tables
-/// (`detectors`, `trips`, `trajectories`) in `format`; returns the paths written. `trips` and
+/// (`detectors`, `trips`, `trajectories`) in `format`; returns the paths written. `road.json`
+/// is written for every run (the viewer draws the road from it). `trips` and
 /// `trajectories` are written if the output has the records, `collisions.csv` if the run had
 /// collisions. A table of an earlier run that this one does not write (in either format) is
 /// removed, and so is an earlier run's summary, first.
@@ -98,12 +102,13 @@ pub fn write_run_files(
 ) -> Result<Vec<PathBuf>, Error> {
     // An earlier run's summary would mark the files replaced below as finished until ours.
     remove_stale(&dir.join(SUMMARY))?;
-    let files: [(&str, Vec<u8>); 2] = [
+    let files: [(&str, Vec<u8>); 3] = [
         (SCENARIO_JSON, json(config)?),
         (
             SCENARIO_TOML,
             platoonsim_scenario::to_toml(config).into_bytes(),
         ),
+        (ROAD_JSON, json(&road_sketch(config)?)?),
     ];
     let mut written = Vec::with_capacity(files.len() + 3);
     let mut put = |path: PathBuf, bytes: &[u8]| -> Result<(), Error> {

@@ -54,7 +54,7 @@ fn write_run_writes_every_file_atomically() {
     std::fs::create_dir_all(&dir).unwrap();
     let (config, out) = short_run();
     let written = write_run(&dir, &config, &out, Format::Csv).unwrap();
-    assert_eq!(written.len(), 4);
+    assert_eq!(written.len(), 5);
     let mut names: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
@@ -64,11 +64,17 @@ fn write_run_writes_every_file_atomically() {
         names,
         [
             "detectors.csv",
+            "road.json",
             "scenario.json",
             "scenario.toml",
             "summary.json"
         ]
     );
+    // road.json reads back into the contract's type, as the builder made it.
+    let road: platoonsim_rundir::road::RoadSketch =
+        serde_json::from_slice(&std::fs::read(dir.join("road.json")).unwrap()).unwrap();
+    assert_eq!(road, road_sketch(&config).unwrap());
+    assert_eq!((road.lanes, road.end_m), (3, 6500.0));
     let s: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("summary.json")).unwrap()).unwrap();
     assert_eq!(s["vehicle_updates"], out.summary.vehicle_updates);
@@ -191,7 +197,7 @@ fn write_run_writes_the_records_asked_for_and_removes_stale_ones() {
     };
     let out = platoonsim_sim::run_recording(&config, &rec, None).unwrap();
     let written = write_run(&dir, &config, &out, Format::Csv).unwrap();
-    assert_eq!(written.len(), 6);
+    assert_eq!(written.len(), 7);
     let trips = std::fs::read_to_string(dir.join("trips.csv")).unwrap();
     // One row per vehicle that entered, one per vehicle still queued at the end.
     assert_eq!(
@@ -210,11 +216,11 @@ fn write_run_writes_the_records_asked_for_and_removes_stale_ones() {
     let plain = platoonsim_sim::run(&config, None).unwrap();
     assert_eq!(
         write_run(&dir, &config, &plain, Format::Csv).unwrap().len(),
-        4
+        5
     );
     assert!(!dir.join("trips.csv").exists());
     assert!(!dir.join("trajectories.csv").exists());
-    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 4);
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 5);
 }
 
 #[test]
