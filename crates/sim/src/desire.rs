@@ -2,12 +2,11 @@
 //! strategy's advice, the anticipation of on-ramps and the speeds ahead. The rules themselves
 //! are pure functions in `platoonsim_model::driver`; this module gathers their inputs.
 
-use crate::decide::View;
 use crate::decide::{v_des_of, Desire};
+use crate::decide::{Me, View};
 use crate::here::SideWalls;
 use crate::network::NO_LANE;
 use crate::organize::Advice;
-use crate::state::Neighbours;
 use crate::vehicle::{Kind, Vehicle, NEVER, NO_EXIT};
 use crate::view::VehicleView;
 use platoonsim_model::bounded;
@@ -17,14 +16,9 @@ use platoonsim_model::lanechange::{self as lcm, Side};
 impl View<'_> {
     /// Spec 4.2: the lane-change desire, if it exceeds the driver's threshold.
     #[inline]
-    pub(crate) fn desire(
-        &self,
-        s: u32,
-        v: &Vehicle,
-        nb: &Neighbours,
-        walls: &mut SideWalls,
-    ) -> Option<Desire> {
+    pub(crate) fn desire(&self, me: &Me, walls: &mut SideWalls) -> Option<Desire> {
         let lcd = &self.cfg.lane_change;
+        let v = me.v;
         if v.x < lcd.forbid_zone_m {
             return None;
         }
@@ -46,14 +40,14 @@ impl View<'_> {
             Kind::Cav => self.advise[1],
         };
         if advised {
-            return self.advised_desire(s, v, nb, since, walls);
+            return self.advised_desire(me, since, walls);
         }
         let mandatory = if self.road.geom.plain {
             None
         } else {
-            self.mandatory(s, v, None)
+            self.mandatory(me, None)
         };
-        let [left, right] = self.discretionary(s, v, nb, self.is_follower(s, v), walls);
+        let [left, right] = self.discretionary(me, self.is_follower(me), walls);
         let (side, gamma) = driver::combine(mandatory, left, right, v.driver.lc.mandatory_weight)?;
         settle(v, since, side, gamma, mandatory.is_some(), false)
     }
@@ -63,14 +57,8 @@ impl View<'_> {
     /// `Avoid` adds a mandatory desire to leave the lane and closes it to discretionary
     /// changes while that desire would be positive (the lane-drop rule).
     #[inline(never)]
-    fn advised_desire(
-        &self,
-        s: u32,
-        v: &Vehicle,
-        nb: &Neighbours,
-        since: Option<f64>,
-        walls: &mut SideWalls,
-    ) -> Option<Desire> {
+    fn advised_desire(&self, me: &Me, since: Option<f64>, walls: &mut SideWalls) -> Option<Desire> {
+        let v = me.v;
         let advice = self.organizer.advise(
             VehicleView::new(v),
             self.clock.step as f64 * self.clock.dt,
@@ -83,7 +71,7 @@ impl View<'_> {
         let mandatory = if self.road.geom.plain && avoid.is_none() {
             None
         } else {
-            self.mandatory(s, v, avoid)
+            self.mandatory(me, avoid)
         };
         let join = match advice {
             Advice::Join { lane, strength } if mandatory.is_none() && !self.exit_near(v) => {
@@ -95,7 +83,7 @@ impl View<'_> {
             // γ_d = 0 in the organized lane (spec 4.7).
             (driver::toward(v.lane, lane)?, strength)
         } else {
-            let [mut left, mut right] = self.discretionary(s, v, nb, self.is_follower(s, v), walls);
+            let [mut left, mut right] = self.discretionary(me, self.is_follower(me), walls);
             if let Some((lane, from_m)) = avoid {
                 let closed = |target: u32| {
                     target == lane
@@ -117,8 +105,8 @@ impl View<'_> {
     /// behind another CAV automatically starts to form a platoon" [S]) a platoon follower: no
     /// discretionary desire (w_CAV follower, spec 4.7).
     #[inline]
-    pub(crate) fn is_follower(&self, s: u32, v: &Vehicle) -> bool {
-        self.sensed[s as usize].linked || (v.is_cav() && self.sensed[s as usize].cav_ahead)
+    pub(crate) fn is_follower(&self, me: &Me) -> bool {
+        me.sensed.linked || (me.v.is_cav() && me.sensed.cav_ahead)
     }
 
     /// The side toward which vehicle `v` organizes now (its strategy's `Join` advice, no
@@ -154,7 +142,8 @@ impl View<'_> {
     /// or reaching the rightmost through lane at the driver's off-ramp (N = lanes to cross).
     /// The larger one wins.
     #[inline(always)]
-    fn mandatory(&self, s: u32, v: &Vehicle, avoid: Option<(u32, f64)>) -> Option<(Side, f64)> {
+    fn mandatory(&self, me: &Me, avoid: Option<(u32, f64)>) -> Option<(Side, f64)> {
+        let v = me.v;
         let mut best: Option<(Side, f64)> = None;
         // A lane the strategy closes to this vehicle (`Advice::Avoid`): leave it as a lane
         // that ends at `from_m`, toward the right unless it is the rightmost lane.
@@ -174,7 +163,7 @@ impl View<'_> {
         // is no reason to leave it: it leaves by the off-ramp first (an exit lane followed by
         // a lane drop, as SUMO networks have them; without this the exiting driver stopped
         // at the exit, waiting to move away from it) [D] (docs/model-choices.md 6.23).
-        let wall = self.sensed[s as usize].here.wall.filter(|&w| {
+        let wall = me.sensed.here.wall.filter(|&w| {
             v.route.exit == NO_EXIT || {
                 let r = &self.road.geom.off_ramps[v.route.exit as usize];
                 !(v.lane == r.lane && v.x < r.x && r.x <= w)
@@ -208,15 +197,9 @@ impl View<'_> {
     /// (no lane, an acceleration lane) or when there is nothing to gain. Includes w_CAV (spec
     /// 4.7), the exit constraint η_e and the on-ramp anticipation.
     #[inline(always)]
-    fn discretionary(
-        &self,
-        s: u32,
-        v: &Vehicle,
-        nb: &Neighbours,
-        follower: bool,
-        walls: &mut SideWalls,
-    ) -> [Option<f64>; 2] {
+    fn discretionary(&self, me: &Me, follower: bool, walls: &mut SideWalls) -> [Option<f64>; 2] {
         let lcd = &self.cfg.lane_change;
+        let (v, nb) = (me.v, me.nb());
         // A platoon follower has no speed-gain motivation (w_CAV follower), but ahead of a busy
         // on-ramp (spec 4.2 "Anticipatory") it still makes room, moving left with the leader's
         // weight [D]: otherwise, at high penetration, the strings stay in the merge lane while
@@ -228,7 +211,7 @@ impl View<'_> {
         } else if follower {
             let w = lcd.cav_weight_follower;
             if lcd.follower_anticipates && !self.road.geom.plain {
-                let f = self.anticipation_factor(s, v);
+                let f = self.anticipation_factor(me);
                 anticipation = Some(f);
                 if f > 1.0 {
                     (lcd.cav_weight_leader, w)
@@ -258,14 +241,14 @@ impl View<'_> {
         }
         // Speeds are what the driver could achieve: capped at its desired speed (in that lane,
         // spec 2.7).
-        let v_des = self.v_des_in(s, v, v.lane as usize);
+        let v_des = self.own_v_des(me);
         let mut v_cur = bounded::min(
             self.avg_speed_ahead(v.lane as usize, nb.idx as usize, v.x, v_des),
             v_des,
         );
         if !self.road.geom.plain {
             // Mostly 1 (no on-ramp ahead): dividing by 1 changes nothing.
-            let f = anticipation.unwrap_or_else(|| self.anticipation_factor(s, v));
+            let f = anticipation.unwrap_or_else(|| self.anticipation_factor(me));
             if f != 1.0 {
                 v_cur /= f;
             }
@@ -275,7 +258,7 @@ impl View<'_> {
         if v_des_of(v) - v_cur < v.driver.lc.min_speed_gain_mps {
             return [None, None];
         }
-        let here = &self.sensed[s as usize].here;
+        let here = &me.sensed.here;
         let mut out = [None, None];
         let lane = v.lane as usize;
         for (i, side, target, j, w, eta, open) in [
@@ -310,7 +293,7 @@ impl View<'_> {
                 continue;
             }
 
-            let v_ant = self.anticipated_speed(s, v, target, j as usize, v_cur);
+            let v_ant = self.anticipated_speed(me, target, j as usize, v_cur);
             out[i] = Some(w * eta * lcm::discretionary_desire(&v.driver.lc, v_ant, v_cur, side));
         }
         out
@@ -328,9 +311,9 @@ impl View<'_> {
     /// Spec 4.2 "Anticipatory": in the two rightmost through lanes within the anticipation
     /// range of an on-ramp, the current-lane speed is divided by 1 + c_inc (ρ_ramp/ρ_jam)/j.
     #[inline]
-    fn anticipation_factor(&self, s: u32, v: &Vehicle) -> f64 {
+    fn anticipation_factor(&self, me: &Me) -> f64 {
         let lcd = &self.cfg.lane_change;
-        let here = &self.sensed[s as usize].here;
+        let (v, here) = (me.v, &me.sensed.here);
         let k = here.ramps_upto as usize;
         let Some((ramp, _)) =
             self.road
@@ -388,8 +371,9 @@ impl View<'_> {
     /// test; v_ant ≤ bound and subtracting `v_cur` is monotonic, so v_ant − v_cur < the gain
     /// too). In queues beside a queue this skips most scans.
     #[inline]
-    fn anticipated_speed(&self, s: u32, v: &Vehicle, target: usize, j: usize, v_cur: f64) -> f64 {
-        let v_des = self.v_des_in(s, v, target);
+    fn anticipated_speed(&self, me: &Me, target: usize, j: usize, v_cur: f64) -> f64 {
+        let v = me.v;
+        let v_des = self.v_des_in(me.s, v, target);
         if j == 0 {
             return v_des; // no target leader
         }

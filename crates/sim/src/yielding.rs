@@ -3,9 +3,9 @@
 //! Part of the decide phase; the yielding car-following law itself is
 //! `platoonsim_model::lanechange::yield_accel`.
 
-use crate::decide::View;
 use crate::decide::{opposite, pair_uniform};
-use crate::state::{Neighbours, NONE};
+use crate::decide::{Me, View};
+use crate::state::NONE;
 use crate::vehicle::{Mode, Vehicle};
 use platoonsim_model::lanechange::{self as lcm, Side};
 use platoonsim_model::Leader;
@@ -22,19 +22,15 @@ impl View<'_> {
         }
     }
 
-    /// The requester (slot) of a yield request the driver agrees to, if any (spec 4.5). The
+    /// The requester (slot) of a yield request the driver `me` agrees to, if any (spec 4.5). The
     /// automation (`automated`, spec 6.5 flag) answers only mandatory requests, and, with
     /// `cav.yield_to_organizers`, a CAV moving left toward the PD lane.
     ///
     /// Inlined: most drivers have no adjacent-lane leader in BLC toward their lane, and this
     /// first test of [`Self::yield_request`] answers them without a call.
     #[inline]
-    pub(crate) fn agreed_request(
-        &self,
-        v: &Vehicle,
-        nb: &Neighbours,
-        automated: bool,
-    ) -> Option<u32> {
+    pub(crate) fn agreed_request(&self, me: &Me, automated: bool) -> Option<u32> {
+        let nb = me.nb();
         let asks = |ld: u32, toward: Side| {
             ld != NONE
                 && matches!(self.traffic.vehicles[ld as usize].mode, Mode::Blc { side, .. } if side == toward)
@@ -42,13 +38,14 @@ impl View<'_> {
         if !asks(nb.left_leader, Side::Right) && !asks(nb.right_leader, Side::Left) {
             return None;
         }
-        self.agreed_request_from(v, nb, automated)
+        self.agreed_request_from(me, automated)
     }
 
     /// [`Self::agreed_request`] once a neighbour asks.
     #[inline(never)]
-    fn agreed_request_from(&self, v: &Vehicle, nb: &Neighbours, automated: bool) -> Option<u32> {
-        self.yield_request(v, nb).and_then(|(req, mandatory)| {
+    fn agreed_request_from(&self, me: &Me, automated: bool) -> Option<u32> {
+        let v = me.v;
+        self.yield_request(me).and_then(|(req, mandatory)| {
             let r = &self.traffic.vehicles[req as usize];
             let joining = || {
                 self.cfg.cav.yield_to_organizers
@@ -75,7 +72,8 @@ impl View<'_> {
 
     /// Spec 4.5: the nearer adjacent-lane leader in BLC toward this lane, if any (slot,
     /// mandatory). Automated CAVs do not yield (spec 6.5) unless `cav.yield_while_automated`.
-    fn yield_request(&self, v: &Vehicle, nb: &Neighbours) -> Option<(u32, bool)> {
+    fn yield_request(&self, me: &Me) -> Option<(u32, bool)> {
+        let (v, nb) = (me.v, me.nb());
         let mut best: Option<(u32, bool, f64)> = None;
         for (ld, toward) in [(nb.left_leader, Side::Right), (nb.right_leader, Side::Left)] {
             if ld == NONE {

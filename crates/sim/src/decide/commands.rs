@@ -50,7 +50,7 @@ pub(crate) fn apply_commands(
                 } else if toward(v, side, a.left) {
                     // A mandatory desire of 1, with the gap acceptance and before-lane-change
                     // behaviour of the driver model.
-                    let mut d = view.forced_change(s, v, side);
+                    let mut d = view.forced_change(s, side);
                     d.why = LaneChangeReason::Commanded;
                     decisions[s as usize] = d;
                     false

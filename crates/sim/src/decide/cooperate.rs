@@ -2,10 +2,10 @@
 //! are `platoonsim_model::cooperative`): the requester's step, the opener's answer, and how a
 //! request is found. Methods of the decide phase's read-only [`View`].
 
-use super::{Desire, View};
+use super::{Desire, Me, View};
 use crate::events::LaneChangeReason;
 use crate::state::Decision;
-use crate::state::{Neighbours, NONE};
+use crate::state::NONE;
 use crate::vehicle::{Mode, Vehicle};
 use platoonsim_model::cooperative as coop;
 use platoonsim_model::lanechange::Side;
@@ -36,22 +36,15 @@ impl View<'_> {
         }
     }
 
-    /// An automated CAV `v` with a mandatory or organizing desire `d`: the cooperative change
+    /// An automated CAV `me` with a mandatory or organizing desire `d`: the cooperative change
     /// if its target-lane follower is an automated CAV within V2V (sensor) range and the
     /// request lives; otherwise the published behaviour, with the request counter carried in
     /// the BLC mode (0 without a CAV follower: a new request starts once there is one).
     #[inline(never)]
-    pub(super) fn cooperative_or_published(
-        &self,
-        s: u32,
-        v: &Vehicle,
-        nb: &Neighbours,
-        leader: Option<Leader>,
-        wall: bool,
-        d: Desire,
-    ) -> Decision {
+    pub(super) fn cooperative_or_published(&self, me: &Me, d: Desire) -> Decision {
         let p = &self.cfg.cav;
-        let tf = self.side_follower(v, nb, d.side);
+        let v = me.v;
+        let tf = self.side_follower(me, d.side);
         let partner = tf != NONE && {
             let f = &self.traffic.vehicles[tf as usize];
             f.automated() && v.rear() - f.x <= p.sensor_range_m
@@ -67,9 +60,9 @@ impl View<'_> {
             0
         };
         if coop::asking(ask, timeout) {
-            return self.cooperative_change(s, v, nb, leader, wall, d, tf, ask);
+            return self.cooperative_change(me, d, tf, ask);
         }
-        let mut dec = self.published_change(s, v, nb, leader, wall, d);
+        let mut dec = self.published_change(me, d);
         if let Mode::Blc { ask: a, .. } = &mut dec.mode {
             *a = ask;
         }
@@ -80,19 +73,9 @@ impl View<'_> {
     /// answers, it matches the target lane's leader (never braking harder than b_co), and it
     /// changes when both gaps pass the gap acceptance of spec 4.3 and the change is safe for
     /// both new pairs under their own automated laws (`cooperative::join_safe`).
-    #[allow(clippy::too_many_arguments)]
-    fn cooperative_change(
-        &self,
-        s: u32,
-        v: &Vehicle,
-        nb: &Neighbours,
-        leader: Option<Leader>,
-        wall: bool,
-        d: Desire,
-        tf: u32,
-        ask: u16,
-    ) -> Decision {
+    fn cooperative_change(&self, me: &Me, d: Desire, tf: u32, ask: u16) -> Decision {
         let p = &self.cfg.cav;
+        let (v, nb) = (me.v, me.nb());
         let b_co = p.cooperative_gap_decel_mps2;
         let f = &self.traffic.vehicles[tf as usize];
         let answered = matches!(f.mode, Mode::Ycf { to, coop: true, .. } if to == v.id);
@@ -104,8 +87,8 @@ impl View<'_> {
             Side::Left => v.lane as usize + 1,
             Side::Right => (v.lane as usize).saturating_sub(1),
         };
-        let v_des_target = self.v_des_in(s, v, target);
-        let mut dec = self.cav_control(s, v, leader, wall);
+        let v_des_target = self.v_des_in(me.s, v, target);
+        let mut dec = self.cav_control(me);
         let t_own = Self::effective_gap(v);
         // The target lane's leader within sensor range, as the automation sees it.
         let lead = self
@@ -133,7 +116,7 @@ impl View<'_> {
         }
         let mut change = false;
         if answered {
-            let (_, g) = self.before_lane_change(s, v, nb, leader, d, false);
+            let (_, g) = self.before_lane_change(me, d, false);
             let lag = Leader {
                 gap_m: v.rear() - f.x,
                 v_mps: v.v,
@@ -180,29 +163,22 @@ impl View<'_> {
     /// behind its own leader, asking toward its lane) by following the requester as a virtual
     /// leader at the opening gap, never braking harder than b_co.
     #[inline(never)]
-    pub(super) fn open_gap(
-        &self,
-        s: u32,
-        v: &Vehicle,
-        nb: &Neighbours,
-        leader: Option<Leader>,
-        wall: bool,
-    ) -> Option<Decision> {
-        let r = self.cooperative_request(v, nb)?;
+    pub(super) fn open_gap(&self, me: &Me) -> Option<Decision> {
+        let r = self.cooperative_request(me)?;
         let p = &self.cfg.cav;
+        let v = me.v;
         let rv = &self.traffic.vehicles[r as usize];
-        let mut dec = self.cav_control(s, v, leader, wall);
+        let mut dec = self.cav_control(me);
         let vl = Leader {
             gap_m: rv.rear() - v.x,
             v_mps: rv.v,
         };
-        let t_open = coop::opening_time_gap(p, self.join_time_gap(s, v));
-        let v_des = self.v_des_in(s, v, v.lane as usize);
+        let t_open = coop::opening_time_gap(p, self.join_time_gap(me));
         dec.accel = dec.accel.min(coop::open_gap_accel(
             p,
             v.v,
             v.a,
-            v_des,
+            self.own_v_des(me),
             vl,
             true,
             t_open,
@@ -217,13 +193,13 @@ impl View<'_> {
         Some(dec)
     }
 
-    /// The time gap a CAV `v` in slot `s` will keep behind a joiner that enters between it and
-    /// its leader: its own t_C if the joined string stays within `max_platoon` (the joiner
-    /// takes the leader's position + 1 when the leader is a CAV in range with room, spec 3.6;
-    /// the opener brings its own sub-string), else the inter-platoon gap.
-    fn join_time_gap(&self, s: u32, v: &Vehicle) -> f64 {
+    /// The time gap a CAV `me` will keep behind a joiner that enters between it and its
+    /// leader: its own t_C if the joined string stays within `max_platoon` (the joiner takes
+    /// the leader's position + 1 when the leader is a CAV in range with room, spec 3.6; the
+    /// opener brings its own sub-string), else the inter-platoon gap.
+    fn join_time_gap(&self, me: &Me) -> f64 {
         let p = &self.cfg.cav;
-        let sensed = &self.sensed[s as usize];
+        let sensed = me.sensed;
         let ld = sensed.nb.leader;
         let pos_ld = if sensed.cav_ahead {
             self.sensed[ld as usize].platoon_pos
@@ -236,20 +212,21 @@ impl View<'_> {
             1
         };
         if pos_joiner + sensed.sub_size <= p.max_platoon {
-            v.cacc.gap_s
+            me.v.cacc.gap_s
         } else {
             p.inter_platoon_gap_s
         }
     }
 
-    /// The nearest live cooperative request addressed to `v` (slot), if any: in each adjacent
-    /// lane, from the vehicle alongside forward, the first automated CAV asking toward `v`'s
-    /// lane whose target-lane follower is `v` (ahead of `v`, behind `v`'s leader), within
+    /// The nearest live cooperative request addressed to `me` (slot), if any: in each adjacent
+    /// lane, from the vehicle alongside forward, the first automated CAV asking toward `me`'s
+    /// lane whose target-lane follower is `me` (ahead of it, behind its leader), within
     /// sensor range; the nearer of the two sides, the left one on a tie. Deterministic, and a
     /// vehicle with a desire of its own never gets here (so two requesters never wait for each
     /// other).
-    fn cooperative_request(&self, v: &Vehicle, nb: &Neighbours) -> Option<u32> {
+    fn cooperative_request(&self, me: &Me) -> Option<u32> {
         let p = &self.cfg.cav;
+        let (v, nb) = (me.v, me.nb());
         let timeout = self.coop_timeout_steps();
         let x_limit = if nb.leader != NONE {
             self.traffic.vehicles[nb.leader as usize].x
