@@ -66,7 +66,7 @@ fn a_table_that_cannot_be_used_is_an_error_at_its_key() {
         vec![
             "network.demand_scale_table = \"sr98\": must name a table of demand scales by \
              penetration: no built-in table 'sr98' (built-in tables: sr99_demand_scales, \
-             flow_aware_thresholds) and not a path (a path contains '/' or ends in .toml)"
+             flow_aware_thresholds, flow_aware_thresholds_sr99) and not a path (a path contains '/' or ends in .toml)"
         ]
     );
     // A thresholds table has no demand-scale column.
