@@ -213,18 +213,24 @@ impl Scales {
 }
 
 /// The `sr99` scenario at a penetration, strategy and demand scale, resolved exactly as
-/// `platoonsim run sr99 --penetration P --strategy K --demand-scale F --set
-/// measurement.mechanism=true` (seed 1; the duration from the settings if given): the
-/// configuration of `sweeps/sr99.toml`'s cells, so that `sr99-demand` reuses `sr99`'s runs.
+/// `platoonsim run sr99 --penetration P --strategy K --demand-scale F` with the `[set]` keys
+/// of `sweeps/sr99.toml` (seed 1; the duration from the settings if given): the configuration
+/// of the sweep's cells, so that `sr99-demand` reuses `sr99`'s runs.
 pub fn config(s: &Settings, p: f64, k: StrategyKind, scale: f64) -> Result<Config, Error> {
     let o = Overrides {
         penetration: Some(p),
         seed: Some(1),
         strategy: Some(k),
         duration_s: s.network_duration_s,
-        set: [demand_scale_set(scale), "measurement.mechanism=true".into()]
-            .into_iter()
-            .chain(s.preset_set())
+        // The sweep file's fixed keys (`[set]`, with the settings' preset): one source for
+        // what every SR-99 run measures.
+        set: std::iter::once(demand_scale_set(scale))
+            .chain(
+                grid::spec(NAME, SWEEP, s)?
+                    .set
+                    .iter()
+                    .map(|(k, v)| platoonsim_scenario::sweep_spec::set_arg(k, v)),
+            )
             .collect(),
         ..Overrides::default()
     };
