@@ -31,10 +31,10 @@
 //! Off unless `measurement.mechanism = true`; it costs a pass over the vehicles and a hash
 //! lookup per vehicle in the section per step.
 
+use crate::events::StepView;
 use crate::network::Geometry;
 use crate::organize::{organized_lane_at, LaneChoice};
 use crate::vehicle::{Kind, ModeLabel};
-use crate::view::VehicleView;
 use serde::Serialize;
 use std::collections::HashMap;
 
@@ -160,12 +160,9 @@ impl Mechanism {
         )
     }
 
-    /// After step `step`, which ends at `t_s`: `lanes` gives each lane's vehicles front first.
-    pub fn on_step<'a, L, I>(&mut self, step: u64, t_s: f64, lanes: L, road: &Geometry)
-    where
-        L: Iterator<Item = I>,
-        I: Iterator<Item = VehicleView<'a>>,
-    {
+    /// After a step: the vehicles as `view` shows them (each lane front first).
+    pub fn on_step(&mut self, view: &StepView<'_>, road: &Geometry) {
+        let (step, t_s) = (view.step(), view.time_s());
         // The step ending at t covers (t − Δt, t]: it is in the window if it ends after the
         // warm-up (as the detectors count it).
         if t_s <= self.warmup_s + 1e-9 {
@@ -173,8 +170,8 @@ impl Mechanism {
         }
         self.window_s += self.dt;
         let watching = !self.watches.is_empty();
-        for lane_vehicles in lanes {
-            let mut lane_vehicles = lane_vehicles.peekable();
+        for l in 0..view.lanes() {
+            let mut lane_vehicles = view.lane_vehicles(l).peekable();
             while let Some(v) = lane_vehicles.next() {
                 if watching {
                     for w in self.watches.iter_mut().filter(|w| w.follower == v.id()) {
@@ -330,16 +327,9 @@ mod tests {
     }
 
     /// One step: `lanes` holds each lane's vehicles front first (indices into `all`).
-    fn step(m: &mut Mechanism, k: u64, all: &[Vehicle], lanes: &[Vec<usize>], road: &Geometry) {
-        let t = k as f64 * DT;
-        m.on_step(
-            k,
-            (t * 10.0).round() / 10.0,
-            lanes
-                .iter()
-                .map(|l| l.iter().map(|&i| VehicleView::new(&all[i]))),
-            road,
-        );
+    fn step(m: &mut Mechanism, k: u64, all: &[Vehicle], lanes: &[Vec<u32>], road: &Geometry) {
+        let t = (k as f64 * DT * 10.0).round() / 10.0;
+        m.on_step(&StepView::new(k, t, 0.0, lanes, all, &[]), road);
     }
 
     /// Three lanes, section 5,000-6,000 m, warm-up 10 s, the leftmost lane organized.

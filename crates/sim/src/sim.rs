@@ -411,14 +411,9 @@ impl Simulation {
             e.on_step(&step_view(&self.clock, origin_m, &self.traffic, &[]));
         }
         if let Some(m) = self.mechanism.as_mut() {
-            let vehicles = &self.traffic.vehicles;
+            let origin_m = self.cfg.road.origin_m();
             m.on_step(
-                self.clock.step,
-                crate::record::step_time(self.clock.step, self.clock.dt),
-                self.traffic
-                    .lanes
-                    .iter()
-                    .map(|l| crate::view::lane(l, vehicles)),
+                &step_view(&self.clock, origin_m, &self.traffic, &[]),
                 &self.road.geom,
             );
         }
