@@ -1,5 +1,6 @@
-"""A random policy over PlatoonEnv: organize or hold the control section at random, one
-decision per detector interval, and report the return of each episode.
+"""A random policy over PlatoonEnv (Platoon-v1): organize or hold the control section at random,
+one decision per detector interval, and report the return of each episode and the paper's
+measures against the twin (the same road and seed, never organized).
 
     python examples/python/random_policy.py [episodes]
 """
@@ -15,7 +16,8 @@ from platoonsim.gym import PlatoonEnv
 
 def main() -> None:
     episodes = int(sys.argv[1]) if len(sys.argv) > 1 else 3
-    env = PlatoonEnv()  # the homogeneous road, 50 % CAV, 2,500 veh/h/lane, 20 decisions of 30 s
+    # The homogeneous road, 50 % CAV, 2,500 veh/h/lane; 10 decisions of 60 s here (60 by default).
+    env = PlatoonEnv(decisions=10)
     env.action_space.seed(0)
     for ep in range(episodes):
         obs, info = env.reset(seed=ep)
@@ -27,12 +29,14 @@ def main() -> None:
             total += reward
             organized += int(action)
             done = terminated or truncated
-        summary = env.sim.finish()
+        lbar = info["platoon_sum"] / info["cav_exits"]
+        q = info["discharge_count"]
         print(
-            f"episode {ep} (seed {seed}): return {total:7.2f} over {env.decisions} decisions, "
-            f"{organized} organized; leftmost share of CAVs in the section at the end "
-            f"{info['leftmost_share']:.2f}, collisions {summary['collisions']}"
+            f"episode {ep} (seed {seed}): return {total:6.2f} over {env.task.decisions} decisions, "
+            f"{organized} organized; L̄ gain {100 * (lbar[0] / lbar[1] - 1):+.1f} %, discharge "
+            f"change {100 * (q[0] / q[1] - 1):+.1f} % against the twin; collisions {info['collisions'].tolist()}"
         )
+        assert info["collisions"].sum() == 0
         assert np.isfinite(total)
 
 

@@ -1,10 +1,11 @@
 """``PlatoonVecEnv``: N ``PlatoonEnv`` episodes stepped together (docs/python.md).
 
-``gymnasium.make_vec("platoonsim/Platoon-v0", num_envs=N)`` returns it: a native
-``gymnasium.vector.VectorEnv`` on ``platoonsim.BatchSimulation``, whose worlds step in Rust across
-a thread pool with the GIL released (not Gymnasium's Sync/Async wrappers around N single
-environments). World ``i`` is exactly ``PlatoonEnv`` with the same parameters, seed and actions:
-the same observations and rewards, bit for bit.
+``gymnasium.make_vec("platoonsim/Platoon-v1", num_envs=N)`` returns it: a native
+``gymnasium.vector.VectorEnv`` on ``platoonsim.BatchSimulation`` (2N worlds: the agents' and
+their twins), whose worlds step in Rust across a thread pool with the GIL released (not
+Gymnasium's Sync/Async wrappers around N single environments). World ``i`` is exactly
+``PlatoonEnv`` with the same parameters, seed and actions: the same observations and rewards,
+bit for bit.
 
 * Observations: float32 array (N, 8); actions: an int array (N,) of 0 (hold) / 1 (organize);
   rewards (N,); every episode has the same number of decisions, so all worlds end together.
@@ -13,8 +14,8 @@ the same observations and rewards, bit for bit.
 * Seeding: ``reset(seed=s)`` gives world ``i`` the engine seed ``s + i`` (a list gives one seed
   per world); without a seed, and at every autoreset, the seeds come from the environment's
   generator.
-* ``info``: arrays over the worlds: ``t_s``, ``seed``, ``leftmost_share``,
-  ``mean_string_size``, ``discharge_loss`` (after a step), ``flow_vphpl`` and ``speed_kmh`` (N, 3).
+* ``info``: arrays over the worlds, those of ``PlatoonEnv`` (``platoonsim.gym``): per world,
+  or (N, 2) for the (agent, twin) totals, or (N, 3) per detector.
 """
 
 from __future__ import annotations
@@ -28,20 +29,19 @@ from gymnasium import spaces
 from gymnasium.vector import AutoresetMode, VectorEnv
 
 import platoonsim
-from platoonsim.gym import ORGANIZE, PlatoonEnv, observation, reward
+from platoonsim.gate import GateTask, info as gate_info
+from platoonsim.gym import ORGANIZE, spaces_of
 
 
-def check_num_envs(num_envs: Any) -> None:
-    """``num_envs`` of a vector environment: an int from 1 to ``platoonsim.MAX_WORLDS`` (the
-    worlds one native batch steps), refused at construction rather than at the first reset."""
-    if (
-        isinstance(num_envs, bool)
-        or not isinstance(num_envs, (int, np.integer))
-        or not 1 <= num_envs <= platoonsim.MAX_WORLDS
-    ):
+def check_num_envs(num_envs: Any, worlds_per_env: int = 1) -> None:
+    """``num_envs`` of a vector environment whose environments take ``worlds_per_env`` worlds
+    each: an int from 1 to ``platoonsim.MAX_WORLDS // worlds_per_env`` (one native batch steps
+    at most ``MAX_WORLDS``), refused at construction rather than at the first reset."""
+    most = platoonsim.MAX_WORLDS // worlds_per_env
+    if isinstance(num_envs, bool) or not isinstance(num_envs, (int, np.integer)) or not 1 <= num_envs <= most:
         raise ValueError(
-            f"num_envs = {num_envs!r}: must be an int from 1 to {platoonsim.MAX_WORLDS} "
-            "(the worlds one batch steps)"
+            f"num_envs = {num_envs!r}: must be an int from 1 to {most} "
+            f"(one batch steps at most {platoonsim.MAX_WORLDS} worlds, {worlds_per_env} per environment)"
         )
 
 
@@ -65,21 +65,17 @@ def world_seeds(
 
 
 class PlatoonVecEnv(VectorEnv):
-    """``num_envs`` worlds of ``PlatoonEnv``; the other parameters are ``PlatoonEnv``'s, plus
-    ``threads`` (the pool's size, default every core)."""
+    """``num_envs`` worlds of ``PlatoonEnv`` (each with its twin); the other parameters are
+    ``PlatoonEnv``'s, plus ``threads`` (the pool's size, default every core)."""
 
     metadata = {"render_modes": [], "autoreset_mode": AutoresetMode.NEXT_STEP}
 
     def __init__(self, num_envs: int = 1, threads: int | None = None, **kwargs: Any) -> None:
-        check_num_envs(num_envs)
-        # The single environment checks the parameters and holds the episode's settings.
-        self.single = PlatoonEnv(**kwargs)
-        if self.single.gate != "native":
-            raise ValueError("PlatoonVecEnv steps its worlds natively: gate must be \"native\"")
+        check_num_envs(num_envs, worlds_per_env=2)  # each with its twin
+        self.task = GateTask(**kwargs)
         self.num_envs = int(num_envs)
         self.threads = threads
-        self.single_observation_space = self.single.observation_space
-        self.single_action_space = self.single.action_space
+        self.single_observation_space, self.single_action_space = spaces_of()
         self.observation_space = spaces.Box(
             low=np.tile(self.single_observation_space.low, (self.num_envs, 1)),
             high=np.tile(self.single_observation_space.high, (self.num_envs, 1)),
@@ -92,36 +88,10 @@ class PlatoonVecEnv(VectorEnv):
         self._np_random: np.random.Generator | None = None
 
     def _start(self, seeds: Sequence[int]) -> tuple[np.ndarray, dict[str, Any]]:
-        env = self.single
         self._seeds = np.asarray(seeds, dtype=np.int64)
-        self.batch = platoonsim.BatchSimulation(
-            env.scenario, seeds=[int(s) for s in seeds], overrides=env.overrides, threads=self.threads
-        )
-        self.batch.use_gate()
-        self.batch.run_until(env.warmup_s)
+        self.batch, d = self.task.batch(self._seeds, self.threads)
         self._ended = False
-        obs, info = self._observe()
-        return obs, info
-
-    def _observe(self) -> tuple[np.ndarray, dict[str, Any]]:
-        assert self.batch is not None
-        env = self.single
-        rows, infos = [], []
-        for i in range(self.num_envs):
-            o, inf = observation(
-                self.batch.vehicles(i), self.batch.detectors(i), env.zone, env.leftmost_lane, env.observation_space
-            )
-            rows.append(o)
-            infos.append(inf)
-        info = {
-            "t_s": self.batch.time_s(),
-            "seed": self._seeds.copy(),
-            "leftmost_share": np.array([x["leftmost_share"] for x in infos]),
-            "mean_string_size": np.array([x["mean_string_size"] for x in infos]),
-            "flow_vphpl": np.stack([x["flow_vphpl"] for x in infos]),
-            "speed_kmh": np.stack([x["speed_kmh"] for x in infos]),
-        }
-        return np.stack(rows).astype(np.float32), info
+        return d["obs"], gate_info(d, self._seeds)
 
     def reset(
         self, *, seed: int | Sequence[int] | None = None, options: dict[str, Any] | None = None
@@ -144,20 +114,10 @@ class PlatoonVecEnv(VectorEnv):
             assert self._np_random is not None
             obs, info = self._start(self._np_random.integers(0, 2**31 - 1, size=self.num_envs))
             return obs, np.zeros(self.num_envs), false, false.copy(), info
-        self.batch.set_gates(a.astype(np.int64) == ORGANIZE)
-        t = float(self.batch.time_s()[0])
-        self.batch.run_until(t + self.single.decision_s)
-        obs, info = self._observe()
-        rewards = np.empty(self.num_envs)
-        losses = np.empty(self.num_envs)
-        for i in range(self.num_envs):
-            rewards[i], losses[i] = reward(
-                info["flow_vphpl"][i], info["mean_string_size"][i], self.single.discharge_penalty
-            )
-        info["discharge_loss"] = losses
-        truncated = self.batch.done()
+        d = self.batch._core.gate_step([bool(x) for x in (a.astype(np.int64) == ORGANIZE)])
+        truncated = np.asarray(d["done"], dtype=bool)
         self._ended = bool(truncated.all())
-        return obs, rewards, false, truncated, info
+        return d["obs"], np.asarray(d["reward"]), false, truncated, gate_info(d, self._seeds)
 
     def close_extras(self, **kwargs: Any) -> None:
         self.batch = None

@@ -4,10 +4,12 @@ import numpy as np
 from gymnasium.vector import VectorEnv
 
 from . import BatchSimulation
-from .gym import PlatoonEnv
+from .gate import GateTask
+
+def check_num_envs(num_envs: Any, worlds_per_env: int = 1) -> None: ...
 
 class PlatoonVecEnv(VectorEnv):
-    single: PlatoonEnv
+    task: GateTask
     batch: BatchSimulation | None
     num_envs: int
     def __init__(self, num_envs: int = 1, threads: int | None = None, **kwargs: Any) -> None: ...

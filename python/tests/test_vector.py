@@ -1,5 +1,5 @@
-"""The native vector environment of Platoon-v0: shapes, seeding, autoreset, bad actions, and
-each world equal to a single PlatoonEnv."""
+"""The native vector environment of Platoon-v1: shapes, seeding, autoreset, bad actions,
+each world equal to a single PlatoonEnv, and the Flow-Aware baseline."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ import platoonsim.gym  # noqa: F401  (registers the environment)
 from platoonsim.gym import PlatoonEnv
 from platoonsim.vector import PlatoonVecEnv
 
-KW = {"decision_s": 10.0, "decisions": 4}
+KW = {"warmup_s": 360.0, "decision_s": 60.0, "decisions": 4}
 ACTIONS = [np.array([1, 0, 1]), np.array([0, 0, 1]), np.array([1, 1, 1]), np.array([0, 1, 0])]
 
 
@@ -26,7 +26,7 @@ def _episode(env, seed):
 
 
 def test_make_vec_gives_the_native_vector_env():
-    env = gym.make_vec("platoonsim/Platoon-v0", num_envs=3, **KW)
+    env = gym.make_vec("platoonsim/Platoon-v1", num_envs=3, **KW)
     assert isinstance(env, PlatoonVecEnv)
     assert env.observation_space.shape == (3, 8)
     assert env.single_observation_space.shape == (8,)
@@ -59,7 +59,7 @@ def test_autoreset_starts_new_episodes_on_the_next_step():
     assert trunc.all()
     obs, r, term, trunc, info = env.step(np.zeros(2, dtype=int))
     assert not term.any() and not trunc.any() and (r == 0).all()
-    assert np.allclose(info["t_s"], PlatoonEnv(**KW).warmup_s)
+    assert np.allclose(info["t_s"], PlatoonEnv(**KW).task.warmup_s)
     assert env.observation_space.contains(obs)
 
 
@@ -83,8 +83,30 @@ def test_too_many_worlds_are_refused_at_construction():
     from platoonsim.control import CavControlVecEnv
 
     assert platoonsim.MAX_WORLDS == 4096
-    for make in (PlatoonVecEnv, CavControlVecEnv):
-        with pytest.raises(ValueError, match="num_envs = 5000: must be an int from 1 to 4096"):
-            make(num_envs=5000)
+    with pytest.raises(ValueError, match="num_envs = 5000: must be an int from 1 to 4096"):
+        CavControlVecEnv(num_envs=5000)
+    # Each gate environment steps two worlds (its twin).
+    with pytest.raises(ValueError, match="num_envs = 3000: must be an int from 1 to 2048"):
+        PlatoonVecEnv(num_envs=3000)
     with pytest.raises(ValueError, match="num_envs = 5000"):
-        gym.make_vec("platoonsim/Platoon-v0", num_envs=5000, **KW)
+        gym.make_vec("platoonsim/Platoon-v1", num_envs=5000, **KW)
+
+
+def test_the_flow_aware_baseline_ignores_actions_and_organizes():
+    # The scenario's Flow-Aware strategy in the agent's worlds, from the end of the warm-up:
+    # the same episode whatever the actions, and not the twin's.
+    kw = {**KW, "decisions": 3, "demand_vphpl": 2000.0}
+    runs = []
+    for a in (0, 1):
+        env = PlatoonVecEnv(num_envs=2, baseline="flow-aware", **kw)
+        env.reset(seed=7)
+        for _ in range(3):
+            _, r, _, trunc, info = env.step(np.full(2, a))
+        runs.append((r, info["platoon_sum"], info["leftmost_share"]))
+    assert all(np.array_equal(x, y) for x, y in zip(*runs))
+    hold = PlatoonVecEnv(num_envs=2, **kw)
+    hold.reset(seed=7)
+    for _ in range(3):
+        _, _, _, _, held = hold.step(np.zeros(2, dtype=int))
+    assert (info["leftmost_share"] > held["leftmost_share"]).all()
+    assert (info["platoon_sum"][:, 0] != info["platoon_sum"][:, 1]).any()

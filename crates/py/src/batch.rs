@@ -12,6 +12,7 @@ use crate::core::{
     command_world, detectors_dict, finish_world, new_inner, set_gate, step_world, use_gate,
     vehicles_dict, Inner,
 };
+use crate::gate;
 use crate::{CommandError, SimulationError};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
@@ -32,6 +33,8 @@ pub struct BatchCore {
     busy: Mutex<()>,
     /// The per-vehicle control task (`control_setup`).
     spec: Mutex<Option<Spec>>,
+    /// The gate task (`gate_setup`).
+    gate: Mutex<Option<GateState>>,
 }
 
 /// What `control_reset` and `control_step` return: observations (N, k, 6) float32, the
@@ -121,7 +124,107 @@ impl BatchCore {
     }
 }
 
+/// The gate task of a batch: its spec, and every world's measure at the warm-up's end
+/// (`start`) and at the last decision (`last`, totals since the warm-up).
+struct GateState {
+    spec: gate::Spec,
+    start: Vec<gate::Measure>,
+    last: Vec<gate::Measure>,
+}
+
+fn value_err<T>(m: String) -> PyResult<T> {
+    Err(pyo3::exceptions::PyValueError::new_err(m))
+}
+
+/// The gate task's arrays over the N pairs: `obs` (N, 8), `flow_vphpl` and `speed_kmh`
+/// (N, 3), `leftmost_share`, `mean_string_size`, `t_s`, `done` of the policy worlds; the
+/// totals since the warm-up of CAVs that left, their strings and the discharge count, and the
+/// collisions, of both as (N, 2) [policy, twin];
+/// after a step `reward`, `l_gain` and `discharge_change` of the interval.
+fn gate_dict<'py>(
+    py: Python<'py>,
+    spec: &gate::Spec,
+    m: &[gate::Measure],
+    before: Option<&[gate::Measure]>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let n = spec.n;
+    let (p, t) = m.split_at(n);
+    let d = PyDict::new(py);
+    let obs: Vec<f32> = p.iter().flat_map(|x| x.obs()).collect();
+    d.set_item(
+        "obs",
+        PyArray1::from_vec(py, obs).reshape([n, gate::FEATURES])?,
+    )?;
+    let per3 = |f: &dyn Fn(&gate::Measure) -> [f64; gate::DETECTORS]| {
+        PyArray1::from_vec(py, p.iter().flat_map(f).collect::<Vec<f64>>())
+            .reshape([n, gate::DETECTORS])
+    };
+    d.set_item("flow_vphpl", per3(&|x| x.flow_vphpl)?)?;
+    d.set_item("speed_kmh", per3(&|x| x.speed_kmh)?)?;
+    let col = |f: &dyn Fn(&gate::Measure) -> f64| PyArray1::from_vec(py, p.iter().map(f).collect());
+    d.set_item("leftmost_share", col(&|x| x.leftmost_share))?;
+    d.set_item("mean_string_size", col(&|x| x.string_size))?;
+    d.set_item("t_s", col(&|x| x.t_s))?;
+    d.set_item(
+        "done",
+        PyArray1::from_vec(py, p.iter().map(|x| x.done).collect()),
+    )?;
+    let pair = |f: &dyn Fn(&gate::Measure) -> u64| {
+        PyArray1::from_vec(
+            py,
+            (0..n)
+                .flat_map(|i| [f(&p[i]), f(&t[i])])
+                .collect::<Vec<u64>>(),
+        )
+        .reshape([n, 2])
+    };
+    d.set_item("cav_exits", pair(&|x| x.exits.cavs)?)?;
+    d.set_item("platoon_sum", pair(&|x| x.exits.platoon_sum)?)?;
+    d.set_item("discharge_count", pair(&|x| x.discharge_total)?)?;
+    d.set_item("collisions", pair(&|x| x.collisions)?)?;
+    if let Some(b) = before {
+        let (bp, bt) = b.split_at(n);
+        let iv: Vec<gate::Interval> = (0..n)
+            .map(|i| gate::interval(&bp[i], &p[i], &bt[i], &t[i], spec.penalty))
+            .collect();
+        let col =
+            |f: &dyn Fn(&gate::Interval) -> f64| PyArray1::from_vec(py, iv.iter().map(f).collect());
+        d.set_item("reward", col(&|x| x.reward))?;
+        d.set_item("l_gain", col(&|x| x.l_gain))?;
+        d.set_item("discharge_change", col(&|x| x.discharge_change))?;
+    }
+    Ok(d)
+}
+
 impl BatchCore {
+    fn gate_spec(&self) -> PyResult<gate::Spec> {
+        self.gate
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .as_ref()
+            .map(|g| g.spec)
+            .ok_or_else(|| SimulationError::new_err("gate_setup() first"))
+    }
+
+    /// Every world's measures at the warm-up's end and at the last decision.
+    #[allow(clippy::type_complexity)]
+    fn gate_last(&self) -> PyResult<(Vec<gate::Measure>, Vec<gate::Measure>)> {
+        let g = self.gate.lock().unwrap_or_else(|e| e.into_inner());
+        match g.as_ref() {
+            Some(s) if !s.last.is_empty() => Ok((s.start.clone(), s.last.clone())),
+            _ => Err(SimulationError::new_err("gate_reset() first")),
+        }
+    }
+
+    fn gate_store(&self, start: Option<Vec<gate::Measure>>, last: Vec<gate::Measure>) {
+        if let Some(g) = self.gate.lock().unwrap_or_else(|e| e.into_inner()).as_mut() {
+            if let Some(s) = start {
+                g.start = s;
+            }
+            g.last = last;
+        }
+    }
+
     fn control_spec(&self) -> PyResult<Spec> {
         self.spec
             .lock()
@@ -201,6 +304,7 @@ impl BatchCore {
             pool,
             busy: Mutex::new(()),
             spec: Mutex::new(None),
+            gate: Mutex::new(None),
         })
     }
 
@@ -387,6 +491,133 @@ impl BatchCore {
         let rows: Vec<Vec<f64>> = a.outer_iter().map(|r| r.to_vec()).collect();
         let outs = self.par_indexed(py, |i, w| control::step(w, &spec, &rows[i]))?;
         control_tuple(py, outs, spec.k)
+    }
+
+    /// Set up the gate task (gate.rs) before the first step: worlds 0..N are the policy's
+    /// (`gated[i]`: the scenario's PD rule behind the policy's switch; else the world's own
+    /// strategy, a baseline), worlds N..2N their twins (the switch always off).
+    fn gate_setup(
+        &self,
+        decision_s: f64,
+        warmup_s: f64,
+        decisions: u64,
+        penalty: f64,
+        gated: Vec<bool>,
+    ) -> PyResult<()> {
+        let n = gated.len();
+        if n == 0 || 2 * n != self.worlds.len() {
+            return value_err(format!(
+                "gate_setup: {} worlds and {n} gated flags: the batch must have 2N worlds \
+                 (N policy worlds, then their twins) and N flags",
+                self.worlds.len()
+            ));
+        }
+        if !(penalty.is_finite() && penalty >= 0.0) {
+            return value_err(format!(
+                "discharge_penalty = {penalty}: must be a finite number >= 0"
+            ));
+        }
+        if decisions == 0 {
+            return value_err("decisions = 0: must be at least 1".into());
+        }
+        let spec = self.world(0, |w| {
+            let c = &w.config;
+            let whole = |x: f64| x.is_finite() && x >= 0.0 && (x - x.round()).abs() < 1e-9;
+            if c.road.network.is_some() {
+                return value_err(
+                    "the gate task needs a plain road (a scenario without [network])".into(),
+                );
+            }
+            if c.detectors.len() < gate::DETECTORS {
+                return value_err(format!(
+                    "the gate task needs at least {} detectors (upstream, control section, \
+                     discharge); the scenario has {}",
+                    gate::DETECTORS,
+                    c.detectors.len()
+                ));
+            }
+            if !(decision_s > 0.0 && whole(decision_s / c.dt_s)) {
+                return value_err(format!(
+                    "decision_s = {decision_s}: must be a whole number of steps of {} s",
+                    c.dt_s
+                ));
+            }
+            if c.aggregation_s != decision_s {
+                return value_err(format!(
+                    "measurement.aggregation_s = {}: must equal decision_s = {decision_s}",
+                    c.aggregation_s
+                ));
+            }
+            if !whole(warmup_s / decision_s) {
+                return value_err(format!(
+                    "warmup_s = {warmup_s}: must be a whole number of decision intervals \
+                     ({decision_s} s) >= 0"
+                ));
+            }
+            Ok(gate::Spec {
+                n,
+                decision_steps: (decision_s / c.dt_s).round() as u64,
+                warmup_steps: (warmup_s / c.dt_s).round() as u64,
+                decisions,
+                penalty,
+                zone: (c.road.control_start_m, c.road.control_end_m),
+                leftmost: c.road.lanes - 1,
+            })
+        })?;
+        for i in 0..self.worlds.len() {
+            self.world(i, |w| {
+                if i >= n || gated[i] {
+                    use_gate(w)?;
+                }
+                w.sim()?
+                    .observe(Box::new(gate::ExitMeter::default()))
+                    .map_err(|e| SimulationError::new_err(format!("world {i}: {e}")))
+            })?;
+        }
+        *self.gate.lock().unwrap_or_else(|e| e.into_inner()) = Some(GateState {
+            spec,
+            start: Vec::new(),
+            last: Vec::new(),
+        });
+        Ok(())
+    }
+
+    /// Run every world through the warm-up; the first observations and infos.
+    fn gate_reset<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let spec = self.gate_spec()?;
+        let m = self.par(py, |w| gate::warm_up(w, &spec))?;
+        // Totals count from here.
+        let zero: Vec<gate::Measure> = m
+            .iter()
+            .map(|x| gate::Measure {
+                exits: gate::ExitMeter::default(),
+                ..*x
+            })
+            .collect();
+        let d = gate_dict(py, &spec, &zero, None)?;
+        self.gate_store(Some(m), zero);
+        Ok(d)
+    }
+
+    /// One decision in every pair: `on[i]` switches policy world i's organizer (ignored for
+    /// a baseline world), then every world steps one decision interval.
+    fn gate_step<'py>(&self, py: Python<'py>, on: Vec<bool>) -> PyResult<Bound<'py, PyDict>> {
+        let spec = self.gate_spec()?;
+        if on.len() != spec.n {
+            return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "gate_step: {} actions for {} worlds (one each)",
+                on.len(),
+                spec.n
+            )));
+        }
+        let (start, before) = self.gate_last()?;
+        for (i, &g) in on.iter().enumerate() {
+            self.world(i, |w| if w.gated() { set_gate(w, g) } else { Ok(()) })?;
+        }
+        let m = self.par_indexed(py, |i, w| gate::advance(w, &spec, &start[i], &before[i]))?;
+        let d = gate_dict(py, &spec, &m, Some(&before))?;
+        self.gate_store(None, m);
+        Ok(d)
     }
 
     /// End world `i`'s run (writing its files into `out_dir` if given); its summary as JSON.

@@ -55,6 +55,11 @@ impl Inner {
         self.sim.as_mut()
     }
 
+    /// Whether the gated PD organizer is in use (`use_gate`).
+    pub(crate) fn gated(&self) -> bool {
+        self.gate.is_some()
+    }
+
     pub(crate) fn steps_to(&self, t_s: f64) -> u64 {
         let dt = self.config.dt_s;
         (t_s / dt).round().max(0.0) as u64

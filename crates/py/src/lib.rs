@@ -9,6 +9,7 @@ mod batch;
 mod control;
 mod convert;
 mod core;
+mod gate;
 mod hooks;
 mod output;
 
