@@ -565,8 +565,9 @@ impl BatchCore {
             })
         })?;
         for i in 0..self.worlds.len() {
+            let twin_or_gated = gated.get(i).copied().unwrap_or(true);
             self.world(i, |w| {
-                if i >= n || gated[i] {
+                if twin_or_gated {
                     use_gate(w)?;
                 }
                 w.sim()?
