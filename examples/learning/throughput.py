@@ -26,7 +26,7 @@ import platoonsim.gym  # noqa: F401  (registers the environments)
 from platoonsim.control import CavControlEnv, merge_scenario
 from platoonsim.gym import PlatoonEnv
 
-PLATOON = {"decision_s": 10.0, "decisions": 30}
+PLATOON = {"warmup_s": 360.0, "decision_s": 60.0, "decisions": 30}
 CONTROL = {"warmup_s": 60.0, "horizon_s": 300.0}
 
 
@@ -139,7 +139,7 @@ def main() -> None:
     print("| environment | set-up | env-steps/s | controlled-vehicle steps/s |")
     print("|---|---|---|---|")
     for env_id, kwargs, make in (
-        ("platoonsim/Platoon-v0", PLATOON, lambda: PlatoonEnv(**PLATOON)),
+        ("platoonsim/Platoon-v1", PLATOON, lambda: PlatoonEnv(**PLATOON)),
         ("platoonsim/CavControl-v0", CONTROL, lambda: CavControlEnv(**CONTROL)),
     ):
         for w in (1, 2, 4, 8):

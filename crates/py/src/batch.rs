@@ -139,7 +139,7 @@ fn value_err<T>(m: String) -> PyResult<T> {
 /// The gate task's arrays over the N pairs: `obs` (N, 8), `flow_vphpl` and `speed_kmh`
 /// (N, 3), `leftmost_share`, `mean_string_size`, `t_s`, `done` of the policy worlds; the
 /// totals since the warm-up of CAVs that left, their strings and the discharge count, and the
-/// collisions, of both as (N, 2) [policy, twin];
+/// collisions, and the mean speed on the road now, of both as (N, 2) [policy, twin];
 /// after a step `reward`, `l_gain` and `discharge_change` of the interval.
 fn gate_dict<'py>(
     py: Python<'py>,
@@ -182,6 +182,14 @@ fn gate_dict<'py>(
     d.set_item("platoon_sum", pair(&|x| x.exits.platoon_sum)?)?;
     d.set_item("discharge_count", pair(&|x| x.discharge_total)?)?;
     d.set_item("collisions", pair(&|x| x.collisions)?)?;
+    let pair_f = PyArray1::from_vec(
+        py,
+        (0..n)
+            .flat_map(|i| [p[i].mean_speed_mps, t[i].mean_speed_mps])
+            .collect::<Vec<f64>>(),
+    )
+    .reshape([n, 2])?;
+    d.set_item("mean_speed_mps", pair_f)?;
     if let Some(b) = before {
         let (bp, bt) = b.split_at(n);
         let iv: Vec<gate::Interval> = (0..n)

@@ -85,6 +85,8 @@ pub struct Measure {
     pub discharge_total: u64,
     pub leftmost_share: f64,
     pub string_size: f64,
+    /// Mean speed of the vehicles on the road now (m/s; 0 on an empty road).
+    pub mean_speed_mps: f64,
     /// The exit meter's totals since the warm-up (at the warm-up's end: since t = 0).
     pub exits: ExitMeter,
     pub collisions: u64,
@@ -187,9 +189,15 @@ pub fn measure(inner: &mut Inner, spec: &Spec) -> Result<Measure, String> {
         spec.zone,
         spec.leftmost,
     );
+    let mean_speed_mps = if cols.is_empty() {
+        0.0
+    } else {
+        cols.v_mps.iter().sum::<f64>() / cols.len() as f64
+    };
     let mut m = Measure {
         leftmost_share,
         string_size,
+        mean_speed_mps,
         exits: sim.observer::<ExitMeter>().copied().unwrap_or_default(),
         collisions: sim.collisions(),
         t_s: sim.time_s(),
