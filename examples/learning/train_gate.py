@@ -13,6 +13,7 @@ import argparse
 import time
 from pathlib import Path
 
+import torch
 from stable_baselines3 import PPO
 from stable_baselines3.common.vec_env import VecMonitor
 
@@ -30,8 +31,10 @@ def main() -> None:
     ap.add_argument("--steps", type=int, default=24_000, help="decisions of training")
     ap.add_argument("--worlds", type=int, default=8, help="episodes stepped together (each with its twin)")
     ap.add_argument("--out", type=Path, default=Path("out/learning"))
+    ap.add_argument("--eval-seeds", default="1000-1019", help="held-out seeds of the evaluation")
     ap.add_argument("--policy", type=Path, default=HERE / "policies" / "gate.npz", help="where the policy is exported")
     args = ap.parse_args()
+    torch.set_num_threads(1)  # a small MLP: the cores go to the worlds
     args.out.mkdir(parents=True, exist_ok=True)
     args.policy.parent.mkdir(parents=True, exist_ok=True)
     # Training seeds come from the environment's generator (seeded 0): below 2^31, with the
@@ -53,7 +56,7 @@ def main() -> None:
     print(f"trained {args.steps} decisions on {args.worlds} worlds in {wall:.0f} s")
     export(model, args.policy)
     print(f"policy written to {args.policy}")
-    evaluate_main(["gate", "--policy", str(args.policy)])
+    evaluate_main(["gate", "--policy", str(args.policy), "--seeds", args.eval_seeds])
 
 
 if __name__ == "__main__":

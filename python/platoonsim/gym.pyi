@@ -15,18 +15,8 @@ def spaces_of() -> tuple[gym.spaces.Box, gym.spaces.Discrete]: ...
 class PlatoonEnv(gym.Env[np.ndarray, int]):
     task: GateTask
     batch: BatchSimulation | None
-    def __init__(
-        self,
-        scenario: str = "homogeneous",
-        penetration: float = 0.5,
-        demand_vphpl: float = 2500.0,
-        warmup_s: float = 600.0,
-        decisions: int = 60,
-        decision_s: float = 60.0,
-        discharge_penalty: float = 5.0,
-        overrides: dict[str, Any] | None = None,
-        baseline: str | None = None,
-    ) -> None: ...
+    # The parameters of platoonsim.gate.GateTask.
+    def __init__(self, **kwargs: Any) -> None: ...
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[np.ndarray, dict[str, Any]]: ...
