@@ -233,6 +233,10 @@ pub(crate) fn command_world(
                 accel_mps2: value(i, "an acceleration in m/s²")?,
                 steps,
             },
+            "accelerate_safe" => Command::AccelerateSafe {
+                accel_mps2: value(i, "an acceleration in m/s²")?,
+                steps,
+            },
             "desired_speed" => Command::DesiredSpeed {
                 speed_mps: value(i, "a desired speed in m/s")?,
             },
@@ -252,7 +256,8 @@ pub(crate) fn command_world(
             other => {
                 return Err(CommandError::new_err(format!(
                     "command kind {other:?}: must be one of \"accelerate\", \
-                     \"accelerate_capped\", \"desired_speed\", \"change_lane\", \"release\""
+                     \"accelerate_capped\", \"accelerate_safe\", \"desired_speed\", \
+                     \"change_lane\", \"release\""
                 )))
             }
         };
@@ -275,7 +280,8 @@ pub(crate) fn command_world(
             }
             let bad = match c {
                 Command::Accelerate { accel_mps2, steps }
-                | Command::AccelerateCapped { accel_mps2, steps } => {
+                | Command::AccelerateCapped { accel_mps2, steps }
+                | Command::AccelerateSafe { accel_mps2, steps } => {
                     !(accel_mps2.is_finite() && accel_mps2.abs() <= MAX_COMMAND_ACCEL_MPS2)
                         || steps == 0
                 }
