@@ -4,7 +4,7 @@ process (the native vector environments), against a Python loop over 8 single en
 and, with ``--sumo``, the same merge in SUMO through libsumo (one simulation per process, as
 libsumo allows), its CAVs driven by ``vehicle.setAcceleration``.
 
-    python examples/learning/throughput.py [--seconds S] [--sumo]
+    python examples/learning/throughput.py [--seconds S] [--sumo] [--only ENV_ID ...]
 
 Needs the package with gymnasium (``pip install ./python[gym]``); ``--sumo`` also needs
 ``pip install libsumo eclipse-sumo`` (netconvert builds the merge).
@@ -24,10 +24,13 @@ import numpy as np
 import gymnasium as gym
 import platoonsim.gym  # noqa: F401  (registers the environments)
 from platoonsim.control import CavControlEnv, merge_scenario
+from platoonsim.flow_merge import FlowMergeEnv
 from platoonsim.gym import PlatoonEnv
 
 PLATOON = {"decision_s": 10.0, "decisions": 30}
 CONTROL = {"warmup_s": 60.0, "horizon_s": 300.0}
+# Flow's merge0 as it is: no warm-up, 750 actions of 1 s (the episode's reset is included).
+FLOW_MERGE: dict = {}
 
 
 def _rate(step, seconds: float) -> tuple[float, float]:
@@ -134,6 +137,7 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--seconds", type=float, default=10.0, help="seconds per measurement")
     ap.add_argument("--sumo", action="store_true", help="also the merge in SUMO through libsumo")
+    ap.add_argument("--only", nargs="*", default=None, help="only these environment ids")
     args = ap.parse_args()
     print(f"cores: {os.cpu_count()}; {args.seconds:g} s per measurement; random actions")
     print("| environment | set-up | env-steps/s | controlled-vehicle steps/s |")
@@ -141,7 +145,10 @@ def main() -> None:
     for env_id, kwargs, make in (
         ("platoonsim/Platoon-v0", PLATOON, lambda: PlatoonEnv(**PLATOON)),
         ("platoonsim/CavControl-v0", CONTROL, lambda: CavControlEnv(**CONTROL)),
+        ("platoonsim/FlowMerge-v0", FLOW_MERGE, lambda: FlowMergeEnv(**FLOW_MERGE)),
     ):
+        if args.only is not None and env_id not in args.only:
+            continue
         for w in (1, 2, 4, 8):
             s, c = vector(env_id, kwargs, w, args.seconds)
             print(f"| {env_id} | {w} worlds, one batch | {s:,.0f} | {c:,.0f} |", flush=True)

@@ -32,6 +32,8 @@ pub(crate) struct Inner {
     gate: Option<Arc<AtomicBool>>,
     /// The per-vehicle control task's state (control.rs).
     pub(crate) control: crate::control::State,
+    /// The FlowMerge task's state (flow_merge.rs).
+    pub(crate) flow_merge: crate::flow_merge::State,
     /// The scenario and overrides the config came from (to validate its PD rule for
     /// `use_gate` when the scenario's own strategy is another).
     source: (String, Overrides),
@@ -155,6 +157,7 @@ pub(crate) fn new_inner(
         wall_s: 0.0,
         gate: None,
         control: Default::default(),
+        flow_merge: Default::default(),
         source: (scenario.to_string(), ov),
     })
 }

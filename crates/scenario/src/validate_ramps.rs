@@ -160,7 +160,7 @@ pub(super) fn on_ramps(
             .meter
             .as_ref()
             .and_then(|m| meters::check(c, i, m, &place, run));
-        let penetration = r.penetration.map(|p| {
+        if let Some(p) = r.penetration {
             let n = c.opt(Some(p), p);
             c.check(
                 &at("penetration"),
@@ -168,8 +168,8 @@ pub(super) fn on_ramps(
                 (0.0..=1.0).contains(&p),
                 "must be in [0, 1] (the share of CAVs among the ramp's arrivals)",
             );
-            p
-        });
+        }
+        let penetration = r.penetration;
         on_ramps.push(OnRamp {
             name: engine_name(id, &name),
             x_m: x.map_or(f64::NAN, |x| x - origin),
