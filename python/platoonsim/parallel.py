@@ -26,7 +26,6 @@
 
 from __future__ import annotations
 
-import functools
 from typing import Any
 
 import numpy as np
@@ -69,11 +68,11 @@ class FlowMergeParallelEnv(ParallelEnv):
         self._ids = np.full(self.task.k, -1, dtype=np.int64)
         self._rng = np.random.default_rng()
 
-    @functools.lru_cache(maxsize=None)
+    # One space object for every agent (PettingZoo asks for the same object on every call; a
+    # cache per agent would grow with every vehicle of a long training run).
     def observation_space(self, agent: str) -> spaces.Box:
         return self._obs_space
 
-    @functools.lru_cache(maxsize=None)
     def action_space(self, agent: str) -> spaces.Box:
         return self._act_space
 
