@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 VENV=target/py-venv
-PY_PACKAGES=(pytest gymnasium matplotlib)
+PY_PACKAGES=(pytest gymnasium matplotlib pettingzoo)
 
 if [ "${1:-}" = "--install" ]; then
     scripts/py-venv.sh

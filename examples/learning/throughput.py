@@ -4,7 +4,7 @@ process (the native vector environments), against a Python loop over 8 single en
 and, with ``--sumo``, the same merge in SUMO through libsumo (one simulation per process, as
 libsumo allows), its CAVs driven by ``vehicle.setAcceleration``.
 
-    python examples/learning/throughput.py [--seconds S] [--sumo]
+    python examples/learning/throughput.py [--seconds S] [--sumo] [--only ENV_ID ...]
 
 Needs the package with gymnasium (``pip install ./python[gym]``); ``--sumo`` also needs
 ``pip install libsumo eclipse-sumo`` (netconvert builds the merge).
@@ -24,20 +24,29 @@ import numpy as np
 import gymnasium as gym
 import platoonsim.gym  # noqa: F401  (registers the environments)
 from platoonsim.control import CavControlEnv, merge_scenario
+from platoonsim.flow_merge import FlowMergeEnv
 from platoonsim.gym import PlatoonEnv
 
 PLATOON = {"warmup_s": 360.0, "decision_s": 60.0, "decisions": 30}
 CONTROL = {"warmup_s": 60.0, "horizon_s": 300.0}
+# Flow's merge0 as it is: no warm-up, 750 actions of 1 s (the episode's reset is included).
+FLOW_MERGE: dict = {}
+
+
+#: CPU seconds (every thread of this process) of the last ``_rate`` call per wall second: on a
+#: shared machine the wall-clock rates fall with the load, the rates per CPU second much less.
+CPU_SHARE = [1.0]
 
 
 def _rate(step, seconds: float) -> tuple[float, float]:
     """Run ``step()`` (returning the controlled vehicles it stepped) for about ``seconds``:
-    (calls per second, controlled vehicles per second)."""
-    n, controlled, t0 = 0, 0, time.perf_counter()
+    (calls per second, controlled vehicles per second), wall clock."""
+    n, controlled, t0, c0 = 0, 0, time.perf_counter(), time.process_time()
     while time.perf_counter() - t0 < seconds:
         controlled += step()
         n += 1
     dt = time.perf_counter() - t0
+    CPU_SHARE[0] = (time.process_time() - c0) / dt
     return n / dt, controlled / dt
 
 
@@ -134,22 +143,27 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--seconds", type=float, default=10.0, help="seconds per measurement")
     ap.add_argument("--sumo", action="store_true", help="also the merge in SUMO through libsumo")
+    ap.add_argument("--only", nargs="*", default=None, help="only these environment ids")
     args = ap.parse_args()
-    print(f"cores: {os.cpu_count()}; {args.seconds:g} s per measurement; random actions")
-    print("| environment | set-up | env-steps/s | controlled-vehicle steps/s |")
-    print("|---|---|---|---|")
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    print(f"cores: {os.cpu_count()}; load average {load:.1f}; {args.seconds:g} s per measurement; random actions")
+    print("| environment | set-up | env-steps/s | controlled-vehicle steps/s | env-steps per CPU-second |")
+    print("|---|---|---|---|---|")
     for env_id, kwargs, make in (
         ("platoonsim/Platoon-v1", PLATOON, lambda: PlatoonEnv(**PLATOON)),
         ("platoonsim/CavControl-v0", CONTROL, lambda: CavControlEnv(**CONTROL)),
+        ("platoonsim/FlowMerge-v0", FLOW_MERGE, lambda: FlowMergeEnv(**FLOW_MERGE)),
     ):
+        if args.only is not None and env_id not in args.only:
+            continue
         for w in (1, 2, 4, 8):
             s, c = vector(env_id, kwargs, w, args.seconds)
-            print(f"| {env_id} | {w} worlds, one batch | {s:,.0f} | {c:,.0f} |", flush=True)
+            print(f"| {env_id} | {w} worlds, one batch | {s:,.0f} | {c:,.0f} | {s / CPU_SHARE[0]:,.0f} |", flush=True)
         s, c = loop(make, 8, args.seconds)
-        print(f"| {env_id} | Python loop over 8 single envs | {s:,.0f} | {c:,.0f} |", flush=True)
+        print(f"| {env_id} | Python loop over 8 single envs | {s:,.0f} | {c:,.0f} | {s / CPU_SHARE[0]:,.0f} |", flush=True)
     if args.sumo:
         s, c = sumo_merge(args.seconds)
-        print(f"| SUMO merge (libsumo) | 1 simulation | {s:,.0f} | {c:,.0f} |")
+        print(f"| SUMO merge (libsumo) | 1 simulation | {s:,.0f} | {c:,.0f} | {s / CPU_SHARE[0]:,.0f} |")
     _ = merge_scenario  # the merge both sides run
 
 

@@ -333,7 +333,8 @@ class Simulation:
         """Command the vehicles ``ids`` (one id or an array) from the next step on.
 
         ``kind``: ``"accelerate"`` (``value`` m/s² for ``steps`` steps, no lane change;
-        ``"accelerate_capped"``: at most the model's own acceleration),
+        ``"accelerate_capped"``: at most the model's own acceleration;
+        ``"accelerate_safe"``: within the vehicle's limits and below its collision-free speed),
         ``"desired_speed"`` (``value`` m/s until released), ``"change_lane"`` (``side``
         ``"left"`` or ``"right"``, as soon as the gaps allow) or ``"release"``. ``value`` is
         one number or one per id. An unknown id or a value out of range raises CommandError

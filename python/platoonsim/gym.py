@@ -110,3 +110,9 @@ if "platoonsim/CavControl-v0" not in gym.registry:
         entry_point="platoonsim.control:CavControlEnv",
         vector_entry_point="platoonsim.control:CavControlVecEnv",
     )
+if "platoonsim/FlowMerge-v0" not in gym.registry:
+    gym.register(
+        id="platoonsim/FlowMerge-v0",
+        entry_point="platoonsim.flow_merge:FlowMergeEnv",
+        vector_entry_point="platoonsim.flow_merge:FlowMergeVecEnv",
+    )

@@ -295,6 +295,15 @@ pub fn gipps_accel(p: &HumanParams, v: f64, leader: Leader, r: Relax) -> f64 {
     bounded::min((v_g - v) / g.reaction, p.max_accel)
 }
 
+/// The Gipps speed v_G (spec 2.3) behind `leader` as a collision-free speed: the largest speed
+/// from which, after τ_r + θ, braking at b_f stops the driver behind a leader braking at b̂
+/// (Gipps 1981). The bound of a commanded acceleration (`commanded`) for a human driver.
+#[inline]
+pub fn gipps_safe_speed(p: &HumanParams, v: f64, leader: Leader, r: Relax) -> f64 {
+    let g = gipps_params(p, r);
+    gipps_speed(&g, v, leader.gap_m, leader.v_mps.max(0.0))
+}
+
 /// Target acceleration a* = min(a_F, a_N, a_G) (spec 2.4); a_F alone without a leader.
 #[inline]
 pub fn target_accel(p: &HumanParams, v: f64, v_des: f64, leader: Option<Leader>, r: Relax) -> f64 {

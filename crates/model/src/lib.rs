@@ -15,6 +15,7 @@
 //! | [`cooperative`] | cooperative lane changes of automated CAVs (request, gap opening, safe join) | 9.2 |
 //! | [`driver`] | the lane-change decision procedure, rule by rule | 4.2, 4.3, 4.7 |
 //! | [`safety`] | emergency braking limit, time to collision, TET/TIT exposure | docs/safety.md |
+//! | [`commanded`] | an outside controller's acceleration within the limits and the safe speed | 2.3, 3.4 |
 //! | [`energy`] | fuel (VT-CPFM-1), battery-electric energy, platoon drag reduction | docs/energy.md |
 //! | [`meter`] | ramp metering: one car per green, ALINEA, queue override | docs/network-scenarios.md |
 //!
@@ -23,6 +24,7 @@
 //! subject's front bumper), i.e. spec's `s - L`.
 
 pub mod cav;
+pub mod commanded;
 pub mod cooperative;
 pub mod dist;
 pub mod driver;

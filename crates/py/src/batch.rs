@@ -13,6 +13,7 @@ use crate::core::{
     vehicles_dict, Inner,
 };
 use crate::gate;
+use crate::flow_merge;
 use crate::{CommandError, SimulationError};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
@@ -35,6 +36,48 @@ pub struct BatchCore {
     spec: Mutex<Option<Spec>>,
     /// The gate task (`gate_setup`).
     gate: Mutex<Option<GateState>>,
+    /// The FlowMerge task (`flow_setup`).
+    flow_spec: Mutex<Option<flow_merge::Spec>>,
+}
+
+/// What `flow_reset` and `flow_step` return: observations (N, k, 5) float32, the vehicle id
+/// in each slot (N, k; −1 empty), rewards (N), mean speeds (N), vehicles on the road (N),
+/// outflow (N), new collisions (N), done (N).
+type FlowTuple<'py> = (
+    Bound<'py, PyAny>,
+    Bound<'py, PyAny>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<u64>>,
+    Bound<'py, PyArray1<u64>>,
+    Bound<'py, PyArray1<u64>>,
+    Bound<'py, PyArray1<bool>>,
+);
+
+fn flow_tuple<'py>(
+    py: Python<'py>,
+    outs: Vec<flow_merge::Out>,
+    k: usize,
+) -> PyResult<FlowTuple<'py>> {
+    let n = outs.len();
+    let mut obs = Vec::with_capacity(n * k * flow_merge::FEATURES);
+    let mut ids = Vec::with_capacity(n * k);
+    for o in &outs {
+        obs.extend_from_slice(&o.obs);
+        ids.extend_from_slice(&o.ids);
+    }
+    Ok((
+        PyArray1::from_vec(py, obs)
+            .reshape([n, k, flow_merge::FEATURES])?
+            .into_any(),
+        PyArray1::from_vec(py, ids).reshape([n, k])?.into_any(),
+        PyArray1::from_vec(py, outs.iter().map(|o| o.reward).collect()),
+        PyArray1::from_vec(py, outs.iter().map(|o| o.mean_v).collect()),
+        PyArray1::from_vec(py, outs.iter().map(|o| o.vehicles).collect()),
+        PyArray1::from_vec(py, outs.iter().map(|o| o.outflow).collect()),
+        PyArray1::from_vec(py, outs.iter().map(|o| o.collisions).collect()),
+        PyArray1::from_vec(py, outs.iter().map(|o| o.done).collect()),
+    ))
 }
 
 /// What `control_reset` and `control_step` return: observations (N, k, 6) float32, the
@@ -233,6 +276,35 @@ impl BatchCore {
         }
     }
 
+    fn flow_spec(&self) -> PyResult<flow_merge::Spec> {
+        self.flow_spec
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .ok_or_else(|| SimulationError::new_err("flow_setup() first"))
+    }
+
+    /// The actions (worlds, k) as one row per world, checked: the shape, finite values.
+    fn action_rows(
+        &self,
+        actions: &PyReadonlyArray2<'_, f64>,
+        k: usize,
+    ) -> PyResult<Vec<Vec<f64>>> {
+        let a = actions.as_array();
+        let shape = a.shape();
+        if shape != [self.worlds.len(), k] {
+            return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "actions: shape {shape:?}, expected ({}, {k}) (worlds, slots)",
+                self.worlds.len(),
+            )));
+        }
+        if let Some(bad) = a.iter().find(|v| !v.is_finite()) {
+            return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "actions: {bad} is not a finite acceleration"
+            )));
+        }
+        Ok(a.outer_iter().map(|r| r.to_vec()).collect())
+    }
+
     fn control_spec(&self) -> PyResult<Spec> {
         self.spec
             .lock()
@@ -313,6 +385,7 @@ impl BatchCore {
             busy: Mutex::new(()),
             spec: Mutex::new(None),
             gate: Mutex::new(None),
+            flow_spec: Mutex::new(None),
         })
     }
 
@@ -482,21 +555,7 @@ impl BatchCore {
         actions: PyReadonlyArray2<'_, f64>,
     ) -> PyResult<ControlTuple<'py>> {
         let spec = self.control_spec()?;
-        let a = actions.as_array();
-        let shape = a.shape();
-        if shape != [self.worlds.len(), spec.k] {
-            return Err(pyo3::exceptions::PyValueError::new_err(format!(
-                "actions: shape {shape:?}, expected ({}, {}) (worlds, slots)",
-                self.worlds.len(),
-                spec.k
-            )));
-        }
-        if let Some(bad) = a.iter().find(|v| !v.is_finite()) {
-            return Err(pyo3::exceptions::PyValueError::new_err(format!(
-                "actions: {bad} is not a finite acceleration"
-            )));
-        }
-        let rows: Vec<Vec<f64>> = a.outer_iter().map(|r| r.to_vec()).collect();
+        let rows = self.action_rows(&actions, spec.k)?;
         let outs = self.par_indexed(py, |i, w| control::step(w, &spec, &rows[i]))?;
         control_tuple(py, outs, spec.k)
     }
@@ -627,6 +686,62 @@ impl BatchCore {
         let d = gate_dict(py, &spec, &m, Some(&before))?;
         self.gate_store(None, m);
         Ok(d)
+    }
+
+    /// Set up the FlowMerge task (flow_merge.rs): `k` = num_rl slots, `steps` engine steps per
+    /// action, the observation scales, the reward's target speed, t_min and weights, the action
+    /// bounds, and whether the listed vehicles are commanded.
+    #[allow(clippy::too_many_arguments)]
+    fn flow_setup(
+        &self,
+        k: usize,
+        steps: u64,
+        max_speed: f64,
+        max_length: f64,
+        target_v: f64,
+        t_min: f64,
+        eta1: f64,
+        eta2: f64,
+        a_low: f64,
+        a_high: f64,
+        control: bool,
+    ) -> PyResult<()> {
+        let spec = flow_merge::Spec {
+            k,
+            steps,
+            max_speed,
+            max_length,
+            target_v,
+            t_min,
+            eta1,
+            eta2,
+            a_low,
+            a_high,
+            control,
+        };
+        spec.check()
+            .map_err(pyo3::exceptions::PyValueError::new_err)?;
+        *self.flow_spec.lock().unwrap_or_else(|e| e.into_inner()) = Some(spec);
+        Ok(())
+    }
+
+    fn flow_reset<'py>(&self, py: Python<'py>) -> PyResult<FlowTuple<'py>> {
+        let spec = self.flow_spec()?;
+        let outs = self.par(py, |w| flow_merge::start(w, &spec))?;
+        flow_tuple(py, outs, spec.k)
+    }
+
+    /// One action of the FlowMerge task in every world: `actions` (N, k) accelerations (m/s²),
+    /// finite (the Python side clips them to the bounds).
+    fn flow_step<'py>(
+        &self,
+        py: Python<'py>,
+        actions: PyReadonlyArray2<'_, f64>,
+    ) -> PyResult<FlowTuple<'py>> {
+        let spec = self.flow_spec()?;
+        let rows = self.action_rows(&actions, spec.k)?;
+        let outs = self.par_indexed(py, |i, w| flow_merge::step(w, &spec, &rows[i]))?;
+        flow_tuple(py, outs, spec.k)
     }
 
     /// End world `i`'s run (writing its files into `out_dir` if given); its summary as JSON.

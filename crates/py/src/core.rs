@@ -32,6 +32,8 @@ pub(crate) struct Inner {
     gate: Option<Arc<AtomicBool>>,
     /// The per-vehicle control task's state (control.rs).
     pub(crate) control: crate::control::State,
+    /// The FlowMerge task's state (flow_merge.rs).
+    pub(crate) flow_merge: crate::flow_merge::State,
     /// The scenario and overrides the config came from (to validate its PD rule for
     /// `use_gate` when the scenario's own strategy is another).
     source: (String, Overrides),
@@ -160,6 +162,7 @@ pub(crate) fn new_inner(
         wall_s: 0.0,
         gate: None,
         control: Default::default(),
+        flow_merge: Default::default(),
         source: (scenario.to_string(), ov),
     })
 }
@@ -238,6 +241,10 @@ pub(crate) fn command_world(
                 accel_mps2: value(i, "an acceleration in m/s²")?,
                 steps,
             },
+            "accelerate_safe" => Command::AccelerateSafe {
+                accel_mps2: value(i, "an acceleration in m/s²")?,
+                steps,
+            },
             "desired_speed" => Command::DesiredSpeed {
                 speed_mps: value(i, "a desired speed in m/s")?,
             },
@@ -257,7 +264,8 @@ pub(crate) fn command_world(
             other => {
                 return Err(CommandError::new_err(format!(
                     "command kind {other:?}: must be one of \"accelerate\", \
-                     \"accelerate_capped\", \"desired_speed\", \"change_lane\", \"release\""
+                     \"accelerate_capped\", \"accelerate_safe\", \"desired_speed\", \
+                     \"change_lane\", \"release\""
                 )))
             }
         };
@@ -280,7 +288,8 @@ pub(crate) fn command_world(
             }
             let bad = match c {
                 Command::Accelerate { accel_mps2, steps }
-                | Command::AccelerateCapped { accel_mps2, steps } => {
+                | Command::AccelerateCapped { accel_mps2, steps }
+                | Command::AccelerateSafe { accel_mps2, steps } => {
                     !(accel_mps2.is_finite() && accel_mps2.abs() <= MAX_COMMAND_ACCEL_MPS2)
                         || steps == 0
                 }

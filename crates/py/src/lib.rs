@@ -2,7 +2,8 @@
 //!
 //! `platoonsim._platoonsim.Core` holds one `platoonsim_sim::Simulation` and exchanges whole arrays with
 //! Python: the vehicles as numpy columns, the lane advice of a Python organizer as one table
-//! per call, commands vectorized over vehicle ids. The pure-Python package (`python/platoonsim`)
+//! per call, commands vectorized over vehicle ids; the learning tasks per world
+//! (`control.rs`: CavControl-v0, `flow_merge.rs`: FlowMerge-v0). The pure-Python package (`python/platoonsim`)
 //! wraps it in the documented API (docs/python.md). Stepping releases the GIL.
 
 mod batch;
@@ -10,6 +11,7 @@ mod control;
 mod convert;
 mod core;
 mod gate;
+mod flow_merge;
 mod hooks;
 mod output;
 

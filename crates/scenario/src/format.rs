@@ -204,6 +204,7 @@ fn raw_network(n: &Network, config: &Config) -> (RawNetwork, Vec<String>) {
                 demand_vph: Some(r.demand_vph.clone()),
                 station: stations.on[i].clone(),
                 meter: r.meter.as_ref().map(raw_meter),
+                penetration: r.penetration,
             })
             .collect(),
         off_ramps: n

@@ -361,6 +361,7 @@ mod tests {
                     ramp_length_m: 300.0,
                     demand_vph: vec![0.0],
                     meter: None,
+                    penetration: None,
                 },
                 OnRamp {
                     name: "b".into(),
@@ -369,6 +370,7 @@ mod tests {
                     ramp_length_m: 300.0,
                     demand_vph: vec![0.0],
                     meter: None,
+                    penetration: None,
                 },
             ],
             off_ramps: vec![OffRamp {

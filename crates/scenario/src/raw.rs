@@ -232,6 +232,9 @@ pub struct RawOnRamp {
     /// (docs/network-scenarios.md, "Ramp meters").
     #[serde(skip_serializing_if = "Option::is_none")]
     pub meter: Option<RawMeter>,
+    /// The share of CAVs among this ramp's arrivals (default: `run.penetration`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub penetration: Option<f64>,
 }
 
 /// The `meter` of an on-ramp, as written; `validate_meters.rs` checks it against its `kind`.

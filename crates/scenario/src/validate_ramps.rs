@@ -160,6 +160,16 @@ pub(super) fn on_ramps(
             .meter
             .as_ref()
             .and_then(|m| meters::check(c, i, m, &place, run));
+        if let Some(p) = r.penetration {
+            let n = c.opt(Some(p), p);
+            c.check(
+                &at("penetration"),
+                n,
+                (0.0..=1.0).contains(&p),
+                "must be in [0, 1] (the share of CAVs among the ramp's arrivals)",
+            );
+        }
+        let penetration = r.penetration;
         on_ramps.push(OnRamp {
             name: engine_name(id, &name),
             x_m: x.map_or(f64::NAN, |x| x - origin),
@@ -167,6 +177,7 @@ pub(super) fn on_ramps(
             ramp_length_m: ramp_len.map_or(f64::NAN, |n: Num| n.v),
             demand_vph: demand,
             meter,
+            penetration,
         });
     }
     on_ramps

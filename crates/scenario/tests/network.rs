@@ -318,6 +318,28 @@ fn lane_speed_caps_are_off_by_default_and_checked() {
 }
 
 #[test]
+fn an_on_ramps_share_of_cavs_is_optional_and_checked() {
+    // None unless given (the run's penetration, and nothing written); given, in [0, 1] and
+    // written back.
+    let c = parse(SMALL_CORRIDOR).unwrap();
+    let net = c.road.network.as_ref().unwrap();
+    assert!(net.on_ramps.iter().all(|r| r.penetration.is_none()));
+    assert!(!to_toml(&c).contains("penetration = 0.0"));
+    let c = with_set(SMALL_CORRIDOR, &["network.on_ramps[0].penetration=0"]).unwrap();
+    assert_eq!(
+        c.road.network.as_ref().unwrap().on_ramps[0].penetration,
+        Some(0.0)
+    );
+    let back = from_toml(&to_toml(&c), "resolved", "other", &Overrides::default()).unwrap();
+    assert_eq!(back, c);
+    let p = corridor_problems(&["network.on_ramps[0].penetration=1.5"]);
+    assert_eq!(
+        p,
+        vec!["network.on_ramps[0].penetration = 1.5: must be in [0, 1] (the share of CAVs among the ramp's arrivals)"]
+    );
+}
+
+#[test]
 fn cross_lane_friction_is_off_by_default_and_checked() {
     // Spec 2.7: optional; none unless given, c_fr in (0, 1], written back when given.
     let c = parse(SMALL_CORRIDOR).unwrap();

@@ -11,6 +11,7 @@
 //! |---|---|---|
 //! | `Accelerate { accel_mps2, steps }` | this acceleration (m/s²) instead of the model's, and no lane change | after `steps` steps |
 //! | `AccelerateCapped { accel_mps2, steps }` | this acceleration, but never above the model's own of the step: the driver model's car following (for a CAV its ACC/CACC law with collision avoidance) is a ceiling, so a controller can brake and hold back but not drive into the vehicle ahead; the model's lane changes and automation state stand | after `steps` steps |
+//! | `AccelerateSafe { accel_mps2, steps }` | this acceleration, bounded by the vehicle's limits (`cav.max_decel`/`max_accel` for a CAV, its driver's for a human), its desired speed, and its model's collision-free speed behind the vehicle ahead or its lane's end (a CAV's safety-override speed, spec 3.4/3.8; a human's Gipps speed, spec 2.3; `platoonsim_model::commanded`): it can accelerate above the model, never into the vehicle ahead (SUMO's speed mode that regards the safe speed); only the safe speed may brake harder than the limit, down to the emergency limit; the model's lane changes stand, and while one is decided the target lane's leader bounds it too | after `steps` steps |
 //! | `DesiredSpeed { speed_mps }` | the model drives with this desired speed (CAV: set speed) | on `Release` |
 //! | `ChangeLane { side }` | a mandatory lane-change desire toward `side` (gap acceptance of spec 4.3 and 9.1, before-lane-change behaviour of spec 4.3 without braking for the change: `driver::commanded_target`) | once in the target lane |
 //! | `Release` | every command of the vehicle ends; the model drives | at once |
@@ -28,6 +29,9 @@ pub enum Command {
     Accelerate { accel_mps2: f64, steps: u64 },
     /// Apply `accel_mps2`, or the model's acceleration if lower, for the next `steps` steps.
     AccelerateCapped { accel_mps2: f64, steps: u64 },
+    /// Apply `accel_mps2` within the vehicle's limits and below its collision-free speed
+    /// (`platoonsim_model::commanded`) for the next `steps` steps.
+    AccelerateSafe { accel_mps2: f64, steps: u64 },
     /// Drive with this desired speed (m/s) until released.
     DesiredSpeed { speed_mps: f64 },
     /// Change one lane toward `side` as soon as the gaps allow.

@@ -116,6 +116,11 @@ pub struct OnRamp {
     /// their identity).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub meter: Option<Meter>,
+    /// The share of CAVs among this ramp's arrivals, in [0, 1]; `None`, the default, is the
+    /// run's `penetration` (and is not written, so configurations without it keep their
+    /// identity).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub penetration: Option<f64>,
 }
 
 /// An off-ramp (diverge at `x_m`). A vehicle decides on entry, for each off-ramp downstream in
@@ -173,6 +178,15 @@ impl Network {
                 return Err(SimError::Config(format!(
                     "network.lane_speed_limits_kmh[{i}] = {c}: must be a finite number > 0"
                 )));
+            }
+        }
+        for (i, r) in self.on_ramps.iter().enumerate() {
+            if let Some(p) = r.penetration {
+                if !(0.0..=1.0).contains(&p) {
+                    return Err(SimError::Config(format!(
+                        "network.on_ramps[{i}].penetration = {p}: must be in [0, 1]"
+                    )));
+                }
             }
         }
         if let Some(c) = self.cross_lane_friction {

@@ -2,6 +2,7 @@
 //!
 //! Arrivals: a Poisson process per entrance at the demand rate (exponential headways from the
 //! entrance's own stream); each arrival's type is a Bernoulli trial with P(CAV) = penetration
+//! (an on-ramp's own `penetration` for its arrivals, if it has one)
 //! and its parameters are drawn once from its own vehicle stream (spec 1).
 //!
 //! Insertion (spec 1, [P15-code]): the head of the entrance's virtual queue enters at x = 0 at
@@ -142,7 +143,16 @@ pub const MIN_TRIP_TO_EXIT_M: f64 = 200.0;
 /// is its exit, none means the mainline end. `origin` is the entrance's index.
 pub(crate) fn create(cfg: &Config, id: u64, x: f64, t: f64, origin: u32) -> Vehicle {
     let mut rng = Stream::new(cfg.seed, Purpose::Vehicle, id);
-    let kind = if rng.uniform() < cfg.penetration {
+    // An on-ramp may have its own share of CAVs (entrance i + 1 is on-ramp i).
+    let penetration = match (&cfg.road.network, origin.checked_sub(1)) {
+        (Some(net), Some(r)) => net
+            .on_ramps
+            .get(r as usize)
+            .and_then(|r| r.penetration)
+            .unwrap_or(cfg.penetration),
+        _ => cfg.penetration,
+    };
+    let kind = if rng.uniform() < penetration {
         Kind::Cav
     } else {
         Kind::Human

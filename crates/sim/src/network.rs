@@ -418,6 +418,7 @@ mod tests {
             ramp_length_m: 300.0,
             demand_vph: vec![100.0],
             meter: None,
+            penetration: None,
         };
         Network {
             origin_m: 0.0,

@@ -25,7 +25,8 @@ impl Simulation {
         };
         match command {
             Command::Accelerate { accel_mps2, steps }
-            | Command::AccelerateCapped { accel_mps2, steps } => {
+            | Command::AccelerateCapped { accel_mps2, steps }
+            | Command::AccelerateSafe { accel_mps2, steps } => {
                 if !(accel_mps2.is_finite() && accel_mps2.abs() <= MAX_COMMAND_ACCEL_MPS2) {
                     return Err(SimError::Command(format!(
                         "Accelerate.accel_mps2 = {accel_mps2}: must be finite, within \

@@ -21,6 +21,7 @@ fn close_ramps(seed: u64) -> Config {
         ramp_length_m: 300.0,
         demand_vph: vec![900.0],
         meter: None,
+        penetration: None,
     };
     cfg.road.network = Some(Network {
         origin_m: 0.0,

@@ -35,6 +35,7 @@ fn corridor(mainline_vph: f64, ramp_vph: f64, meter: Option<Meter>) -> Config {
             ramp_length_m: 300.0,
             demand_vph: vec![ramp_vph],
             meter,
+            penetration: None,
         }],
         off_ramps: Vec::new(),
         interval_s: 900.0,

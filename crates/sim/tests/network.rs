@@ -32,6 +32,7 @@ pub fn toy(penetration: f64, mainline_vph: Vec<f64>, seed: u64) -> Config {
         ramp_length_m: 300.0,
         demand_vph: vec![vph],
         meter: None,
+        penetration: None,
     };
     cfg.road.lanes = 5;
     cfg.road.length_m = 4000.0;
@@ -124,6 +125,37 @@ fn toy_corridor_conserves_vehicles_without_collisions() {
         // 3000 + 1500 veh/h enter; after the first ~5 minutes of filling, ~4,500 leave.
         assert!(q > 3500.0 && q < 4700.0, "network discharge {q}");
     }
+}
+
+#[test]
+fn an_on_ramp_may_have_its_own_share_of_cavs() {
+    // Ramp A sends only human drivers, ramp B only CAVs, the mainline half and half; ramp C
+    // keeps the run's share. Every vehicle seen on the road is of its entrance's kind.
+    let mut cfg = toy(0.5, vec![3000.0], 2);
+    cfg.duration_s = 600.0;
+    let net = cfg.road.network.as_mut().unwrap();
+    net.on_ramps[0].penetration = Some(0.0);
+    net.on_ramps[1].penetration = Some(1.0);
+    let mut sim = Simulation::new(cfg).unwrap();
+    let mut seen = [[0u64; 2]; 4]; // [entrance][human, CAV]
+    while !sim.finished() {
+        for _ in 0..50 {
+            sim.step().unwrap();
+        }
+        for lane in 0..5 {
+            for v in sim.lane_vehicles(lane) {
+                seen[v.origin() as usize][usize::from(v.is_cav())] += 1;
+            }
+        }
+    }
+    assert_eq!(seen[1][1], 0, "ramp A: no CAV ({seen:?})");
+    assert!(seen[1][0] > 0, "{seen:?}");
+    assert_eq!(seen[2][0], 0, "ramp B: no human driver ({seen:?})");
+    assert!(seen[2][1] > 0, "{seen:?}");
+    for entrance in [0, 3] {
+        assert!(seen[entrance].iter().all(|&n| n > 0), "{seen:?}");
+    }
+    assert_eq!(sim.collisions(), 0);
 }
 
 #[test]

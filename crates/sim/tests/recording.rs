@@ -46,6 +46,7 @@ fn small_corridor(seed: u64) -> Config {
             ramp_length_m: 300.0,
             demand_vph: vec![400.0],
             meter: None,
+            penetration: None,
         }],
         off_ramps: vec![OffRamp {
             name: "F".into(),

@@ -5,7 +5,9 @@ use crate::command::{Active, Command};
 use crate::events::LaneChangeReason;
 use crate::state::Decision;
 use crate::vehicle::{AutoFlags, Vehicle};
+use platoonsim_model::commanded::{self, Limits};
 use platoonsim_model::lanechange::Side;
+use platoonsim_model::{cav, human, Leader};
 
 /// Phase 2, after the models: the commands in force override the decisions of their
 /// vehicles. Commands of vehicles that left the road end; finished ones are removed.
@@ -43,6 +45,14 @@ pub(crate) fn apply_commands(
                 commands[k].left -= 1;
                 commands[k].left == 0
             }
+            Command::AccelerateSafe { accel_mps2, .. } => {
+                // This acceleration within the vehicle's limits and below its collision-free
+                // speed; the model's lane change and automation state stand.
+                let d = &mut decisions[s as usize];
+                d.accel = view.safe_accel(s, accel_mps2, d.change);
+                commands[k].left -= 1;
+                commands[k].left == 0
+            }
             Command::DesiredSpeed { .. } => false,
             Command::ChangeLane { side } => {
                 if u64::from(v.lane) == a.left {
@@ -65,6 +75,49 @@ pub(crate) fn apply_commands(
         } else {
             k += 1;
         }
+    }
+}
+
+impl View<'_> {
+    /// The acceleration of an `AccelerateSafe` command (`platoonsim_model::commanded`): `a`
+    /// within the limits of vehicle `s`, its desired speed, and its model's collision-free
+    /// speed behind its leader or its lane's end and, if it changes lanes in this step
+    /// (`change`), behind the target lane's leader too.
+    fn safe_accel(&self, s: u32, a: f64, change: Option<Side>) -> f64 {
+        let me = self.me(s);
+        let v = me.v;
+        let cav = v.is_cav();
+        let safe = |l: Leader| {
+            if cav {
+                cav::safe_speed(&self.cfg.cav, l.gap_m, l.v_mps)
+            } else {
+                human::gipps_safe_speed(&v.driver.human, v.v, l, self.relax_now(v))
+            }
+        };
+        let mut v_safe = me.leader.map_or(f64::INFINITY, safe);
+        if let Some(side) = change {
+            let nb = me.nb();
+            let ld = match side {
+                Side::Left => nb.left_leader,
+                Side::Right => nb.right_leader,
+            };
+            if let Some(l) = self.view(v, ld) {
+                v_safe = v_safe.min(safe(l));
+            }
+        }
+        let (max_decel, max_accel) = if cav {
+            (self.cfg.cav.max_decel, self.cfg.cav.max_accel)
+        } else {
+            (v.driver.human.max_decel, v.driver.human.max_accel)
+        };
+        let lim = Limits {
+            v: v.v,
+            v_max: self.own_v_des(&me),
+            max_decel,
+            max_accel,
+            v_safe,
+        };
+        commanded::bounded_accel(a, &lim, self.clock.dt)
     }
 }
 

@@ -80,3 +80,76 @@ fn a_capped_acceleration_cannot_drive_a_vehicle_into_the_one_ahead() {
     );
     assert_eq!(sim.collisions(), 0);
 }
+
+#[test]
+fn a_safe_acceleration_is_applied_within_the_vehicles_limits() {
+    // On an empty road `AccelerateSafe` gives the command exactly inside the limits, and the
+    // limits outside them: a CAV's `cav.max_accel` / `cav.max_decel` (1.5, −4), a driver's own
+    // drawn a_M and b_f. Unlike `AccelerateCapped` it accelerates above the model's law.
+    for kind in [Kind::Cav, Kind::Human] {
+        let mut sim = empty(1);
+        let id = sim.place_vehicle(kind, 0, 1000.0, 20.0).unwrap();
+        let p = sim.vehicle(id).unwrap().driver_params();
+        let (lo, hi) = match kind {
+            Kind::Cav => (sim.config().cav.max_decel, sim.config().cav.max_accel),
+            Kind::Human => (p.max_decel, p.max_accel),
+        };
+        let mut step_with = |a: f64| {
+            let cmd = Command::AccelerateSafe {
+                accel_mps2: a,
+                steps: 1,
+            };
+            sim.command(id, cmd).unwrap();
+            sim.step().unwrap();
+            at(&sim, id).a
+        };
+        assert_eq!(step_with(0.7), 0.7, "{kind:?} inside the limits");
+        assert_eq!(step_with(20.0), hi, "{kind:?} above a_M");
+        assert_eq!(step_with(-20.0), lo, "{kind:?} below b");
+        assert_eq!(step_with(-1.5), -1.5, "{kind:?} inside again");
+    }
+}
+
+#[test]
+fn a_safe_acceleration_never_drives_a_vehicle_into_the_one_ahead() {
+    // Told +1.5 m/s² for 60 s, 100 m behind a vehicle that brakes to a stop at 4 m/s² and
+    // stays there: the safe speed takes over, the follower stops behind it without touching
+    // it, for a CAV and a human driver. The same command given as `Accelerate` runs into it.
+    let mut closest_by_kind = Vec::new();
+    for kind in [Kind::Cav, Kind::Human] {
+        for safe in [true, false] {
+            let mut sim = empty(1);
+            let lead = sim.place_vehicle(Kind::Human, 0, 1100.0, 20.0).unwrap();
+            let id = sim.place_vehicle(kind, 0, 1000.0, 20.0).unwrap();
+            sim.command(
+                lead,
+                Command::Accelerate {
+                    accel_mps2: -4.0,
+                    steps: 600,
+                },
+            )
+            .unwrap();
+            let (accel_mps2, steps) = (1.5, 600);
+            let cmd = if safe {
+                Command::AccelerateSafe { accel_mps2, steps }
+            } else {
+                Command::Accelerate { accel_mps2, steps }
+            };
+            sim.command(id, cmd).unwrap();
+            let mut closest = f64::INFINITY;
+            run(&mut sim, 60.0, |s| closest = closest.min(gap(s, lead, id)));
+            if safe {
+                assert_eq!(sim.collisions(), 0, "{kind:?}: closest gap {closest} m");
+                assert!(closest > 0.0, "{kind:?}: closest gap {closest} m");
+                assert!(at(&sim, id).v < 1e-9, "{kind:?} still moving");
+                closest_by_kind.push(closest);
+            } else {
+                assert!(
+                    sim.collisions() > 0,
+                    "{kind:?}: unbounded, closest {closest} m"
+                );
+            }
+        }
+    }
+    assert_eq!(closest_by_kind.len(), 2);
+}

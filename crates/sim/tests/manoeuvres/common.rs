@@ -90,6 +90,7 @@ pub fn corridor(
                 ramp_length_m: 300.0,
                 demand_vph: vec![0.0],
                 meter: None,
+                penetration: None,
             })
             .into_iter()
             .collect(),

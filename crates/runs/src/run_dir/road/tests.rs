@@ -33,6 +33,7 @@ fn on_ramp(name: &str, x_m: f64) -> OnRamp {
         ramp_length_m: 300.0,
         demand_vph: vec![100.0],
         meter: None,
+        penetration: None,
     }
 }
 
