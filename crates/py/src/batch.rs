@@ -12,8 +12,8 @@ use crate::core::{
     command_world, detectors_dict, finish_world, new_inner, set_gate, step_world, use_gate,
     vehicles_dict, Inner,
 };
-use crate::gate;
 use crate::flow_merge;
+use crate::gate;
 use crate::{CommandError, SimulationError};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;

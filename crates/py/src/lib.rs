@@ -10,8 +10,8 @@ mod batch;
 mod control;
 mod convert;
 mod core;
-mod gate;
 mod flow_merge;
+mod gate;
 mod hooks;
 mod output;
 
