@@ -1,10 +1,10 @@
-from typing import Any, Sequence
+from typing import Any
 
 import gymnasium as gym
 import numpy as np
-from gymnasium.vector import VectorEnv
 
 from . import BatchSimulation
+from .vector import LockstepVecEnv
 
 FEATURES: int
 
@@ -24,11 +24,4 @@ class CavControlEnv(gym.Env[np.ndarray, np.ndarray]):
     ) -> tuple[np.ndarray, dict[str, Any]]: ...
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]: ...
 
-class CavControlVecEnv(VectorEnv):
-    batch: BatchSimulation | None
-    num_envs: int
-    def __init__(self, num_envs: int = 1, threads: int | None = None, **kwargs: Any) -> None: ...
-    def reset(
-        self, *, seed: int | Sequence[int] | None = None, options: dict[str, Any] | None = None
-    ) -> tuple[np.ndarray, dict[str, Any]]: ...
-    def step(self, actions: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]: ...
+class CavControlVecEnv(LockstepVecEnv): ...

@@ -45,10 +45,9 @@ import numpy as np
 
 import gymnasium as gym
 from gymnasium import spaces
-from gymnasium.vector import AutoresetMode, VectorEnv
 
 import platoonsim
-from platoonsim.vector import check_num_envs, world_seeds
+from platoonsim.vector import LockstepVecEnv
 
 FEATURES = 5
 #: Flow's network length: the sum of merge0's edges (m).
@@ -225,9 +224,6 @@ class _Task:
         }
 
 
-def _seeds(rng: np.random.Generator, n: int) -> np.ndarray:
-    return rng.integers(0, 2**31 - 1, size=n)
-
 
 class FlowMergeEnv(gym.Env):
     """One merge0 world (module docstring); arguments: ``DEFAULTS``."""
@@ -259,67 +255,19 @@ class FlowMergeEnv(gym.Env):
         return obs[0].reshape(-1), float(rew[0]), bool(col[0] > 0), bool(done[0]), info
 
 
-class FlowMergeVecEnv(VectorEnv):
+class FlowMergeVecEnv(LockstepVecEnv):
     """``num_envs`` merge0 worlds stepped together; ``threads`` is the pool's size. World ``i``
-    equals a ``FlowMergeEnv`` with the same arguments, seed and actions, bit for bit. Every
-    episode has the same length; autoreset ``NEXT_STEP``; ``reset(seed=s)`` seeds world i with
-    s + i. A collision in one world (which the safe command should make impossible) ends every
-    world's episode: terminated there, truncated elsewhere."""
+    equals a ``FlowMergeEnv`` with the same arguments, seed and actions, bit for bit. Lockstep
+    episodes, autoreset and seeding as ``platoonsim.vector.LockstepVecEnv``."""
 
-    metadata = {"render_modes": [], "autoreset_mode": AutoresetMode.NEXT_STEP}
+    def _task(self, **kwargs: Any) -> _Task:
+        return _Task(**kwargs)
 
-    def __init__(self, num_envs: int = 1, threads: int | None = None, **kwargs: Any) -> None:
-        check_num_envs(num_envs)
-        self.task = _Task(**kwargs)
-        self.num_envs = int(num_envs)
-        self.threads = threads
-        self.single_observation_space = self.task.observation_space
-        self.single_action_space = self.task.action_space
-        self.observation_space = spaces.Box(
-            low=np.tile(self.task.observation_space.low, (self.num_envs, 1)),
-            high=np.tile(self.task.observation_space.high, (self.num_envs, 1)),
-            dtype=np.float32,
-        )
-        self.action_space = spaces.Box(
-            low=np.tile(self.task.action_space.low, (self.num_envs, 1)),
-            high=np.tile(self.task.action_space.high, (self.num_envs, 1)),
-            dtype=np.float32,
-        )
-        self.batch: platoonsim.BatchSimulation | None = None
-        self._rng: np.random.Generator | None = None
-        self._ended = np.zeros(self.num_envs, dtype=bool)
-        self._seeds = np.zeros(self.num_envs, dtype=np.int64)
-
-    def _start(self, seeds: Any) -> tuple[np.ndarray, dict[str, Any]]:
-        self._seeds = np.asarray(seeds, dtype=np.int64)
-        self.batch = self.task.batch(self._seeds, self.threads)
+    def _first(self):
         out = self.batch._core.flow_reset()
-        self._ended = np.zeros(self.num_envs, dtype=bool)
-        info = self.task.info(out)
-        info["seed"] = self._seeds.copy()
-        return out[0].reshape(self.num_envs, -1), info
+        return out[0], self.task.info(out)
 
-    def reset(self, *, seed: int | Sequence[int] | None = None, options: dict[str, Any] | None = None):
-        self._rng, seeds = world_seeds(seed, self.num_envs, self._rng)
-        return self._start(seeds)
-
-    def step(self, actions: Any):
-        if self.batch is None:
-            raise RuntimeError("call reset() before step()")
-        a = self.task.actions(actions, self.num_envs)
-        false = np.zeros(self.num_envs, dtype=bool)
-        if self._ended.any():
-            # Every world's episode has the same length; NEXT_STEP: new episodes now.
-            assert self._rng is not None
-            obs, info = self._start(_seeds(self._rng, self.num_envs))
-            return obs, np.zeros(self.num_envs), false, false.copy(), info
+    def _advance(self, a):
         out = self.batch._core.flow_step(a)
         obs, _, rew, _, _, _, col, done = out
-        info = self.task.info(out)
-        terminated = col > 0
-        truncated = (done | terminated.any()) & ~terminated
-        self._ended = terminated | truncated
-        return obs.reshape(self.num_envs, -1), rew, terminated, truncated, info
-
-    def close_extras(self, **kwargs: Any) -> None:
-        self.batch = None
+        return obs, rew, col, done, self.task.info(out)

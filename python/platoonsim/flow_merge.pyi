@@ -1,10 +1,10 @@
-from typing import Any, Sequence
+from typing import Any
 
 import gymnasium as gym
 import numpy as np
-from gymnasium.vector import VectorEnv
 
 from . import BatchSimulation
+from .vector import LockstepVecEnv
 
 FEATURES: int
 NETWORK_LENGTH_M: float
@@ -30,11 +30,4 @@ class FlowMergeEnv(gym.Env[np.ndarray, np.ndarray]):
     ) -> tuple[np.ndarray, dict[str, Any]]: ...
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]: ...
 
-class FlowMergeVecEnv(VectorEnv):
-    batch: BatchSimulation | None
-    num_envs: int
-    def __init__(self, num_envs: int = 1, threads: int | None = None, **kwargs: Any) -> None: ...
-    def reset(
-        self, *, seed: int | Sequence[int] | None = None, options: dict[str, Any] | None = None
-    ) -> tuple[np.ndarray, dict[str, Any]]: ...
-    def step(self, actions: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]: ...
+class FlowMergeVecEnv(LockstepVecEnv): ...

@@ -121,3 +121,74 @@ class PlatoonVecEnv(VectorEnv):
 
     def close_extras(self, **kwargs: Any) -> None:
         self.batch = None
+
+
+class LockstepVecEnv(VectorEnv):
+    """A native vector environment of a per-vehicle task (``CavControl-v0``, ``FlowMerge-v0``)
+    whose ``num_envs`` worlds run in lockstep: every episode has the same length; autoreset
+    ``NEXT_STEP``; ``reset(seed=s)`` seeds world i with s + i; a collision in one world (which
+    the tasks' bounded commands should make impossible) ends every world's episode: terminated
+    there, truncated elsewhere. A subclass gives ``_task(**kwargs)`` (the task's parameters,
+    spaces, ``batch``, ``actions``) and ``_first()`` / ``_advance(a)``, which read the batch's
+    reset and step as (obs, info) and (obs, rewards, collisions, done, info)."""
+
+    metadata = {"render_modes": [], "autoreset_mode": AutoresetMode.NEXT_STEP}
+
+    def __init__(self, num_envs: int = 1, threads: int | None = None, **kwargs: Any) -> None:
+        check_num_envs(num_envs)
+        self.task = self._task(**kwargs)
+        self.num_envs = int(num_envs)
+        self.threads = threads
+        self.single_observation_space = self.task.observation_space
+        self.single_action_space = self.task.action_space
+        tile = lambda b: spaces.Box(  # noqa: E731
+            low=np.tile(b.low, (self.num_envs, 1)), high=np.tile(b.high, (self.num_envs, 1)), dtype=np.float32
+        )
+        self.observation_space = tile(self.task.observation_space)
+        self.action_space = tile(self.task.action_space)
+        self.batch: platoonsim.BatchSimulation | None = None
+        self._rng: np.random.Generator | None = None
+        self._ended = np.zeros(self.num_envs, dtype=bool)
+        self._seeds = np.zeros(self.num_envs, dtype=np.int64)
+
+    def _task(self, **kwargs: Any) -> Any:
+        raise NotImplementedError
+
+    def _first(self) -> tuple[np.ndarray, dict[str, Any]]:
+        raise NotImplementedError
+
+    def _advance(self, a: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]:
+        raise NotImplementedError
+
+    def _start(self, seeds: Any) -> tuple[np.ndarray, dict[str, Any]]:
+        self._seeds = np.asarray(seeds, dtype=np.int64)
+        self.batch = self.task.batch(self._seeds, self.threads)
+        obs, info = self._first()
+        self._ended = np.zeros(self.num_envs, dtype=bool)
+        info["seed"] = self._seeds.copy()
+        return obs.reshape(self.num_envs, -1), info
+
+    def reset(self, *, seed: int | Sequence[int] | None = None, options: dict[str, Any] | None = None):
+        self._rng, seeds = world_seeds(seed, self.num_envs, self._rng)
+        return self._start(seeds)
+
+    def step(self, actions: Any):
+        if self.batch is None:
+            raise RuntimeError("call reset() before step()")
+        a = self.task.actions(actions, self.num_envs)
+        false = np.zeros(self.num_envs, dtype=bool)
+        if self._ended.any():
+            # Every world's episode has the same length; NEXT_STEP: new episodes now.
+            assert self._rng is not None
+            obs, info = self._start(self._rng.integers(0, 2**31 - 1, size=self.num_envs))
+            return obs, np.zeros(self.num_envs), false, false.copy(), info
+        obs, rew, col, done, info = self._advance(a)
+        terminated = col > 0
+        # The worlds run in lockstep: a collision in one ends every world's episode, the
+        # others' as truncated.
+        truncated = (done | terminated.any()) & ~terminated
+        self._ended = terminated | truncated
+        return obs.reshape(self.num_envs, -1), rew, terminated, truncated, info
+
+    def close_extras(self, **kwargs: Any) -> None:
+        self.batch = None

@@ -21,3 +21,14 @@ class PlatoonVecEnv(VectorEnv):
 def world_seeds(
     seed: int | Sequence[int] | None, n: int, rng: np.random.Generator | None
 ) -> tuple[np.random.Generator, np.ndarray]: ...
+
+class LockstepVecEnv(VectorEnv):
+    task: Any
+    batch: BatchSimulation | None
+    num_envs: int
+    threads: int | None
+    def __init__(self, num_envs: int = 1, threads: int | None = None, **kwargs: Any) -> None: ...
+    def reset(
+        self, *, seed: int | Sequence[int] | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[np.ndarray, dict[str, Any]]: ...
+    def step(self, actions: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]: ...
