@@ -609,6 +609,13 @@ impl BatchCore {
                     c.dt_s
                 ));
             }
+            if c.warmup_s != 0.0 {
+                return value_err(format!(
+                    "run.warmup_s = {}: the gate task counts every vehicle (L̄ from the paper's \
+                     statistics), so it must be 0; the task's own warm-up is warmup_s",
+                    c.warmup_s
+                ));
+            }
             if c.aggregation_s != decision_s {
                 return value_err(format!(
                     "measurement.aggregation_s = {}: must equal decision_s = {decision_s}",
@@ -633,14 +640,7 @@ impl BatchCore {
         })?;
         for i in 0..self.worlds.len() {
             let twin_or_gated = gated.get(i).copied().unwrap_or(true);
-            self.world(i, |w| {
-                if twin_or_gated {
-                    use_gate(w)?;
-                }
-                w.sim()?
-                    .observe(Box::new(gate::ExitMeter::default()))
-                    .map_err(|e| SimulationError::new_err(format!("world {i}: {e}")))
-            })?;
+            self.world(i, |w| if twin_or_gated { use_gate(w) } else { Ok(()) })?;
         }
         *self.gate.lock().unwrap_or_else(|e| e.into_inner()) = Some(GateState {
             spec,

@@ -36,8 +36,6 @@
 //! | `discharge_penalty` λ | – | 5 | weight of the discharge change |
 
 use crate::core::{step_world, Inner};
-use platoonsim_sim::events::{Departure, Observer};
-use platoonsim_sim::view::VehicleView;
 
 pub const FEATURES: usize = 8;
 /// Upstream, control section, discharge: the first three detectors of the scenario.
@@ -57,21 +55,12 @@ pub struct Spec {
     pub leftmost: u32,
 }
 
-/// The CAVs that left the road (by the road's end or an off-ramp), for L̄: attached to every
-/// world of the task; observers never change the simulation.
+/// The CAVs counted by the paper's statistics (metrics.rs: as they leave the road; every
+/// vehicle is in the measurement window, `run.warmup_s` = 0), for L̄.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ExitMeter {
     pub cavs: u64,
     pub platoon_sum: u64,
-}
-
-impl Observer for ExitMeter {
-    fn on_exit(&mut self, v: VehicleView<'_>, how: Departure, _t_s: f64) {
-        if v.is_cav() && matches!(how, Departure::RoadEnd | Departure::OffRamp(_)) {
-            self.cavs += 1;
-            self.platoon_sum += u64::from(v.max_platoon());
-        }
-    }
 }
 
 /// One world at a decision time.
@@ -198,7 +187,10 @@ pub fn measure(inner: &mut Inner, spec: &Spec) -> Result<Measure, String> {
         leftmost_share,
         string_size,
         mean_speed_mps,
-        exits: sim.observer::<ExitMeter>().copied().unwrap_or_default(),
+        exits: ExitMeter {
+            cavs: sim.metrics().cavs_counted,
+            platoon_sum: sim.metrics().platoon_length_sum,
+        },
         collisions: sim.collisions(),
         t_s: sim.time_s(),
         done: sim.finished(),

@@ -285,6 +285,11 @@ impl Simulation {
         self.measures.safety.collisions.events.len() as u64
     }
 
+    /// The paper's statistics so far (metrics.rs): counted as vehicles leave the road.
+    pub fn metrics(&self) -> &crate::metrics::Metrics {
+        &self.measures.metrics
+    }
+
     /// The collisions so far, in time order.
     pub fn collision_events(&self) -> &[crate::events::CollisionEvent] {
         &self.measures.safety.collisions.events
